@@ -1,0 +1,90 @@
+// fgbench: headless benchmark and regression harness for a frame-graph Vulkan renderer.
+// The verbs are in verb_*.cpp; this file parses the command line and maps errors to exit codes.
+#include "verb.hpp"
+
+#include <fgb/core/error.hpp>
+#include <fgb/graph/frame_graph.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <exception>
+#include <iostream>
+
+namespace fgb::app {
+
+std::vector<VerbDefinition>& verbRegistry() {
+  static std::vector<VerbDefinition> registry;
+  return registry;
+}
+
+void addCommonOptions(CLI::App& command, CommonOptions& options) {
+  command.add_option("--device", options.device,
+                     "auto (first discrete/integrated GPU, else lavapipe) | lavapipe | gpu | INDEX")
+      ->capture_default_str();
+  command.add_option("--width", options.width, "Render width in pixels (default: scene's)");
+  command.add_option("--height", options.height, "Render height in pixels (default: scene's)");
+  command.add_option("--msaa", options.msaa, "MSAA samples 1|2|4|8, clamped to the device's support")
+      ->check(CLI::IsMember({1, 2, 4, 8}));
+  command.add_option("--frames", options.frames, "Measured frames")->capture_default_str()
+      ->check(CLI::Range(1u, 100000u));
+  command.add_option("--warmup", options.warmup, "Warm-up frames before measuring")->capture_default_str();
+  command.add_option("--set", options.sets, "Scene or renderer knob, key=value (repeatable)");
+  command.add_flag("--json", options.json, "Machine-readable output on stdout");
+  command.add_flag("-v,--verbose", options.verbose, "More output");
+  command.add_flag("--quiet", options.quiet, "No progress output");
+  command.add_flag("--validation", options.validation,
+                   "Enable Vulkan validation (+ synchronization validation); any message fails with exit 3");
+}
+
+}  // namespace fgb::app
+
+int main(int argc, char** argv) {
+  using namespace fgb;
+  CLI::App app{"fgbench — headless frame-graph renderer benchmark and regression harness.\n"
+               "Renders scenes offscreen through a Vulkan frame graph, times every pass on the GPU,\n"
+               "and compares frames and timings against goldens and budgets.\n"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", std::string(FGBENCH_VERSION));
+
+  auto& registry = app::verbRegistry();
+  std::sort(registry.begin(), registry.end(), [](const auto& a, const auto& b) { return a.order < b.order; });
+  std::vector<app::Verb> verbs;
+  verbs.reserve(registry.size());
+  for (auto& definition : registry) verbs.push_back(definition.add(app));
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "fgbench: " << e.what() << " (see fgbench --help)\n";
+    return kExitBadInput;
+  }
+
+  try {
+    for (auto& verb : verbs) {
+      if (verb.command->parsed()) return verb.action();
+    }
+    std::cerr << "fgbench: no verb given (see fgbench --help)\n";
+    return kExitBadInput;
+  } catch (const InputError& e) {
+    std::cerr << "fgbench: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const CheckFailed& e) {
+    std::cerr << "fgbench: check failed: " << e.what() << "\n";
+    return kExitCheckFailed;
+  } catch (const DeviceError& e) {
+    std::cerr << "fgbench: device error: " << e.what() << "\n";
+    return kExitDevice;
+  } catch (const graph::GraphError& e) {
+    std::cerr << "fgbench: frame graph: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "fgbench: runtime failure: " << e.what() << "\n";
+    return kExitDevice;
+  }
+}

@@ -1,0 +1,55 @@
+// Each CLI verb lives in its own verb_*.cpp and registers itself with a VerbRegistrar, so verbs can
+// be added without touching main.cpp. A verb adds a CLI11 subcommand, binds its options, and returns
+// the action to run once parsing succeeded. Actions return an exit code or throw fgb::InputError
+// (exit 2), fgb::CheckFailed (exit 1) or fgb::DeviceError (exit 3); main maps them.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace fgb::app {
+
+// Options shared by the rendering verbs (contract: "Common options").
+struct CommonOptions {
+  std::string device = "auto";
+  uint32_t width = 0;   // 0: scene or verb default
+  uint32_t height = 0;
+  uint32_t msaa = 0;    // 0: scene default
+  uint32_t frames = 64;
+  uint32_t warmup = 8;
+  std::vector<std::string> sets;  // key=value knobs
+  bool json = false;
+  bool verbose = false;
+  bool quiet = false;
+  bool validation = false;
+};
+
+// Adds the common rendering options to a subcommand, bound to `options`.
+void addCommonOptions(CLI::App& command, CommonOptions& options);
+
+using VerbAction = std::function<int()>;
+
+// What a verb's registration returns: its subcommand and the action to run when it was chosen.
+struct Verb {
+  CLI::App* command = nullptr;
+  VerbAction action;
+};
+
+struct VerbDefinition {
+  int order;  // position in --help
+  std::function<Verb(CLI::App& app)> add;
+};
+
+std::vector<VerbDefinition>& verbRegistry();
+
+struct VerbRegistrar {
+  VerbRegistrar(int order, std::function<Verb(CLI::App& app)> add) {
+    verbRegistry().push_back({order, std::move(add)});
+  }
+};
+
+}  // namespace fgb::app

@@ -1,0 +1,40 @@
+// Compiles a declared FrameGraph into a CompiledGraph:
+//   1. edges from versions (RAW, WAR, WAW) and cycle detection (names the nodes on the cycle);
+//   2. culling by flood fill from imported resources and side-effect nodes, with a reason per node;
+//   3. longest-path dependency levels and a topological order stable-sorted by level;
+//   4. queue assignment and SSIS pruning of cross-queue edges (thesis Algorithm 3) giving G*;
+//   5. submit placement and timeline values;
+//   6. lifetimes, extended across queues until the consuming queue has waited;
+//   7. transient memory aliasing by placement;
+//   8. a barrier plan per step (transitions, ownership release/acquire, first use from UNDEFINED).
+// Every stage is O(nodes + resources + edges) (aliasing adds a log factor).
+#pragma once
+
+#include <fgb/graph/compiled_graph.hpp>
+#include <fgb/graph/frame_graph.hpp>
+
+#include <array>
+#include <functional>
+
+namespace fgb::graph {
+
+struct CompileOptions {
+  uint32_t queueCount = 1;
+  // Queue index for each QueueClass (Graphics, Compute, Transfer); each must be < queueCount.
+  std::array<uint32_t, kQueueClassCount> queueOfClass{0, 0, 0};
+  // Queue family of each queue index; ownership transfers happen only between different families.
+  std::array<uint32_t, kQueueClassCount> familyOfQueue{0, 1, 2};
+  bool cull = true;
+  bool alias = true;
+  // Size/alignment/memory types of a transient resource (backend: vkGet*MemoryRequirements).
+  std::function<MemoryRequirements(const ResourceDecl&, const ResolvedResource&)> requirements;
+};
+
+// Simple requirements model for tests and when no device is present: tightly packed texels
+// (times samples, plus the mip chain), 256-byte alignment, any memory type.
+MemoryRequirements estimateRequirements(const ResourceDecl& decl, const ResolvedResource& resolved);
+
+// Throws GraphError on bad declarations (cycles, dependent fields naming unknown resources, ...).
+CompiledGraph compile(const FrameGraph& graph, const CompileOptions& options = {});
+
+}  // namespace fgb::graph

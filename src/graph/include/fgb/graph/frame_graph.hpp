@@ -1,0 +1,220 @@
+// Declaration side of the frame graph (Frostbite's "setup" phase, the thesis' builder).
+//
+// A FrameGraph holds nodes (graphics/compute/transfer work with a job) and resources (imported or
+// transient textures and buffers). Each write of a resource creates a new *version*; handles name a
+// version, so a stale handle can be detected and ordering falls out of version numbers:
+//   RAW: producer(v) -> every reader of v
+//   WAR: every reader of v -> the writer that produces v+1
+//   WAW: producer(v) -> the writer that produces v+1
+// Nothing here knows Vulkan: jobs receive an opaque JobContext that the backend subclasses.
+#pragma once
+
+#include <fgb/graph/format.hpp>
+#include <fgb/graph/types.hpp>
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace fgb::graph {
+
+// Thrown for declaration and compile errors; the message names the nodes and resources involved.
+class GraphError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Handles name one version of one resource. Default-constructed handles are invalid.
+struct TextureHandle {
+  uint32_t version = kInvalidIndex;
+  [[nodiscard]] bool valid() const { return version != kInvalidIndex; }
+  friend bool operator==(TextureHandle, TextureHandle) = default;
+};
+struct BufferHandle {
+  uint32_t version = kInvalidIndex;
+  [[nodiscard]] bool valid() const { return version != kInvalidIndex; }
+  friend bool operator==(BufferHandle, BufferHandle) = default;
+};
+
+struct Extent {
+  uint32_t width = 1;
+  uint32_t height = 1;
+  uint32_t depth = 1;
+};
+
+struct TextureDesc {
+  Format format = Format::Undefined;
+  Extent extent{};
+  uint32_t mipLevels = 1;
+  uint32_t layers = 1;
+  uint32_t samples = 1;
+  // Dependent field: when valid, extent = extent of this version's resource >> extentShift
+  // (at least 1), resolved at compile time. "Same size as the colour target", "half of it", ...
+  TextureHandle extentFrom{};
+  uint32_t extentShift = 0;
+};
+
+struct BufferDesc {
+  uint64_t size = 0;
+  // Dependent field: when valid, size = that buffer's size (resolved at compile time).
+  BufferHandle sizeFrom{};
+};
+
+// Opaque identity of an imported resource in the backend (e.g. an index into its resource table).
+struct ExternalResource {
+  uint64_t id = 0;
+};
+
+// State an imported resource is in before the graph runs, and must be left in afterwards.
+struct ImportState {
+  StageMask stages = kStageNone;
+  AccessMask access = kAccessNone;
+  Layout layout = Layout::Undefined;
+  QueueClass queue = QueueClass::Graphics;
+};
+
+enum class LoadOp : uint8_t { Load, Clear, DontCare };
+enum class StoreOp : uint8_t { Store, DontCare };
+
+struct ClearValue {
+  std::array<float, 4> color{0, 0, 0, 0};
+  float depth = 1.0f;
+  uint32_t stencil = 0;
+};
+
+struct ColorAttachment {
+  TextureHandle target;        // the version written by the node
+  TextureHandle resolveTarget; // optional multisample resolve output (version written)
+  LoadOp load = LoadOp::Clear;
+  StoreOp store = StoreOp::Store;
+  ClearValue clear{};
+};
+
+struct DepthAttachment {
+  TextureHandle target;  // the version used (written unless readOnly)
+  LoadOp load = LoadOp::Clear;
+  StoreOp store = StoreOp::Store;
+  ClearValue clear{};
+  bool readOnly = false;
+};
+
+// One use of one resource version by one node.
+struct Use {
+  uint32_t resource = kInvalidIndex;
+  uint32_t readVersion = kInvalidIndex;   // version read (valid if the access reads)
+  uint32_t writeVersion = kInvalidIndex;  // version produced (valid if the access writes)
+  Access access = Access::Sampled;
+  StageMask shaderStages = kStageNone;    // 0: derive from node type
+};
+
+class JobContext {
+ public:
+  virtual ~JobContext() = default;
+};
+using Job = std::function<void(JobContext&)>;
+
+enum class ResourceKind : uint8_t { Texture, Buffer };
+
+struct ResourceDecl {
+  std::string name;
+  ResourceKind kind = ResourceKind::Texture;
+  bool imported = false;
+  TextureDesc texture{};
+  BufferDesc buffer{};
+  ExternalResource external{};
+  ImportState initialState{};
+  ImportState finalState{};
+  uint32_t firstVersion = kInvalidIndex;   // the version created with the resource
+  uint32_t latestVersion = kInvalidIndex;  // newest version so far (writes must start from it)
+};
+
+struct VersionDecl {
+  uint32_t resource = kInvalidIndex;
+  uint32_t producer = kInvalidIndex;  // node that wrote it; kInvalidIndex for a first version
+  uint32_t previous = kInvalidIndex;  // version it was written over
+};
+
+struct NodeDecl {
+  std::string name;
+  NodeType type = NodeType::Graphics;
+  QueueClass queue = QueueClass::Graphics;
+  bool sideEffect = false;
+  std::vector<Use> uses;
+  std::vector<ColorAttachment> colorAttachments;  // graphics nodes only
+  DepthAttachment depthAttachment{};              // graphics nodes only; target invalid if none
+  Job job;
+};
+
+class FrameGraph;
+
+// Fluent declaration of one node. Obtained from FrameGraph::addNode; valid until the next addNode.
+class NodeBuilder {
+ public:
+  NodeBuilder(FrameGraph& graph, uint32_t node) : graph_(&graph), node_(node) {}
+
+  TextureHandle read(TextureHandle texture, Access access = Access::Sampled, StageMask stages = kStageNone);
+  BufferHandle read(BufferHandle buffer, Access access, StageMask stages = kStageNone);
+  // Write: `texture` must be the latest version; returns the new version.
+  TextureHandle write(TextureHandle texture, Access access, StageMask stages = kStageNone);
+  BufferHandle write(BufferHandle buffer, Access access, StageMask stages = kStageNone);
+
+  // Attachments of a graphics node (thesis: AddColorTarget / SetDepthStencil). Return new versions.
+  TextureHandle addColorTarget(TextureHandle target, LoadOp load = LoadOp::Clear, ClearValue clear = {});
+  // Colour target with a resolve: returns the new version of `resolveTarget`.
+  TextureHandle addColorTargetWithResolve(TextureHandle target, TextureHandle resolveTarget,
+                                          TextureHandle* newTargetVersion = nullptr,
+                                          LoadOp load = LoadOp::Clear, ClearValue clear = {});
+  TextureHandle setDepthStencil(TextureHandle target, LoadOp load = LoadOp::Clear, ClearValue clear = {});
+  void setDepthStencilReadOnly(TextureHandle target);
+
+  // A side-effect node is never culled and keeps everything it reads alive (readbacks, debug dumps).
+  NodeBuilder& sideEffect();
+  NodeBuilder& setJob(Job job);
+
+  [[nodiscard]] uint32_t index() const { return node_; }
+
+ private:
+  FrameGraph* graph_;
+  uint32_t node_;
+};
+
+class FrameGraph {
+ public:
+  FrameGraph() = default;
+
+  TextureHandle importTexture(std::string_view name, const TextureDesc& desc, ExternalResource external,
+                              ImportState initial, ImportState final);
+  BufferHandle importBuffer(std::string_view name, const BufferDesc& desc, ExternalResource external,
+                            ImportState initial, ImportState final);
+  TextureHandle createTexture(std::string_view name, const TextureDesc& desc);
+  BufferHandle createBuffer(std::string_view name, const BufferDesc& desc);
+
+  NodeBuilder addNode(std::string_view name, NodeType type);
+  NodeBuilder addNode(std::string_view name, NodeType type, QueueClass queue);
+
+  void reserve(size_t nodes, size_t resources);
+
+  [[nodiscard]] const std::vector<NodeDecl>& nodes() const { return nodes_; }
+  [[nodiscard]] const std::vector<ResourceDecl>& resources() const { return resources_; }
+  [[nodiscard]] const std::vector<VersionDecl>& versions() const { return versions_; }
+  [[nodiscard]] uint32_t resourceOf(TextureHandle h) const { return versionAt(h.version, "texture").resource; }
+  [[nodiscard]] uint32_t resourceOf(BufferHandle h) const { return versionAt(h.version, "buffer").resource; }
+  // Jobs are moved out by the backend when it builds an executable graph.
+  std::vector<NodeDecl>& mutableNodes() { return nodes_; }
+
+ private:
+  friend class NodeBuilder;
+  uint32_t addResource(ResourceDecl decl);
+  uint32_t addUse(uint32_t node, uint32_t version, ResourceKind kind, Access access, StageMask stages);
+  const VersionDecl& versionAt(uint32_t version, std::string_view what) const;
+
+  std::vector<NodeDecl> nodes_;
+  std::vector<ResourceDecl> resources_;
+  std::vector<VersionDecl> versions_;
+};
+
+}  // namespace fgb::graph

@@ -1,0 +1,84 @@
+// What the harness renders: a Workload is one scene on one device, ready to render frames through
+// the frame graph. The harness (fgbench run/bless/dot) sees only this interface; the built-in proof
+// scene (issue 2) and the full renderer (issue 4) implement it. No Vulkan types leak through.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace fgb::render {
+
+struct DeviceDescription {
+  uint32_t index = 0;
+  std::string name;
+  std::string driver;        // driver name + version, e.g. "llvmpipe (Mesa 25.0.7)"
+  std::string type;          // "cpu" | "discrete" | "integrated" | "virtual" | "other"
+  std::string apiVersion;    // "1.4.305"
+  double timestampPeriodNs = 1.0;
+  bool hostTimestamps = false;  // true where GPU timestamps are really the host clock (lavapipe)
+  std::vector<std::string> queueFamilies;  // "0: graphics|compute|transfer x1" ...
+};
+
+struct WorkloadConfig {
+  std::string scenePath;      // a scenes/*.json file or "builtin:proof"
+  std::string device = "auto";
+  uint32_t width = 0;         // 0: scene default
+  uint32_t height = 0;
+  uint32_t msaa = 0;          // 0: scene default; clamped to the device (warning on stderr)
+  bool validation = false;    // validation + synchronization validation; messages are errors
+  std::map<std::string, std::string> knobs;  // --set key=value
+  std::string cacheDir;       // cooked-asset cache ("" = default)
+};
+
+struct PassTiming {
+  std::string name;
+  std::string queue;   // "graphics" | "compute" | "transfer"
+  bool culled = false;
+  double gpuMs = 0.0;  // 0 for culled passes
+};
+
+struct FrameTiming {
+  std::vector<PassTiming> passes;  // every declared pass, in declaration order
+  double gpuFrameMs = 0.0;         // first pass start to last pass end on the GPU
+  double cpuFrameMs = 0.0;         // host time to record + submit + wait for the frame
+};
+
+// Linear RGBA float pixels, row-major, top row first.
+struct ImageRGBA32F {
+  uint32_t width = 0;
+  uint32_t height = 0;
+  std::vector<float> pixels;  // width * height * 4
+};
+
+enum class GraphDetail { Brief, Full };
+
+class Workload {
+ public:
+  virtual ~Workload() = default;
+  virtual const DeviceDescription& device() const = 0;
+  // Renders one frame and returns its timings. Timestamps of frame N may be read back during a
+  // later frame (no stall); the returned timings are always complete for the frame they describe.
+  virtual FrameTiming renderFrame() = 0;
+  // Waits for the GPU, returns timings of frames not yet returned (empty if none).
+  virtual std::vector<FrameTiming> finish() = 0;
+  // The last frame's HDR image (before tone mapping) and the tone-mapped display image (linear
+  // values in [0,1]; the PNG writer applies the sRGB curve).
+  virtual ImageRGBA32F readHdr() = 0;
+  virtual ImageRGBA32F readDisplay() = 0;
+  virtual std::string graphviz(GraphDetail detail) const = 0;
+  // Scene/run statistics: instances, instances_visible, triangles, triangles_visible, lights, ...
+  virtual std::map<std::string, double> stats() const = 0;
+  // Validation messages counted so far (0 when validation is off).
+  virtual uint64_t validationMessages() const = 0;
+};
+
+// Opens the workload for a scene. Throws fgb::InputError (bad scene/option), fgb::DeviceError.
+std::unique_ptr<Workload> openWorkload(const WorkloadConfig& config);
+
+// Lists Vulkan devices (for `fgbench devices`). Throws fgb::DeviceError when Vulkan is unusable.
+std::vector<DeviceDescription> listDevices();
+
+}  // namespace fgb::render

@@ -29,6 +29,7 @@ struct NodeInfo {
   uint32_t level = 0;          // longest-path dependency level (alive nodes)
   uint32_t queue = 0;          // queue index in [0, queueCount)
   uint32_t orderIndex = kInvalidIndex;  // position in CompiledGraph::order
+  uint32_t step = kInvalidIndex;        // index into CompiledGraph::steps
   uint32_t submit = kInvalidIndex;      // index into CompiledGraph::submits
 };
 
@@ -79,9 +80,14 @@ struct Submit {
   uint64_t signalValue = 0;  // 1-based index of this submit on its queue
 };
 
+// Lifetimes are positions in CompiledGraph::order (the global topological order), not step
+// indices: steps are grouped per queue and so are not one timeline when Q > 1.
 struct Lifetime {
-  uint32_t first = kInvalidIndex;  // first step index using the resource (alive resources)
-  uint32_t last = kInvalidIndex;   // last step index, extended across queues
+  uint32_t first = kInvalidIndex;  // order position of the first alive use
+  uint32_t last = kInvalidIndex;   // order position of the last alive use
+  // Across queues: memory is reused only once every queue that touched the resource has been
+  // waited for by the new occupant's first user (see AliasingPlan), which is how the lifetime is
+  // "extended until the consuming queue has waited".
   [[nodiscard]] bool used() const { return first != kInvalidIndex; }
 };
 
@@ -95,10 +101,14 @@ struct Placement {
   uint32_t heap = kInvalidIndex;  // into AliasingPlan::heaps; kInvalidIndex: imported or unused
   uint64_t offset = 0;
   uint64_t size = 0;
+  // Stages (on the resource's first queue) of earlier occupants of this memory that the first-use
+  // barrier must wait for; earlier occupants on other queues are ordered by semaphores.
+  StageMask aliasedAfterStages = kStageNone;
 };
 
 struct Heap {
-  uint32_t memoryTypeBits = ~0u;  // intersection of every resource placed in it
+  ResourceKind kind = ResourceKind::Texture;  // buffers and images never share a heap (granularity)
+  uint32_t memoryTypeBits = ~0u;  // every resource placed in it has exactly these bits
   uint64_t size = 0;
   uint64_t alignment = 1;
 };

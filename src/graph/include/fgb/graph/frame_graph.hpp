@@ -15,6 +15,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -143,7 +144,10 @@ struct NodeDecl {
   NodeType type = NodeType::Graphics;
   QueueClass queue = QueueClass::Graphics;
   bool sideEffect = false;
-  std::vector<Use> uses;
+  // This node's uses are FrameGraph::allUses()[firstUse, firstUse + useCount); see FrameGraph::uses().
+  // (One flat array for all nodes: declaring 10,000 nodes must not cost 10,000 allocations.)
+  uint32_t firstUse = 0;
+  uint32_t useCount = 0;
   std::vector<ColorAttachment> colorAttachments;  // graphics nodes only
   DepthAttachment depthAttachment{};              // graphics nodes only; target invalid if none
   Job job;
@@ -201,6 +205,10 @@ class FrameGraph {
   [[nodiscard]] const std::vector<NodeDecl>& nodes() const { return nodes_; }
   [[nodiscard]] const std::vector<ResourceDecl>& resources() const { return resources_; }
   [[nodiscard]] const std::vector<VersionDecl>& versions() const { return versions_; }
+  [[nodiscard]] std::span<const Use> uses(uint32_t node) const {
+    return {allUses_.data() + nodes_[node].firstUse, nodes_[node].useCount};
+  }
+  [[nodiscard]] const std::vector<Use>& allUses() const { return allUses_; }
   [[nodiscard]] uint32_t resourceOf(TextureHandle h) const { return versionAt(h.version, "texture").resource; }
   [[nodiscard]] uint32_t resourceOf(BufferHandle h) const { return versionAt(h.version, "buffer").resource; }
   // Jobs are moved out by the backend when it builds an executable graph.
@@ -215,6 +223,7 @@ class FrameGraph {
   std::vector<NodeDecl> nodes_;
   std::vector<ResourceDecl> resources_;
   std::vector<VersionDecl> versions_;
+  std::vector<Use> allUses_;
 };
 
 }  // namespace fgb::graph

@@ -1,0 +1,249 @@
+#include <fgb/graph/frame_graph.hpp>
+
+#include <string>
+
+namespace fgb::graph {
+namespace {
+
+std::string quoted(std::string_view name) { return "'" + std::string(name) + "'"; }
+
+}  // namespace
+
+// ---- FrameGraph -------------------------------------------------------------------------------
+
+void FrameGraph::reserve(size_t nodes, size_t resources) {
+  nodes_.reserve(nodes);
+  resources_.reserve(resources);
+  versions_.reserve(resources + nodes);
+  allUses_.reserve(nodes * 3);
+}
+
+const VersionDecl& FrameGraph::versionAt(uint32_t version, std::string_view what) const {
+  if (version >= versions_.size()) {
+    throw GraphError("unknown " + std::string(what) + " version " +
+                     (version == kInvalidIndex ? std::string("(invalid handle)") : std::to_string(version)));
+  }
+  return versions_[version];
+}
+
+uint32_t FrameGraph::addResource(ResourceDecl decl) {
+  const auto resource = static_cast<uint32_t>(resources_.size());
+  const auto version = static_cast<uint32_t>(versions_.size());
+  versions_.push_back({resource, kInvalidIndex, kInvalidIndex});
+  decl.firstVersion = version;
+  decl.latestVersion = version;
+  resources_.push_back(std::move(decl));
+  return version;
+}
+
+TextureHandle FrameGraph::importTexture(std::string_view name, const TextureDesc& desc, ExternalResource external,
+                                        ImportState initial, ImportState final) {
+  ResourceDecl decl{.name = std::string(name), .kind = ResourceKind::Texture, .imported = true, .texture = desc};
+  decl.external = external;
+  decl.initialState = initial;
+  decl.finalState = final;
+  if (desc.extentFrom.valid()) {
+    const auto& source = versionAt(desc.extentFrom.version, "texture");
+    if (resources_[source.resource].kind != ResourceKind::Texture) {
+      throw GraphError("texture " + quoted(name) + ": extentFrom names buffer " +
+                       quoted(resources_[source.resource].name));
+    }
+  }
+  return {addResource(std::move(decl))};
+}
+
+BufferHandle FrameGraph::importBuffer(std::string_view name, const BufferDesc& desc, ExternalResource external,
+                                      ImportState initial, ImportState final) {
+  ResourceDecl decl{.name = std::string(name), .kind = ResourceKind::Buffer, .imported = true};
+  decl.buffer = desc;
+  decl.external = external;
+  decl.initialState = initial;
+  decl.finalState = final;
+  return {addResource(std::move(decl))};
+}
+
+TextureHandle FrameGraph::createTexture(std::string_view name, const TextureDesc& desc) {
+  if (desc.extentFrom.valid()) {
+    if (desc.extentFrom.version >= versions_.size()) {
+      throw GraphError("texture " + quoted(name) + ": dependent field extentFrom names unknown resource version " +
+                       std::to_string(desc.extentFrom.version));
+    }
+    const auto& source = versions_[desc.extentFrom.version];
+    if (resources_[source.resource].kind != ResourceKind::Texture) {
+      throw GraphError("texture " + quoted(name) + ": dependent field extentFrom names buffer " +
+                       quoted(resources_[source.resource].name) + ", not a texture");
+    }
+  } else if (desc.format == Format::Undefined) {
+    throw GraphError("texture " + quoted(name) + ": format is UNDEFINED");
+  }
+  ResourceDecl decl{.name = std::string(name), .kind = ResourceKind::Texture, .imported = false, .texture = desc};
+  return {addResource(std::move(decl))};
+}
+
+BufferHandle FrameGraph::createBuffer(std::string_view name, const BufferDesc& desc) {
+  if (desc.sizeFrom.valid()) {
+    if (desc.sizeFrom.version >= versions_.size()) {
+      throw GraphError("buffer " + quoted(name) + ": dependent field sizeFrom names unknown resource version " +
+                       std::to_string(desc.sizeFrom.version));
+    }
+    const auto& source = versions_[desc.sizeFrom.version];
+    if (resources_[source.resource].kind != ResourceKind::Buffer) {
+      throw GraphError("buffer " + quoted(name) + ": dependent field sizeFrom names texture " +
+                       quoted(resources_[source.resource].name) + ", not a buffer");
+    }
+  } else if (desc.size == 0) {
+    throw GraphError("buffer " + quoted(name) + ": size is 0");
+  }
+  ResourceDecl decl{.name = std::string(name), .kind = ResourceKind::Buffer, .imported = false};
+  decl.buffer = desc;
+  return {addResource(std::move(decl))};
+}
+
+NodeBuilder FrameGraph::addNode(std::string_view name, NodeType type) {
+  return addNode(name, type, defaultQueue(type));
+}
+
+NodeBuilder FrameGraph::addNode(std::string_view name, NodeType type, QueueClass queue) {
+  const auto node = static_cast<uint32_t>(nodes_.size());
+  NodeDecl decl;
+  decl.name = std::string(name);
+  decl.type = type;
+  decl.queue = queue;
+  decl.firstUse = static_cast<uint32_t>(allUses_.size());
+  nodes_.push_back(std::move(decl));
+  return NodeBuilder(*this, node);
+}
+
+uint32_t FrameGraph::addUse(uint32_t node, uint32_t version, ResourceKind kind, Access access, StageMask stages) {
+  NodeDecl& decl = nodes_[node];
+  if (node + 1 != nodes_.size()) {
+    throw GraphError("node " + quoted(decl.name) + ": its NodeBuilder was used after the next node was added");
+  }
+  const std::string_view kindName = kind == ResourceKind::Texture ? "texture" : "buffer";
+  if (version >= versions_.size()) {
+    throw GraphError("node " + quoted(decl.name) + " uses an unknown " + std::string(kindName) + " version " +
+                     (version == kInvalidIndex ? std::string("(invalid handle)") : std::to_string(version)));
+  }
+  const uint32_t resource = versions_[version].resource;
+  ResourceDecl& res = resources_[resource];
+  if (res.kind != kind) {
+    throw GraphError("node " + quoted(decl.name) + " uses " + quoted(res.name) + " as a " + std::string(kindName));
+  }
+  const AccessInfo info = accessInfo(access, decl.type, stages);
+  Use use{.resource = resource, .access = access, .shaderStages = stages};
+  if (info.reads) {
+    const bool written = versions_[version].producer != kInvalidIndex || res.imported;
+    if (!written) {
+      throw GraphError("node " + quoted(decl.name) + " reads " + quoted(res.name) + " version " +
+                       std::to_string(version) + ", which nobody wrote");
+    }
+    use.readVersion = version;
+  }
+  if (info.writes) {
+    if (version != res.latestVersion) {
+      throw GraphError("node " + quoted(decl.name) + " writes a stale version " + std::to_string(version) + " of " +
+                       quoted(res.name) + " (latest is " + std::to_string(res.latestVersion) + ")");
+    }
+    const auto next = static_cast<uint32_t>(versions_.size());
+    versions_.push_back({resource, node, version});
+    res.latestVersion = next;
+    use.writeVersion = next;
+  }
+  allUses_.push_back(use);
+  ++decl.useCount;
+  return info.writes ? use.writeVersion : version;
+}
+
+// ---- NodeBuilder ------------------------------------------------------------------------------
+
+TextureHandle NodeBuilder::read(TextureHandle texture, Access access, StageMask stages) {
+  if (accessInfo(access, graph_->nodes_[node_].type, stages).writes) {
+    throw GraphError("node " + quoted(graph_->nodes_[node_].name) + ": read() with a writing access " +
+                     std::string(toString(access)) + "; use write()");
+  }
+  return {graph_->addUse(node_, texture.version, ResourceKind::Texture, access, stages)};
+}
+
+BufferHandle NodeBuilder::read(BufferHandle buffer, Access access, StageMask stages) {
+  if (accessInfo(access, graph_->nodes_[node_].type, stages).writes) {
+    throw GraphError("node " + quoted(graph_->nodes_[node_].name) + ": read() with a writing access " +
+                     std::string(toString(access)) + "; use write()");
+  }
+  return {graph_->addUse(node_, buffer.version, ResourceKind::Buffer, access, stages)};
+}
+
+TextureHandle NodeBuilder::write(TextureHandle texture, Access access, StageMask stages) {
+  if (!accessInfo(access, graph_->nodes_[node_].type, stages).writes) {
+    throw GraphError("node " + quoted(graph_->nodes_[node_].name) + ": write() with a read-only access " +
+                     std::string(toString(access)) + "; use read()");
+  }
+  return {graph_->addUse(node_, texture.version, ResourceKind::Texture, access, stages)};
+}
+
+BufferHandle NodeBuilder::write(BufferHandle buffer, Access access, StageMask stages) {
+  if (!accessInfo(access, graph_->nodes_[node_].type, stages).writes) {
+    throw GraphError("node " + quoted(graph_->nodes_[node_].name) + ": write() with a read-only access " +
+                     std::string(toString(access)) + "; use read()");
+  }
+  return {graph_->addUse(node_, buffer.version, ResourceKind::Buffer, access, stages)};
+}
+
+namespace {
+
+void requireGraphicsNode(const NodeDecl& node, std::string_view what) {
+  if (node.type != NodeType::Graphics) {
+    throw GraphError("node " + quoted(node.name) + " is a " + std::string(toString(node.type)) +
+                     " node; " + std::string(what) + " needs a graphics node");
+  }
+}
+
+}  // namespace
+
+TextureHandle NodeBuilder::addColorTarget(TextureHandle target, LoadOp load, ClearValue clear) {
+  requireGraphicsNode(graph_->nodes_[node_], "a colour target");
+  const Access access = load == LoadOp::Load ? Access::ColorAttachmentReadWrite : Access::ColorAttachmentWrite;
+  const TextureHandle written{graph_->addUse(node_, target.version, ResourceKind::Texture, access, kStageNone)};
+  graph_->nodes_[node_].colorAttachments.push_back({written, {}, load, StoreOp::Store, clear});
+  return written;
+}
+
+TextureHandle NodeBuilder::addColorTargetWithResolve(TextureHandle target, TextureHandle resolveTarget,
+                                                     TextureHandle* newTargetVersion, LoadOp load,
+                                                     ClearValue clear) {
+  const TextureHandle written = addColorTarget(target, load, clear);
+  if (newTargetVersion != nullptr) *newTargetVersion = written;
+  const TextureHandle resolved{
+      graph_->addUse(node_, resolveTarget.version, ResourceKind::Texture, Access::ResolveDst, kStageNone)};
+  graph_->nodes_[node_].colorAttachments.back().resolveTarget = resolved;
+  return resolved;
+}
+
+TextureHandle NodeBuilder::setDepthStencil(TextureHandle target, LoadOp load, ClearValue clear) {
+  NodeDecl& node = graph_->nodes_[node_];
+  requireGraphicsNode(node, "a depth target");
+  if (node.depthAttachment.target.valid()) throw GraphError("node " + quoted(node.name) + " has two depth targets");
+  const Access access = load == LoadOp::Load ? Access::DepthAttachmentReadWrite : Access::DepthAttachmentWrite;
+  const TextureHandle written{graph_->addUse(node_, target.version, ResourceKind::Texture, access, kStageNone)};
+  graph_->nodes_[node_].depthAttachment = {written, load, StoreOp::Store, clear, false};
+  return written;
+}
+
+void NodeBuilder::setDepthStencilReadOnly(TextureHandle target) {
+  NodeDecl& node = graph_->nodes_[node_];
+  requireGraphicsNode(node, "a depth target");
+  if (node.depthAttachment.target.valid()) throw GraphError("node " + quoted(node.name) + " has two depth targets");
+  graph_->addUse(node_, target.version, ResourceKind::Texture, Access::DepthAttachmentRead, kStageNone);
+  graph_->nodes_[node_].depthAttachment = {target, LoadOp::Load, StoreOp::Store, {}, true};
+}
+
+NodeBuilder& NodeBuilder::sideEffect() {
+  graph_->nodes_[node_].sideEffect = true;
+  return *this;
+}
+
+NodeBuilder& NodeBuilder::setJob(Job job) {
+  graph_->nodes_[node_].job = std::move(job);
+  return *this;
+}
+
+}  // namespace fgb::graph

@@ -1,0 +1,82 @@
+// Stage: culling (Frostbite's flood fill, run as reverse reachability over versions). A node is
+// kept when it has a side effect, writes an imported resource, or produces a version that a kept
+// node reads. Everything else is culled, with a reason a person can act on.
+#include "compile_state.hpp"
+
+#include <string>
+
+namespace fgb::graph::detail {
+namespace {
+
+bool writesImported(const FrameGraph& graph, uint32_t node) {
+  for (const Use& use : graph.uses(node)) {
+    if (use.writeVersion != kInvalidIndex && graph.resources()[use.resource].imported) return true;
+  }
+  return false;
+}
+
+std::string cullDiagnostic(const CompileState& state, uint32_t node, const Adjacency& allReaders) {
+  const FrameGraph& graph = state.graph;
+  std::string written;
+  std::string culledReaders;
+  for (const Use& use : graph.uses(node)) {
+    if (use.writeVersion == kInvalidIndex) continue;
+    if (!written.empty()) written += ", ";
+    written += "'" + graph.resources()[use.resource].name + "' v" + std::to_string(use.writeVersion);
+    for (uint32_t i = allReaders.begin(use.writeVersion); i < allReaders.end(use.writeVersion); ++i) {
+      const uint32_t reader = allReaders.items[i];
+      if (reader == node) continue;
+      if (!culledReaders.empty()) culledReaders += ", ";
+      culledReaders += "'" + graph.nodes()[reader].name + "'";
+    }
+  }
+  if (written.empty()) return "declares no writes and no side effect";
+  std::string why = "writes " + written + ", none imported; ";
+  why += culledReaders.empty() ? "nothing reads them" : "read only by culled nodes " + culledReaders;
+  return why;
+}
+
+}  // namespace
+
+void cullNodes(CompileState& state) {
+  const FrameGraph& graph = state.graph;
+  const uint32_t count = state.nodeCount;
+  state.alive.assign(count, state.options.cull ? 0 : 1);
+  if (state.options.cull) {
+    std::vector<uint32_t> stack;
+    for (uint32_t n = 0; n < count; ++n) {
+      if (graph.nodes()[n].sideEffect || writesImported(graph, n)) {
+        state.alive[n] = 1;
+        stack.push_back(n);
+      }
+    }
+    while (!stack.empty()) {
+      const uint32_t n = stack.back();
+      stack.pop_back();
+      for (const Use& use : graph.uses(n)) {
+        if (use.readVersion == kInvalidIndex) continue;
+        const uint32_t producer = graph.versions()[use.readVersion].producer;
+        if (producer != kInvalidIndex && !state.alive[producer]) {
+          state.alive[producer] = 1;
+          stack.push_back(producer);
+        }
+      }
+    }
+  }
+
+  bool anyCulled = false;
+  for (uint32_t n = 0; n < count && !anyCulled; ++n) anyCulled = !state.alive[n];
+  if (!anyCulled) return;
+  const Adjacency allReaders = collectVersionReaders(graph, std::vector<uint8_t>(count, 1));
+  for (uint32_t n = 0; n < count; ++n) {
+    if (state.alive[n]) continue;
+    NodeInfo& info = state.out.nodes[n];
+    info.culled = true;
+    bool hasWrites = false;
+    for (const Use& use : graph.uses(n)) hasWrites |= use.writeVersion != kInvalidIndex;
+    info.reason = hasWrites ? CullReason::OutputsUnread : CullReason::NoOutputs;
+    info.why = cullDiagnostic(state, n, allReaders);
+  }
+}
+
+}  // namespace fgb::graph::detail

@@ -1,0 +1,127 @@
+#include <fgb/graph/types.hpp>
+
+namespace fgb::graph {
+namespace {
+
+StageMask shaderStagesFor(NodeType type, StageMask requested) {
+  if (requested != kStageNone) return requested;
+  switch (type) {
+    case NodeType::Graphics: return kStageVertexShader | kStageFragmentShader;
+    case NodeType::Compute: return kStageComputeShader;
+    case NodeType::Transfer: return kStageTransfer;
+  }
+  return kStageAllCommands;
+}
+
+}  // namespace
+
+AccessInfo accessInfo(Access access, NodeType nodeType, StageMask shaderStages) {
+  const StageMask shader = shaderStagesFor(nodeType, shaderStages);
+  constexpr StageMask kDepthStages = kStageEarlyFragmentTests | kStageLateFragmentTests;
+  switch (access) {
+    case Access::Sampled:
+      return {true, false, shader, kAccessShaderSampledRead, Layout::ShaderReadOnly};
+    case Access::StorageRead:
+      return {true, false, shader, kAccessShaderStorageRead, Layout::General};
+    case Access::StorageWrite:
+      return {false, true, shader, kAccessShaderStorageWrite, Layout::General};
+    case Access::StorageReadWrite:
+      return {true, true, shader, kAccessShaderStorageRead | kAccessShaderStorageWrite, Layout::General};
+    case Access::ColorAttachmentWrite:
+      return {false, true, kStageColorAttachmentOutput, kAccessColorAttachmentWrite, Layout::ColorAttachment};
+    case Access::ColorAttachmentReadWrite:
+      return {true, true, kStageColorAttachmentOutput,
+              kAccessColorAttachmentRead | kAccessColorAttachmentWrite, Layout::ColorAttachment};
+    case Access::DepthAttachmentWrite:
+      return {false, true, kDepthStages, kAccessDepthStencilWrite, Layout::DepthStencilAttachment};
+    case Access::DepthAttachmentReadWrite:
+      return {true, true, kDepthStages, kAccessDepthStencilRead | kAccessDepthStencilWrite,
+              Layout::DepthStencilAttachment};
+    case Access::DepthAttachmentRead:
+      return {true, false, kDepthStages, kAccessDepthStencilRead, Layout::DepthStencilReadOnly};
+    case Access::ResolveDst:
+      // Dynamic-rendering resolves run in the colour-attachment-output stage.
+      return {false, true, kStageColorAttachmentOutput, kAccessColorAttachmentWrite, Layout::ColorAttachment};
+    case Access::TransferSrc:
+      return {true, false, kStageTransfer, kAccessTransferRead, Layout::TransferSrc};
+    case Access::TransferDst:
+      return {false, true, kStageTransfer, kAccessTransferWrite, Layout::TransferDst};
+    case Access::Indirect:
+      return {true, false, kStageDrawIndirect, kAccessIndirectCommandRead, Layout::General};
+    case Access::Vertex:
+      return {true, false, kStageVertexInput, kAccessVertexAttributeRead, Layout::General};
+    case Access::Index:
+      return {true, false, kStageVertexInput, kAccessIndexRead, Layout::General};
+    case Access::Uniform:
+      return {true, false, shader, kAccessUniformRead, Layout::General};
+    case Access::HostRead:
+      return {true, false, kStageHost, kAccessHostRead, Layout::General};
+  }
+  return {true, true, kStageAllCommands, kAccessNone, Layout::General};
+}
+
+std::string_view toString(Access access) {
+  switch (access) {
+    case Access::Sampled: return "sampled";
+    case Access::StorageRead: return "storage-read";
+    case Access::StorageWrite: return "storage-write";
+    case Access::StorageReadWrite: return "storage-read-write";
+    case Access::ColorAttachmentWrite: return "color-write";
+    case Access::ColorAttachmentReadWrite: return "color-read-write";
+    case Access::DepthAttachmentWrite: return "depth-write";
+    case Access::DepthAttachmentReadWrite: return "depth-read-write";
+    case Access::DepthAttachmentRead: return "depth-read";
+    case Access::ResolveDst: return "resolve";
+    case Access::TransferSrc: return "transfer-src";
+    case Access::TransferDst: return "transfer-dst";
+    case Access::Indirect: return "indirect";
+    case Access::Vertex: return "vertex";
+    case Access::Index: return "index";
+    case Access::Uniform: return "uniform";
+    case Access::HostRead: return "host-read";
+  }
+  return "?";
+}
+
+std::string_view toString(NodeType type) {
+  switch (type) {
+    case NodeType::Graphics: return "graphics";
+    case NodeType::Compute: return "compute";
+    case NodeType::Transfer: return "transfer";
+  }
+  return "?";
+}
+
+std::string_view toString(QueueClass queue) {
+  switch (queue) {
+    case QueueClass::Graphics: return "graphics";
+    case QueueClass::Compute: return "compute";
+    case QueueClass::Transfer: return "transfer";
+  }
+  return "?";
+}
+
+std::string_view toString(Layout layout) {
+  switch (layout) {
+    case Layout::Undefined: return "UNDEFINED";
+    case Layout::General: return "GENERAL";
+    case Layout::ColorAttachment: return "COLOR_ATTACHMENT";
+    case Layout::DepthStencilAttachment: return "DEPTH_STENCIL_ATTACHMENT";
+    case Layout::DepthStencilReadOnly: return "DEPTH_STENCIL_READ_ONLY";
+    case Layout::ShaderReadOnly: return "SHADER_READ_ONLY";
+    case Layout::TransferSrc: return "TRANSFER_SRC";
+    case Layout::TransferDst: return "TRANSFER_DST";
+  }
+  return "?";
+}
+
+QueueClass defaultQueue(NodeType type) {
+  switch (type) {
+    case NodeType::Graphics: return QueueClass::Graphics;
+    case NodeType::Compute: return QueueClass::Compute;
+    case NodeType::Transfer: return QueueClass::Transfer;
+  }
+  return QueueClass::Graphics;
+}
+
+}  // namespace fgb::graph

@@ -48,8 +48,19 @@ if [ ${#missing[@]} -gt 0 ] || want_backports_mesa; then
   fi
 fi
 
+jobs="$(nproc)"
 build_type="${FGBENCH_BUILD_TYPE:-Release}"
 if [ ! -f build/CMakeCache.txt ]; then
   cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE="$build_type"
 fi
-cmake --build build --parallel "$(nproc)"
+cmake --build build --parallel "$jobs"
+
+# The pure libraries' unit tests again under AddressSanitizer + UBSan; the main build's CTest runs
+# them as the test "sanitizers.unit_tests". Skip with FGBENCH_SKIP_ASAN=1.
+if [ "${FGBENCH_SKIP_ASAN:-0}" != 1 ]; then
+  if [ ! -f build-asan/CMakeCache.txt ]; then
+    cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFGBENCH_SANITIZE=ON \
+      -DFGBENCH_UNIT_ONLY=ON >/dev/null
+  fi
+  cmake --build build-asan --parallel "$jobs"
+fi

@@ -130,7 +130,8 @@ uint32_t FrameGraph::addUse(uint32_t node, uint32_t version, ResourceKind kind, 
     throw GraphError("node " + quoted(decl.name) + " uses " + quoted(res.name) + " as a " + std::string(kindName));
   }
   const AccessInfo info = accessInfo(access, decl.type, stages);
-  Use use{.resource = resource, .access = access, .shaderStages = stages};
+  Use use{.resource = resource, .access = access, .shaderStages = stages, .stages = info.stages,
+          .accessMask = info.access, .layout = info.layout};
   if (info.reads) {
     const bool written = versions_[version].producer != kInvalidIndex || res.imported;
     if (!written) {
@@ -157,7 +158,7 @@ uint32_t FrameGraph::addUse(uint32_t node, uint32_t version, ResourceKind kind, 
 // ---- NodeBuilder ------------------------------------------------------------------------------
 
 TextureHandle NodeBuilder::read(TextureHandle texture, Access access, StageMask stages) {
-  if (accessInfo(access, graph_->nodes_[node_].type, stages).writes) {
+  if (isWriteAccess(access)) {
     throw GraphError("node " + quoted(graph_->nodes_[node_].name) + ": read() with a writing access " +
                      std::string(toString(access)) + "; use write()");
   }
@@ -165,7 +166,7 @@ TextureHandle NodeBuilder::read(TextureHandle texture, Access access, StageMask 
 }
 
 BufferHandle NodeBuilder::read(BufferHandle buffer, Access access, StageMask stages) {
-  if (accessInfo(access, graph_->nodes_[node_].type, stages).writes) {
+  if (isWriteAccess(access)) {
     throw GraphError("node " + quoted(graph_->nodes_[node_].name) + ": read() with a writing access " +
                      std::string(toString(access)) + "; use write()");
   }
@@ -173,7 +174,7 @@ BufferHandle NodeBuilder::read(BufferHandle buffer, Access access, StageMask sta
 }
 
 TextureHandle NodeBuilder::write(TextureHandle texture, Access access, StageMask stages) {
-  if (!accessInfo(access, graph_->nodes_[node_].type, stages).writes) {
+  if (!isWriteAccess(access)) {
     throw GraphError("node " + quoted(graph_->nodes_[node_].name) + ": write() with a read-only access " +
                      std::string(toString(access)) + "; use read()");
   }
@@ -181,7 +182,7 @@ TextureHandle NodeBuilder::write(TextureHandle texture, Access access, StageMask
 }
 
 BufferHandle NodeBuilder::write(BufferHandle buffer, Access access, StageMask stages) {
-  if (!accessInfo(access, graph_->nodes_[node_].type, stages).writes) {
+  if (!isWriteAccess(access)) {
     throw GraphError("node " + quoted(graph_->nodes_[node_].name) + ": write() with a read-only access " +
                      std::string(toString(access)) + "; use read()");
   }

@@ -67,19 +67,20 @@ class BarrierPlanner {
     std::vector<uint32_t> lastEntry(resourceCount, kInvalidIndex);
     for (const uint32_t n : state_.out.order) {
       for (const Use& use : graph.uses(n)) {
-        const AccessInfo info = accessInfo(use.access, graph.nodes()[n].type, use.shaderStages);
+        const bool reads = use.readVersion != kInvalidIndex;
+        const bool writes = use.writeVersion != kInvalidIndex;
         uint32_t& last = lastEntry[use.resource];
         if (last != kInvalidIndex && uses_[last].node == n) {
           MergedUse& merged = uses_[last];  // a node using one resource twice: one combined use
-          merged.stages |= info.stages;
-          merged.access |= info.access;
-          merged.reads |= info.reads;
-          merged.writes |= info.writes;
-          if (merged.layout != info.layout) merged.layout = Layout::General;
+          merged.stages |= use.stages;
+          merged.access |= use.accessMask;
+          merged.reads |= reads;
+          merged.writes |= writes;
+          if (merged.layout != use.layout) merged.layout = Layout::General;
           continue;
         }
         last = cursor[use.resource]++;
-        uses_[last] = {n, info.stages, info.access, info.layout, info.reads, info.writes};
+        uses_[last] = {n, use.stages, use.accessMask, use.layout, reads, writes};
       }
     }
     end_.assign(cursor.begin(), cursor.end());

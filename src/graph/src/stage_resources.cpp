@@ -71,7 +71,7 @@ void computeLifetimes(CompileState& state) {
       state.out.resourceAlive[use.resource] = true;
       const size_t slot = use.resource * kQueueClassCount + queue;
       state.lastSigmaOnQueue[slot] = std::max(state.lastSigmaOnQueue[slot], state.sigma[n]);
-      state.stagesOnQueue[slot] |= accessInfo(use.access, state.graph.nodes()[n].type, use.shaderStages).stages;
+      state.stagesOnQueue[slot] |= use.stages;
     }
   }
   for (size_t r = 0; r < decls.size(); ++r) {

@@ -17,12 +17,11 @@ void forEachVersionEdge(const FrameGraph& graph, const std::vector<uint8_t>& ali
                         const std::vector<uint32_t>& queueOf, const Adjacency& readers, EmitEdge&& emit) {
   const auto& versions = graph.versions();
   const auto& resources = graph.resources();
-  const auto& nodes = graph.nodes();
   std::vector<uint32_t> lastAliveVersion(resources.size(), kInvalidIndex);
 
   auto readerLayout = [&](uint32_t node, uint32_t version) {
     for (const Use& use : graph.uses(node)) {
-      if (use.readVersion == version) return accessInfo(use.access, nodes[node].type, use.shaderStages).layout;
+      if (use.readVersion == version) return use.layout;
     }
     return Layout::Undefined;
   };

@@ -109,7 +109,11 @@ struct Use {
   uint32_t readVersion = kInvalidIndex;   // version read (valid if the access reads)
   uint32_t writeVersion = kInvalidIndex;  // version produced (valid if the access writes)
   Access access = Access::Sampled;
-  StageMask shaderStages = kStageNone;    // 0: derive from node type
+  StageMask shaderStages = kStageNone;    // as declared; 0: derive from node type
+  // accessInfo(access, node type, shaderStages), computed once at declaration.
+  StageMask stages = kStageNone;
+  AccessMask accessMask = kAccessNone;
+  Layout layout = Layout::Undefined;
 };
 
 class JobContext {

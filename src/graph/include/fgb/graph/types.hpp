@@ -99,6 +99,20 @@ struct AccessInfo {
 };
 AccessInfo accessInfo(Access access, NodeType nodeType, StageMask shaderStages = kStageNone);
 
+constexpr bool isWriteAccess(Access access) {
+  switch (access) {
+    case Access::StorageWrite:
+    case Access::StorageReadWrite:
+    case Access::ColorAttachmentWrite:
+    case Access::ColorAttachmentReadWrite:
+    case Access::DepthAttachmentWrite:
+    case Access::DepthAttachmentReadWrite:
+    case Access::ResolveDst:
+    case Access::TransferDst: return true;
+    default: return false;
+  }
+}
+
 std::string_view toString(Access access);
 std::string_view toString(NodeType type);
 std::string_view toString(QueueClass queue);

@@ -29,6 +29,7 @@ struct CompileState {
   uint32_t nodeCount;
 
   std::vector<uint8_t> alive;        // per node
+  bool anyCulled = false;
   std::vector<uint32_t> queueOf;     // per node: queue index
   Adjacency predecessors;            // per node: alive nodes it depends on (deduplicated)
   std::vector<uint32_t> sigma;       // per node: SSIS re-index σ(u) = order position + queue·V + 1
@@ -44,6 +45,8 @@ Adjacency collectVersionReaders(const FrameGraph& graph, const std::vector<uint8
 // Stages, in pipeline order.
 void assignQueues(CompileState& state);
 void detectCycles(const CompileState& state);          // over every declared node
+// Throws GraphError naming a cycle among `left` (nodes Kahn's algorithm could not order).
+[[noreturn]] void reportCycle(const CompileState& state, const Adjacency& preds, const std::vector<uint32_t>& left);
 void cullNodes(CompileState& state);                    // fills alive + NodeInfo reasons
 void buildDependencies(CompileState& state);            // RAW/WAR/WAW edges among alive nodes
 void sortByLevel(CompileState& state);                  // levels + order

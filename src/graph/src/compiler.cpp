@@ -21,8 +21,10 @@ CompiledGraph compile(const FrameGraph& graph, const CompileOptions& options) {
   out.queueCount = options.queueCount;
   detail::CompileState state(graph, options, out);
   detail::assignQueues(state);
-  detail::detectCycles(state);
   detail::cullNodes(state);
+  // With nothing culled, the level sort sees every node and reports cycles itself; otherwise a
+  // cycle through culled nodes would go unseen there, so check the whole declaration first.
+  if (state.anyCulled) detail::detectCycles(state);
   detail::buildDependencies(state);
   detail::sortByLevel(state);
   detail::pruneCrossQueueEdges(state);

@@ -64,9 +64,8 @@ void cullNodes(CompileState& state) {
     }
   }
 
-  bool anyCulled = false;
-  for (uint32_t n = 0; n < count && !anyCulled; ++n) anyCulled = !state.alive[n];
-  if (!anyCulled) return;
+  for (uint32_t n = 0; n < count && !state.anyCulled; ++n) state.anyCulled = !state.alive[n];
+  if (!state.anyCulled) return;
   const Adjacency allReaders = collectVersionReaders(graph, std::vector<uint8_t>(count, 1));
   for (uint32_t n = 0; n < count; ++n) {
     if (state.alive[n]) continue;

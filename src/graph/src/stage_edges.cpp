@@ -121,8 +121,10 @@ void detectCycles(const CompileState& state) {
   const Adjacency preds =
       predecessorsFromEdges(state.nodeCount, versionEdges(state.graph, everyNode, state.queueOf), nullptr);
   const std::vector<uint32_t> left = nodesOnOrBehindCycles(state.nodeCount, preds);
-  if (left.empty()) return;
+  if (!left.empty()) reportCycle(state, preds, left);
+}
 
+void reportCycle(const CompileState& state, const Adjacency& preds, const std::vector<uint32_t>& left) {
   // Every node left over has a predecessor that is also left over: walk predecessors until a
   // node repeats; the walk from its first visit is a cycle.
   std::vector<uint8_t> isLeft(state.nodeCount, 0);

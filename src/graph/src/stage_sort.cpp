@@ -41,6 +41,12 @@ void sortByLevel(CompileState& state) {
     }
   }
 
+  std::vector<uint32_t> left;
+  for (uint32_t n = 0; n < count; ++n) {
+    if (state.alive[n] && pending[n] != 0) left.push_back(n);
+  }
+  if (!left.empty()) reportCycle(state, preds, left);
+
   // Counting sort by level; within a level, declaration order (deterministic, and stable).
   std::vector<uint32_t> levelStart(maxLevel + 2, 0);
   uint32_t aliveCount = 0;

@@ -28,7 +28,7 @@ uint64_t alignUp(uint64_t value, uint64_t alignment) { return (value + alignment
 
 class Placer {
  public:
-  explicit Placer(CompileState& state) : state_(state), plan_(state.out.aliasing) {}
+  Placer(CompileState& state, bool alias) : state_(state), plan_(state.out.aliasing), alias_(alias) {}
 
   void run() {
     const auto& decls = state_.graph.resources();
@@ -97,7 +97,7 @@ class Placer {
     Placement& placement = plan_.placements[resource];
     placement.heap = heapIndex;
     placement.size = req.size;
-    if (state_.options.alias && takeFreeRange(heapIndex, resource, req, placement)) return;
+    if (alias_ && takeFreeRange(heapIndex, resource, req, placement)) return;
     placement.offset = alignUp(heap.size, req.alignment);
     heap.size = placement.offset + req.size;
   }
@@ -146,11 +146,23 @@ class Placer {
 
   CompileState& state_;
   AliasingPlan& plan_;
+  bool alias_;
   std::vector<HeapState> heaps_;
 };
 
 }  // namespace
 
-void placeTransients(CompileState& state) { Placer(state).run(); }
+void placeTransients(CompileState& state) {
+  Placer(state, state.options.alias).run();
+  // Fragmentation (mixed alignments, ranges that cannot merge) can make a placement worse than
+  // none; then keep whichever of the two layouts is smaller.
+  AliasingPlan& plan = state.out.aliasing;
+  if (plan.peakBytesAliased > plan.peakBytesUnaliased) {
+    AliasingPlan aliased = std::move(plan);
+    plan = {};
+    Placer(state, false).run();
+    if (plan.peakBytesAliased > aliased.peakBytesAliased) plan = std::move(aliased);
+  }
+}
 
 }  // namespace fgb::graph::detail

@@ -111,6 +111,8 @@ class BarrierPlanner {
       const uint32_t queue = state_.queueOf[use.node];
       const uint32_t step = state_.out.nodes[use.node].step;
       const Layout layout = texture ? use.layout : Layout::Undefined;
+      // An ownership transfer or a layout change is a write in disguise (see advance()).
+      const bool transitioned = s.owned && (familyOf(s.queue) != familyOf(queue) || (texture && layout != s.layout));
       if (!s.owned) {
         firstUse(resource, texture, use, queue, step);
       } else if (familyOf(s.queue) != familyOf(queue)) {
@@ -118,7 +120,7 @@ class BarrierPlanner {
       } else {
         sameQueueHazard(resource, texture, s, use, queue, step, layout);
       }
-      advance(s, use, queue, step, layout);
+      advance(s, use, queue, step, layout, transitioned);
     }
     finalState(resource, texture, s);
   }
@@ -187,8 +189,19 @@ class BarrierPlanner {
     push(step, false, b);
   }
 
-  static void advance(TrackedState& s, const MergedUse& use, uint32_t queue, uint32_t step, Layout layout) {
-    if (use.writes) {
+  static void advance(TrackedState& s, const MergedUse& use, uint32_t queue, uint32_t step, Layout layout,
+                      bool transitioned) {
+    if (!use.writes && transitioned) {
+      // The barrier just placed (layout transition / acquire) made the last write available and is
+      // itself a write, ordered only before this use's stages. Later barriers must chain through
+      // those stages (srcStages = them, srcAccess = none: nothing left to make available), not
+      // name the original writer's stages, which would not chain (e.g. colour output -> compute).
+      s.writeStages = use.stages;
+      s.writeAccess = kAccessNone;
+      s.readStages = use.stages;
+      s.visibleStages = use.stages;
+      s.visibleAccess = use.access;
+    } else if (use.writes) {
       s.writeStages = use.stages;
       s.writeAccess = use.access & kWriteAccesses;
       s.readStages = kStageNone;

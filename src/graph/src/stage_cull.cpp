@@ -3,6 +3,7 @@
 // node reads. Everything else is culled, with a reason a person can act on.
 #include "compile_state.hpp"
 
+#include <algorithm>
 #include <string>
 
 namespace fgb::graph::detail {
@@ -19,13 +20,15 @@ std::string cullDiagnostic(const CompileState& state, uint32_t node, const Adjac
   const FrameGraph& graph = state.graph;
   std::string written;
   std::string culledReaders;
+  std::vector<uint32_t> named;  // readers already listed (a node may read several outputs)
   for (const Use& use : graph.uses(node)) {
     if (use.writeVersion == kInvalidIndex) continue;
     if (!written.empty()) written += ", ";
     written += "'" + graph.resources()[use.resource].name + "' v" + std::to_string(use.writeVersion);
     for (uint32_t i = allReaders.begin(use.writeVersion); i < allReaders.end(use.writeVersion); ++i) {
       const uint32_t reader = allReaders.items[i];
-      if (reader == node) continue;
+      if (reader == node || std::find(named.begin(), named.end(), reader) != named.end()) continue;
+      named.push_back(reader);
       if (!culledReaders.empty()) culledReaders += ", ";
       culledReaders += "'" + graph.nodes()[reader].name + "'";
     }

@@ -1,0 +1,187 @@
+// The barrier plan: stage/access/layout transitions for every hazard (including same-layout RAW
+// and WAW), first use from UNDEFINED, imported initial/final states, and queue-family ownership
+// release/acquire pairs.
+#include "test_helpers.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <optional>
+
+namespace fgb::graph::test {
+namespace {
+
+bool hasAll(uint32_t mask, uint32_t bits) { return (mask & bits) == bits; }
+
+TEST(Barriers, SameLayoutReadAfterWriteOnAStorageBuffer) {
+  FrameGraph g;
+  const BufferHandle out = g.importBuffer("out", bufferDesc(), {1}, {}, {});
+  const BufferHandle buf = g.createBuffer("counts", bufferDesc());
+  const BufferHandle buf1 = g.addNode("Write", NodeType::Compute).write(buf, Access::StorageWrite);
+  NodeBuilder reader = g.addNode("Read", NodeType::Compute);
+  reader.read(buf1, Access::StorageRead);
+  reader.write(out, Access::StorageWrite);
+  const CompiledGraph c = compile(g);
+  const auto found = barriersAround(c, nodeNamed(g, "Read"), g.resourceOf(buf1), true);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_EQ(found[0].kind, Barrier::Kind::Transition);
+  EXPECT_TRUE(hasAll(found[0].srcStages, kStageComputeShader));
+  EXPECT_TRUE(hasAll(found[0].srcAccess, kAccessShaderStorageWrite));
+  EXPECT_TRUE(hasAll(found[0].dstStages, kStageComputeShader));
+  EXPECT_TRUE(hasAll(found[0].dstAccess, kAccessShaderStorageRead));
+  expectAllInvariants(g, c, {});
+}
+
+TEST(Barriers, SameLayoutWriteAfterWriteOnAStorageImage) {
+  FrameGraph g;
+  const TextureHandle out = importOutput(g, "out");
+  const TextureHandle out1 = g.addNode("First", NodeType::Compute).write(out, Access::StorageWrite);
+  g.addNode("Second", NodeType::Compute).write(out1, Access::StorageWrite);
+  const CompiledGraph c = compile(g);
+  const auto found = barriersAround(c, nodeNamed(g, "Second"), 0, true);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_EQ(found[0].oldLayout, Layout::General);
+  EXPECT_EQ(found[0].newLayout, Layout::General);
+  EXPECT_TRUE(hasAll(found[0].srcAccess, kAccessShaderStorageWrite));
+  EXPECT_TRUE(hasAll(found[0].dstAccess, kAccessShaderStorageWrite));
+  expectAllInvariants(g, c, {});
+}
+
+TEST(Barriers, ColorTargetThenSampledChangesLayout) {
+  FrameGraph g;
+  const TextureHandle out = importOutput(g, "out");
+  const TextureHandle hdr = g.createTexture("hdr", colorDesc());
+  const TextureHandle hdr1 = g.addNode("Forward", NodeType::Graphics).addColorTarget(hdr);
+  NodeBuilder tonemap = g.addNode("Tonemap", NodeType::Graphics);
+  tonemap.read(hdr1);
+  tonemap.addColorTarget(out);
+  const CompiledGraph c = compile(g);
+  const uint32_t hdrIndex = g.resourceOf(hdr);
+  const auto first = barriersAround(c, nodeNamed(g, "Forward"), hdrIndex, true);
+  ASSERT_EQ(first.size(), 1u);
+  EXPECT_EQ(first[0].oldLayout, Layout::Undefined);  // first use of a transient
+  EXPECT_EQ(first[0].newLayout, Layout::ColorAttachment);
+  const auto second = barriersAround(c, nodeNamed(g, "Tonemap"), hdrIndex, true);
+  ASSERT_EQ(second.size(), 1u);
+  EXPECT_EQ(second[0].oldLayout, Layout::ColorAttachment);
+  EXPECT_EQ(second[0].newLayout, Layout::ShaderReadOnly);
+  EXPECT_TRUE(hasAll(second[0].srcStages, kStageColorAttachmentOutput));
+  EXPECT_TRUE(hasAll(second[0].srcAccess, kAccessColorAttachmentWrite));
+  EXPECT_TRUE(hasAll(second[0].dstStages, kStageFragmentShader));
+  EXPECT_TRUE(hasAll(second[0].dstAccess, kAccessShaderSampledRead));
+  expectAllInvariants(g, c, {});
+}
+
+TEST(Barriers, ImportedTextureStartsInItsInitialAndEndsInItsFinalLayout) {
+  FrameGraph g;
+  const TextureHandle image = g.importTexture(
+      "image", colorDesc(), {3}, ImportState{.stages = kStageTransfer, .access = kAccessTransferWrite,
+                                             .layout = Layout::TransferDst},
+      ImportState{.stages = kStageFragmentShader, .access = kAccessShaderSampledRead,
+                  .layout = Layout::ShaderReadOnly});
+  g.addNode("Paint", NodeType::Compute, QueueClass::Graphics).write(image, Access::StorageReadWrite);
+  const CompiledGraph c = compile(g);
+  const auto before = barriersAround(c, 0, 0, true);
+  ASSERT_EQ(before.size(), 1u);
+  EXPECT_EQ(before[0].oldLayout, Layout::TransferDst);
+  EXPECT_EQ(before[0].newLayout, Layout::General);
+  EXPECT_TRUE(hasAll(before[0].srcStages, kStageTransfer));
+  EXPECT_TRUE(hasAll(before[0].srcAccess, kAccessTransferWrite));
+  const auto after = barriersAround(c, 0, 0, false);
+  ASSERT_EQ(after.size(), 1u);
+  EXPECT_EQ(after[0].oldLayout, Layout::General);
+  EXPECT_EQ(after[0].newLayout, Layout::ShaderReadOnly);
+  EXPECT_TRUE(hasAll(after[0].srcAccess, kAccessShaderStorageWrite));
+}
+
+// Compute writes a storage image on queue 1; graphics samples it on queue 0 (another family).
+TEST(Barriers, CrossFamilyHandOffIsAReleaseAcquirePair) {
+  FrameGraph g;
+  const TextureHandle out = importOutput(g, "out");
+  const TextureHandle ao = g.createTexture("ao", colorDesc());
+  const TextureHandle ao1 = g.addNode("AO", NodeType::Compute).write(ao, Access::StorageWrite);
+  NodeBuilder light = g.addNode("Light", NodeType::Graphics);
+  light.read(ao1);
+  light.addColorTarget(out);
+  const CompileOptions options = queueOptions(3);
+  const CompiledGraph c = compile(g, options);
+  const uint32_t aoIndex = g.resourceOf(ao);
+  const auto released = barriersAround(c, nodeNamed(g, "AO"), aoIndex, false);
+  const auto acquired = barriersAround(c, nodeNamed(g, "Light"), aoIndex, true);
+  auto findKind = [](const std::vector<Barrier>& list, Barrier::Kind kind) {
+    const auto it = std::find_if(list.begin(), list.end(), [kind](const Barrier& b) { return b.kind == kind; });
+    return it == list.end() ? std::optional<Barrier>{} : std::optional<Barrier>{*it};
+  };
+  const auto release = findKind(released, Barrier::Kind::Release);
+  const auto acquire = findKind(acquired, Barrier::Kind::Acquire);
+  ASSERT_TRUE(release.has_value());
+  ASSERT_TRUE(acquire.has_value());
+  for (const Barrier& b : {*release, *acquire}) {
+    EXPECT_EQ(b.srcQueue, 1u);
+    EXPECT_EQ(b.dstQueue, 0u);
+  }
+  EXPECT_EQ(release->oldLayout, acquire->oldLayout);
+  EXPECT_EQ(release->newLayout, acquire->newLayout);
+  EXPECT_TRUE(hasAll(release->srcAccess, kAccessShaderStorageWrite));
+  ASSERT_FALSE(acquired.empty());
+  EXPECT_EQ(acquired.back().newLayout, Layout::ShaderReadOnly);
+  EXPECT_TRUE(hasAll(acquired.back().dstAccess, kAccessShaderSampledRead));
+  EXPECT_EQ(edgeNames(g, c.syncEdges), (NamePairs{{"AO", "Light"}}));
+  expectAllInvariants(g, c, options);
+}
+
+TEST(Barriers, SameFamilyQueuesNeedNoOwnershipTransfer) {
+  FrameGraph g;
+  const TextureHandle out = importOutput(g, "out");
+  const TextureHandle ao = g.createTexture("ao", colorDesc());
+  const TextureHandle ao1 = g.addNode("AO", NodeType::Compute).write(ao, Access::StorageWrite);
+  NodeBuilder light = g.addNode("Light", NodeType::Graphics);
+  light.read(ao1);
+  light.addColorTarget(out);
+  CompileOptions options = queueOptions(3);
+  options.familyOfQueue = {0, 0, 0};
+  const CompiledGraph c = compile(g, options);
+  for (const Barrier& b : c.barriers) EXPECT_EQ(b.kind, Barrier::Kind::Transition);
+  const auto acquired = barriersAround(c, nodeNamed(g, "Light"), g.resourceOf(ao), true);
+  ASSERT_EQ(acquired.size(), 1u);
+  EXPECT_EQ(acquired[0].newLayout, Layout::ShaderReadOnly);
+}
+
+TEST(Barriers, ReadOnlyDepthAfterDepthWrite) {
+  FrameGraph g;
+  const TextureHandle out = importOutput(g, "out");
+  const TextureHandle depth = g.createTexture("depth", colorDesc(256, 256, Format::D32Sfloat));
+  const TextureHandle depth1 = g.addNode("Prepass", NodeType::Graphics).setDepthStencil(depth);
+  NodeBuilder forward = g.addNode("Forward", NodeType::Graphics);
+  forward.setDepthStencilReadOnly(depth1);
+  forward.addColorTarget(out);
+  const CompiledGraph c = compile(g);
+  const auto found = barriersAround(c, nodeNamed(g, "Forward"), g.resourceOf(depth), true);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_EQ(found[0].oldLayout, Layout::DepthStencilAttachment);
+  EXPECT_EQ(found[0].newLayout, Layout::DepthStencilReadOnly);
+  EXPECT_TRUE(hasAll(found[0].srcAccess, kAccessDepthStencilWrite));
+  EXPECT_TRUE(hasAll(found[0].dstAccess, kAccessDepthStencilRead));
+  expectAllInvariants(g, c, {});
+}
+
+TEST(Barriers, StepRangesStayInsideTheBarrierList) {
+  FrameGraph g;
+  const TextureHandle out = importOutput(g, "out");
+  const TextureHandle t = g.createTexture("t", colorDesc());
+  const TextureHandle t1 = g.addNode("A", NodeType::Transfer).write(t, Access::TransferDst);
+  NodeBuilder b = g.addNode("B", NodeType::Compute);
+  b.read(t1, Access::StorageRead);
+  b.write(out, Access::StorageWrite);
+  for (uint32_t q = 1; q <= 3; ++q) {
+    const CompiledGraph c = compile(g, queueOptions(q));
+    for (const Step& step : c.steps) {
+      EXPECT_LE(step.before.first + step.before.count, c.barriers.size());
+      EXPECT_LE(step.after.first + step.after.count, c.barriers.size());
+    }
+    expectAllInvariants(g, c, queueOptions(q));
+  }
+}
+
+}  // namespace
+}  // namespace fgb::graph::test

@@ -1,0 +1,212 @@
+// The declaration model: nodes and queue classes, imported/transient resources, one version per
+// write, the recorded uses, attachments, and the access-kind table.
+#include "test_helpers.hpp"
+
+#include <gtest/gtest.h>
+
+namespace fgb::graph::test {
+namespace {
+
+TEST(Declaration, EachWriteCreatesANewVersionOfTheSameResource) {
+  FrameGraph graph;
+  const TextureHandle v0 = graph.createTexture("hdr", colorDesc());
+  NodeBuilder a = graph.addNode("A", NodeType::Compute);
+  const TextureHandle v1 = a.write(v0, Access::StorageWrite);
+  NodeBuilder b = graph.addNode("B", NodeType::Compute);
+  const TextureHandle v2 = b.write(v1, Access::StorageReadWrite);
+
+  EXPECT_NE(v0, v1);
+  EXPECT_NE(v1, v2);
+  EXPECT_EQ(graph.resourceOf(v0), graph.resourceOf(v2));
+  const VersionDecl& second = graph.versions()[v2.version];
+  EXPECT_EQ(second.producer, 1u);
+  EXPECT_EQ(second.previous, v1.version);
+  EXPECT_EQ(graph.versions()[v1.version].previous, v0.version);
+  EXPECT_EQ(graph.versions()[v0.version].producer, kInvalidIndex);
+  EXPECT_EQ(graph.resources()[0].latestVersion, v2.version);
+  EXPECT_EQ(graph.resources()[0].firstVersion, v0.version);
+}
+
+TEST(Declaration, ReadReturnsTheSameVersionAndRecordsOnlyAReadVersion) {
+  FrameGraph graph;
+  const BufferHandle buffer = graph.importBuffer("lights", bufferDesc(), {3}, {}, {});
+  NodeBuilder node = graph.addNode("Cull", NodeType::Compute);
+  EXPECT_EQ(node.read(buffer, Access::Uniform), buffer);
+  const auto uses = graph.uses(0);
+  ASSERT_EQ(uses.size(), 1u);
+  EXPECT_EQ(uses[0].readVersion, buffer.version);
+  EXPECT_EQ(uses[0].writeVersion, kInvalidIndex);
+  EXPECT_EQ(uses[0].access, Access::Uniform);
+}
+
+TEST(Declaration, ReadWriteRecordsBothVersions) {
+  FrameGraph graph;
+  const BufferHandle buffer = graph.importBuffer("particles", bufferDesc(), {3}, {}, {});
+  NodeBuilder node = graph.addNode("Simulate", NodeType::Compute);
+  const BufferHandle next = node.write(buffer, Access::StorageReadWrite);
+  const Use& use = graph.uses(0)[0];
+  EXPECT_EQ(use.readVersion, buffer.version);
+  EXPECT_EQ(use.writeVersion, next.version);
+}
+
+TEST(Declaration, QueueClassDefaultsToTheNodeTypeAndCanBeOverridden) {
+  FrameGraph graph;
+  graph.addNode("g", NodeType::Graphics);
+  graph.addNode("c", NodeType::Compute);
+  graph.addNode("t", NodeType::Transfer);
+  graph.addNode("c-on-graphics", NodeType::Compute, QueueClass::Graphics);
+  EXPECT_EQ(graph.nodes()[0].queue, QueueClass::Graphics);
+  EXPECT_EQ(graph.nodes()[1].queue, QueueClass::Compute);
+  EXPECT_EQ(graph.nodes()[2].queue, QueueClass::Transfer);
+  EXPECT_EQ(graph.nodes()[3].queue, QueueClass::Graphics);
+  EXPECT_EQ(graph.nodes()[3].type, NodeType::Compute);
+}
+
+TEST(Declaration, ImportedAndTransientResourcesKeepTheirDescriptions) {
+  FrameGraph graph;
+  const ImportState initial{.stages = kStageTransfer, .access = kAccessTransferWrite,
+                            .layout = Layout::TransferDst, .queue = QueueClass::Transfer};
+  const ImportState final{.layout = Layout::ShaderReadOnly};
+  graph.importTexture("out", colorDesc(640, 360), {42}, initial, final);
+  graph.createBuffer("scratch", bufferDesc(1024));
+  const ResourceDecl& out = graph.resources()[0];
+  EXPECT_TRUE(out.imported);
+  EXPECT_EQ(out.kind, ResourceKind::Texture);
+  EXPECT_EQ(out.external.id, 42u);
+  EXPECT_EQ(out.initialState.layout, Layout::TransferDst);
+  EXPECT_EQ(out.initialState.queue, QueueClass::Transfer);
+  EXPECT_EQ(out.finalState.layout, Layout::ShaderReadOnly);
+  EXPECT_EQ(out.texture.extent.width, 640u);
+  const ResourceDecl& scratch = graph.resources()[1];
+  EXPECT_FALSE(scratch.imported);
+  EXPECT_EQ(scratch.kind, ResourceKind::Buffer);
+  EXPECT_EQ(scratch.buffer.size, 1024u);
+}
+
+TEST(Declaration, AttachmentsRecordUsesAndAttachmentState) {
+  FrameGraph graph;
+  const TextureHandle color = graph.createTexture("msaa", colorDesc());
+  const TextureHandle resolve = graph.createTexture("resolved", colorDesc());
+  const TextureHandle depth = graph.createTexture("depth", colorDesc(256, 256, Format::D32Sfloat));
+  NodeBuilder pass = graph.addNode("Forward", NodeType::Graphics);
+  TextureHandle newColor;
+  const TextureHandle newResolve = pass.addColorTargetWithResolve(color, resolve, &newColor);
+  const TextureHandle newDepth = pass.setDepthStencil(depth);
+
+  const NodeDecl& node = graph.nodes()[0];
+  ASSERT_EQ(node.colorAttachments.size(), 1u);
+  EXPECT_EQ(node.colorAttachments[0].target, newColor);
+  EXPECT_EQ(node.colorAttachments[0].resolveTarget, newResolve);
+  EXPECT_EQ(node.depthAttachment.target, newDepth);
+  EXPECT_FALSE(node.depthAttachment.readOnly);
+  const auto uses = graph.uses(0);
+  ASSERT_EQ(uses.size(), 3u);
+  EXPECT_EQ(uses[0].access, Access::ColorAttachmentWrite);
+  EXPECT_EQ(uses[1].access, Access::ResolveDst);
+  EXPECT_EQ(uses[2].access, Access::DepthAttachmentWrite);
+  EXPECT_EQ(graph.resourceOf(newResolve), graph.resourceOf(resolve));
+}
+
+TEST(Declaration, LoadingAttachmentsReadThePreviousContents) {
+  FrameGraph graph;
+  const TextureHandle color = importOutput(graph, "color");
+  const TextureHandle depth = graph.importTexture("depth", colorDesc(256, 256, Format::D32Sfloat), {1}, {}, {});
+  NodeBuilder pass = graph.addNode("Overlay", NodeType::Graphics);
+  pass.addColorTarget(color, LoadOp::Load);
+  pass.setDepthStencil(depth, LoadOp::Load);
+  NodeBuilder test = graph.addNode("DepthTest", NodeType::Graphics);
+  const TextureHandle latestDepth = graph.nodes()[0].depthAttachment.target;
+  test.setDepthStencilReadOnly(latestDepth);
+  EXPECT_EQ(graph.uses(0)[0].access, Access::ColorAttachmentReadWrite);
+  EXPECT_EQ(graph.uses(0)[1].access, Access::DepthAttachmentReadWrite);
+  EXPECT_EQ(graph.uses(1)[0].access, Access::DepthAttachmentRead);
+  EXPECT_EQ(graph.uses(1)[0].writeVersion, kInvalidIndex);
+  EXPECT_TRUE(graph.nodes()[1].depthAttachment.readOnly);
+}
+
+TEST(Declaration, SideEffectAndJobAreRecorded) {
+  FrameGraph graph;
+  int calls = 0;
+  graph.addNode("Readback", NodeType::Transfer).sideEffect().setJob([&calls](JobContext&) { ++calls; });
+  EXPECT_TRUE(graph.nodes()[0].sideEffect);
+  JobContext context;
+  graph.mutableNodes()[0].job(context);
+  EXPECT_EQ(calls, 1);
+}
+
+struct AccessRow {
+  Access access;
+  bool reads;
+  bool writes;
+  StageMask stages;  // for a compute node (shader stages derived from the node type)
+  AccessMask mask;
+  Layout layout;
+};
+
+constexpr StageMask kDepthTests = kStageEarlyFragmentTests | kStageLateFragmentTests;
+
+class AccessTable : public ::testing::TestWithParam<AccessRow> {};
+
+TEST_P(AccessTable, MapsToStagesAccessAndLayout) {
+  const AccessRow& row = GetParam();
+  const AccessInfo info = accessInfo(row.access, NodeType::Compute);
+  EXPECT_EQ(info.reads, row.reads) << toString(row.access);
+  EXPECT_EQ(info.writes, row.writes) << toString(row.access);
+  EXPECT_EQ(info.stages, row.stages) << toString(row.access);
+  EXPECT_EQ(info.access, row.mask) << toString(row.access);
+  if (row.layout != Layout::Undefined) {
+    EXPECT_EQ(info.layout, row.layout) << toString(row.access);
+  }
+  EXPECT_EQ((info.access & kWriteAccesses) != 0, row.writes) << toString(row.access);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    EveryAccessKind, AccessTable,
+    ::testing::Values(
+        AccessRow{Access::Sampled, true, false, kStageComputeShader, kAccessShaderSampledRead, Layout::ShaderReadOnly},
+        AccessRow{Access::StorageRead, true, false, kStageComputeShader, kAccessShaderStorageRead, Layout::General},
+        AccessRow{Access::StorageWrite, false, true, kStageComputeShader, kAccessShaderStorageWrite, Layout::General},
+        AccessRow{Access::StorageReadWrite, true, true, kStageComputeShader,
+                  kAccessShaderStorageRead | kAccessShaderStorageWrite, Layout::General},
+        AccessRow{Access::ColorAttachmentWrite, false, true, kStageColorAttachmentOutput,
+                  kAccessColorAttachmentWrite, Layout::ColorAttachment},
+        AccessRow{Access::ColorAttachmentReadWrite, true, true, kStageColorAttachmentOutput,
+                  kAccessColorAttachmentRead | kAccessColorAttachmentWrite, Layout::ColorAttachment},
+        AccessRow{Access::DepthAttachmentWrite, false, true, kDepthTests, kAccessDepthStencilWrite,
+                  Layout::DepthStencilAttachment},
+        AccessRow{Access::DepthAttachmentReadWrite, true, true, kDepthTests,
+                  kAccessDepthStencilRead | kAccessDepthStencilWrite, Layout::DepthStencilAttachment},
+        AccessRow{Access::DepthAttachmentRead, true, false, kDepthTests, kAccessDepthStencilRead,
+                  Layout::DepthStencilReadOnly},
+        AccessRow{Access::ResolveDst, false, true, kStageColorAttachmentOutput, kAccessColorAttachmentWrite,
+                  Layout::ColorAttachment},
+        AccessRow{Access::TransferSrc, true, false, kStageTransfer, kAccessTransferRead, Layout::TransferSrc},
+        AccessRow{Access::TransferDst, false, true, kStageTransfer, kAccessTransferWrite, Layout::TransferDst},
+        AccessRow{Access::Indirect, true, false, kStageDrawIndirect, kAccessIndirectCommandRead, Layout::Undefined},
+        AccessRow{Access::Vertex, true, false, kStageVertexInput, kAccessVertexAttributeRead, Layout::Undefined},
+        AccessRow{Access::Index, true, false, kStageVertexInput, kAccessIndexRead, Layout::Undefined},
+        AccessRow{Access::Uniform, true, false, kStageComputeShader, kAccessUniformRead, Layout::Undefined},
+        AccessRow{Access::HostRead, true, false, kStageHost, kAccessHostRead, Layout::Undefined}),
+    [](const ::testing::TestParamInfo<AccessRow>& row) {
+      std::string name(toString(row.param.access));
+      std::erase(name, '-');
+      return name;
+    });
+
+TEST(AccessInfo, ShaderStagesFollowTheNodeTypeUnlessGiven) {
+  const AccessInfo graphics = accessInfo(Access::Sampled, NodeType::Graphics);
+  EXPECT_NE(graphics.stages & kStageFragmentShader, 0u);
+  EXPECT_EQ(graphics.stages & kStageComputeShader, 0u);
+  EXPECT_EQ(accessInfo(Access::Sampled, NodeType::Graphics, kStageVertexShader).stages, kStageVertexShader);
+  EXPECT_EQ(accessInfo(Access::Uniform, NodeType::Compute).stages, kStageComputeShader);
+}
+
+TEST(AccessInfo, QueueClassAndNamesAreStable) {
+  EXPECT_EQ(defaultQueue(NodeType::Transfer), QueueClass::Transfer);
+  EXPECT_EQ(toString(NodeType::Graphics), "graphics");
+  EXPECT_EQ(toString(QueueClass::Compute), "compute");
+  EXPECT_FALSE(toString(Layout::ShaderReadOnly).empty());
+}
+
+}  // namespace
+}  // namespace fgb::graph::test

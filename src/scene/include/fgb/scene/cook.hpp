@@ -1,0 +1,17 @@
+// Cooking: turns an assembled scene into its GPU-ready form. Per mesh: vertex-cache optimisation
+// (Forsyth-style, meshoptimizer) then vertex-fetch reordering, and fresh local/world bounds.
+// Textures already carry their mip chains (makeTexture). Materials get a default when none exist.
+#pragma once
+
+#include <fgb/scene/scene.hpp>
+
+#include <cstdint>
+
+namespace fgb::scene {
+
+// Bump when the cooked output of the same input changes: it is part of every cache key.
+inline constexpr uint32_t kCookerVersion = 1;
+
+void cookScene(Scene& scene);
+
+}  // namespace fgb::scene

@@ -1,0 +1,45 @@
+// `--set key=value` knobs. The scene side owns the prefixes atrium., stress., camera., scene. and
+// post.; it rejects unknown keys under those prefixes (InputError naming the key) and ignores every
+// other key, which belongs to the renderer or harness.
+//
+// Keys: atrium.scale (geometry density multiplier, > 0), atrium.seed, atrium.texture_size,
+//       stress.offset (distance from the origin for stress-far), stress.seed,
+//       camera.fov (vertical, degrees), camera.near, camera.far, camera.position (x,y,z),
+//       camera.target (x,y,z), post.exposure, post.bloom (0|1), post.bloom_threshold,
+//       post.bloom_knee, post.bloom_intensity, post.bloom_radius,
+//       scene.lights (0 drops point lights), scene.particles (0 drops emitters), scene.sun (0|1).
+#pragma once
+
+#include <glm/vec3.hpp>
+
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace fgb::scene {
+
+class Knobs {
+ public:
+  Knobs() = default;
+  // Parses "key=value" strings (InputError when one has no '='); validates the owned keys.
+  static Knobs parse(const std::vector<std::string>& assignments);
+
+  static bool ownedByScene(std::string_view key);
+  static const std::vector<std::string>& knownKeys();
+
+  bool has(const std::string& key) const { return values_.count(key) != 0; }
+  // Typed getters: nullopt when unset; InputError "--set key=value: expected ..." when malformed.
+  std::optional<double> number(const std::string& key) const;
+  std::optional<bool> flag(const std::string& key) const;
+  std::optional<glm::vec3> vec3(const std::string& key) const;
+
+  // Owned knobs with a given prefix ("atrium."), without the prefix.
+  std::map<std::string, std::string> withPrefix(const std::string& prefix) const;
+
+ private:
+  std::map<std::string, std::string> values_;  // owned keys only
+};
+
+}  // namespace fgb::scene

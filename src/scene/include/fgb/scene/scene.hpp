@@ -1,0 +1,191 @@
+// The cooked, GPU-ready scene: what the renderer consumes.
+//
+// Layout (all arrays are tightly packed, little-endian, float unless noted):
+//   * Vertex attributes live in shared arrays, one entry per vertex: positions (vec3), normals
+//     (vec3, unit length), tangents (vec4: xyz unit, w = handedness ±1), uv0 (vec2).
+//   * indices (uint32) are MESH-LOCAL: draw mesh m with
+//       vkCmdDrawIndexed(indexCount, instances, firstIndex, vertexOffset = firstVertex, ...).
+//   * Every index triple is a valid, non-degenerate, finite triangle (see RepairCounters).
+//   * Instances reference a mesh and a material; transforms map mesh-local to world space and may
+//     be non-uniformly scaled (use the inverse transpose for normals). worldBounds is the AABB of
+//     the transformed localBounds.
+//   * Materials are glTF metallic-roughness; a texture index of -1 means "no texture".
+//   * Textures are RGBA8 with a full mip chain down to 1x1, level 0 first, tightly packed.
+// Cooked scenes come from loadScene() (load.hpp); stats() (stats.hpp) summarises one.
+#pragma once
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace fgb::scene {
+
+struct Aabb {
+  glm::vec3 min{0.0f};
+  glm::vec3 max{0.0f};
+
+  // An "empty" box that any extend() replaces.
+  static Aabb empty();
+  bool isEmpty() const { return min.x > max.x; }
+  void extend(const glm::vec3& point);
+  void extend(const Aabb& other);
+  Aabb transformed(const glm::mat4& transform) const;
+};
+
+struct Mesh {
+  std::string name;
+  uint32_t firstVertex = 0;
+  uint32_t vertexCount = 0;
+  uint32_t firstIndex = 0;
+  uint32_t indexCount = 0;  // a multiple of 3
+  Aabb localBounds;
+  uint32_t triangleCount() const { return indexCount / 3; }
+};
+
+struct Instance {
+  uint32_t mesh = 0;
+  uint32_t material = 0;
+  glm::mat4 transform{1.0f};
+  Aabb worldBounds;
+};
+
+enum class AlphaMode : uint32_t { Opaque = 0, Mask = 1, Blend = 2 };
+
+struct Material {
+  std::string name;
+  glm::vec4 baseColorFactor{1.0f};  // linear RGBA
+  float metallicFactor = 1.0f;
+  float roughnessFactor = 1.0f;
+  glm::vec3 emissiveFactor{0.0f};   // linear RGB, multiplied by emissiveStrength
+  float emissiveStrength = 1.0f;
+  float normalScale = 1.0f;
+  AlphaMode alphaMode = AlphaMode::Opaque;
+  float alphaCutoff = 0.5f;         // used when alphaMode == Mask
+  bool doubleSided = false;
+  int32_t baseColorTexture = -1;          // sRGB
+  int32_t normalTexture = -1;             // linear, tangent space, +Y up (glTF convention)
+  int32_t metallicRoughnessTexture = -1;  // linear: G = roughness, B = metallic
+  int32_t emissiveTexture = -1;           // sRGB
+};
+
+struct MipLevel {
+  uint32_t width = 0;
+  uint32_t height = 0;
+  uint64_t offset = 0;  // byte offset into Texture::data; size = width * height * 4
+};
+
+struct Texture {
+  std::string name;  // source path, "embedded:<n>", "generated:<what>" or "fallback:<missing path>"
+  uint32_t width = 0;
+  uint32_t height = 0;
+  bool srgb = false;
+  std::vector<MipLevel> mips;       // level 0 = width x height, last = 1x1
+  std::vector<uint8_t> data;        // RGBA8 texels of every level
+};
+
+struct PointLight {
+  glm::vec3 position{0.0f};
+  glm::vec3 color{1.0f};  // linear RGB
+  float intensity = 1.0f; // candela-like scale, multiplied into color
+  float radius = 10.0f;   // attenuation max(1 - d/R, 0) / d^2 reaches zero at R
+};
+
+struct DirectionalLight {
+  bool enabled = false;
+  glm::vec3 direction{0.0f, -1.0f, 0.0f};  // direction the light travels, unit length
+  glm::vec3 color{1.0f};
+  float intensity = 0.0f;
+};
+
+struct Emitter {
+  std::string name;
+  glm::vec3 position{0.0f};
+  float rate = 100.0f;                // particles per second
+  float lifetime = 1.0f;              // seconds
+  glm::vec3 direction{0.0f, 1.0f, 0.0f};  // cone axis, unit length
+  float coneAngleDeg = 20.0f;         // half-angle of the velocity cone
+  float speedMin = 0.5f;
+  float speedMax = 1.0f;
+  glm::vec4 colorStart{1.0f, 0.6f, 0.2f, 1.0f};  // linear RGBA at birth (rgb may exceed 1: HDR)
+  glm::vec4 colorEnd{0.3f, 0.05f, 0.0f, 0.0f};   // at death
+  float sizeStart = 0.1f;
+  float sizeEnd = 0.02f;
+  uint32_t maxParticles = 4096;
+  uint32_t seed = 1;
+};
+
+struct Camera {
+  glm::vec3 position{0.0f, 1.7f, 5.0f};
+  glm::vec3 target{0.0f, 1.7f, 0.0f};
+  glm::vec3 up{0.0f, 1.0f, 0.0f};
+  float verticalFovDeg = 60.0f;
+  float nearPlane = 0.1f;
+  float farPlane = 500.0f;
+};
+
+struct BloomSettings {
+  bool enabled = true;
+  float threshold = 1.0f;
+  float knee = 0.5f;       // soft-threshold knee, as a fraction of the threshold
+  float intensity = 0.05f; // compose weight
+  float radius = 1.0f;     // upsample filter radius, in texels of each level
+};
+
+struct PostSettings {
+  float exposure = 0.6f;   // tone mapping L = 1 - exp(-L_hdr * exposure)
+  BloomSettings bloom;
+};
+
+// Every repair made while importing or generating, so a report can list them.
+struct RepairCounters {
+  uint64_t nonFinitePositions = 0;    // vertices with NaN/Inf position, dropped
+  uint64_t nonFiniteTriangles = 0;    // triangles using such a vertex, removed
+  uint64_t nonFiniteNormals = 0;      // NaN/Inf normals, recomputed
+  uint64_t zeroNormals = 0;           // zero-length normals, recomputed
+  uint64_t nonFiniteTangents = 0;     // NaN/Inf tangents, recomputed
+  uint64_t zeroTangents = 0;          // zero-length tangents, recomputed
+  uint64_t nonFiniteUvs = 0;          // NaN/Inf texture coordinates, set to 0
+  uint64_t degenerateTriangles = 0;   // triangles repeating an index, removed
+  uint64_t zeroAreaTriangles = 0;     // distinct indices but (numerically) no area, removed
+  uint64_t nonTrianglePrimitives = 0; // points and lines, skipped
+  uint64_t generatedNormals = 0;      // meshes that had no normals
+  uint64_t generatedTangents = 0;     // meshes that had no tangents
+  uint64_t missingTextures = 0;       // replaced by the fallback texture
+  uint64_t emptyMeshes = 0;           // meshes with no triangle left, dropped
+
+  uint64_t total() const;
+  RepairCounters& operator+=(const RepairCounters& other);
+  bool operator==(const RepairCounters&) const = default;
+};
+
+struct Scene {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;
+  std::vector<glm::vec4> tangents;
+  std::vector<glm::vec2> uv0;
+  std::vector<uint32_t> indices;
+
+  std::vector<Mesh> meshes;
+  std::vector<Instance> instances;
+  std::vector<Material> materials;  // never empty once cooked: index 0 may be the default
+  std::vector<Texture> textures;
+
+  std::vector<PointLight> lights;
+  DirectionalLight sun;
+  std::vector<Emitter> emitters;
+  Camera camera;
+  bool hasCamera = false;  // false: the loader fits a camera to the bounds
+  PostSettings post;
+
+  RepairCounters repairs;
+  std::vector<std::string> warnings;  // one line each, e.g. a missing texture by name
+
+  Aabb bounds() const;  // union of instance world bounds (empty box when no instances)
+};
+
+}  // namespace fgb::scene

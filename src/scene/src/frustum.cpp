@@ -1,0 +1,60 @@
+// Frustum extraction and the AABB visibility test.
+#include <fgb/scene/frustum.hpp>
+
+#include <glm/ext/matrix_clip_space.hpp>
+#include <glm/ext/matrix_transform.hpp>
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include <cmath>
+
+namespace fgb::scene {
+
+glm::mat4 viewMatrix(const Camera& camera) {
+  return glm::lookAtRH(camera.position, camera.target, camera.up);
+}
+
+glm::mat4 projectionMatrix(const Camera& camera, float aspect) {
+  return glm::perspectiveRH_ZO(glm::radians(camera.verticalFovDeg), aspect, camera.nearPlane, camera.farPlane);
+}
+
+Frustum Frustum::fromMatrix(const glm::mat4& m) {
+  // Rows of the matrix (GLM stores columns).
+  auto row = [&](int r) { return glm::vec4(m[0][r], m[1][r], m[2][r], m[3][r]); };
+  const glm::vec4 r0 = row(0), r1 = row(1), r2 = row(2), r3 = row(3);
+  Frustum frustum;
+  frustum.planes = {r3 + r0, r3 - r0, r3 + r1, r3 - r1, r2, r3 - r2};
+  for (glm::vec4& plane : frustum.planes) {
+    const float length = glm::length(glm::vec3(plane));
+    if (length > 0.0f) plane /= length;
+  }
+  return frustum;
+}
+
+Frustum Frustum::fromCamera(const Camera& camera, float aspect) {
+  return fromMatrix(projectionMatrix(camera, aspect) * viewMatrix(camera));
+}
+
+bool Frustum::intersects(const Aabb& box) const {
+  if (box.isEmpty()) return false;
+  for (const glm::vec4& plane : planes) {
+    // The box corner furthest along the plane normal: if even it is outside, the box is.
+    const glm::vec3 farthest(plane.x >= 0.0f ? box.max.x : box.min.x, plane.y >= 0.0f ? box.max.y : box.min.y,
+                             plane.z >= 0.0f ? box.max.z : box.min.z);
+    if (glm::dot(glm::vec3(plane), farthest) + plane.w < 0.0f) return false;
+  }
+  return true;
+}
+
+Visibility countVisible(const Scene& scene, const Camera& camera, float aspect) {
+  const Frustum frustum = Frustum::fromCamera(camera, aspect);
+  Visibility visibility;
+  for (const Instance& instance : scene.instances) {
+    if (!frustum.intersects(instance.worldBounds)) continue;
+    ++visibility.instances;
+    visibility.triangles += scene.meshes[instance.mesh].triangleCount();
+  }
+  return visibility;
+}
+
+}  // namespace fgb::scene

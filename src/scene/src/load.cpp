@@ -1,0 +1,228 @@
+// loadScene: parts through the cooked cache, then scene-file and knob overrides.
+#include <fgb/scene/load.hpp>
+
+#include <fgb/core/error.hpp>
+#include <fgb/scene/cache.hpp>
+#include <fgb/scene/cook.hpp>
+#include <fgb/scene/generators.hpp>
+#include <fgb/scene/geometry.hpp>
+#include <fgb/scene/knobs.hpp>
+#include <fgb/scene/stats.hpp>
+
+#include <glm/geometric.hpp>
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <mutex>
+
+namespace fgb::scene {
+namespace {
+
+struct ImporterSlot {
+  std::mutex mutex;
+  std::string signature;
+  ModelImporter importer;
+};
+
+ImporterSlot& importerSlot() {
+  static ImporterSlot slot;
+  return slot;
+}
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+struct Produced {
+  Scene scene;
+  std::vector<CacheDependency> dependencies;
+};
+
+class PartLoader {
+ public:
+  PartLoader(const LoadOptions& options, LoadedScene& result)
+      : cache_(options.cacheDir ? *options.cacheDir : CookedCache::defaultDirectory()),
+        useCache_(options.useCache),
+        result_(result) {}
+
+  // Returns the cooked part: from the cache when possible, else produced, cooked and stored.
+  Scene load(const std::string& source, const std::string& key, const std::filesystem::path& baseDir,
+             const std::function<Produced()>& produce) {
+    PartLoad info;
+    info.source = source;
+    info.key = key;
+    info.cache = useCache_ ? "miss" : "disabled";
+    if (useCache_) {
+      info.entry = cache_.entryPath(key).string();
+      CacheLookup lookup = cache_.load(key, baseDir);
+      if (lookup.status == CacheStatus::Hit) {
+        info.cache = "hit";
+        info.readMs = lookup.readMs;
+        result_.parts.push_back(info);
+        return std::move(*lookup.scene);
+      }
+      if (lookup.status == CacheStatus::Corrupt || lookup.status == CacheStatus::Stale) {
+        info.cache = "rebuilt";
+        result_.notices.push_back("cooked cache entry for " + source + " was " + toString(lookup.status) + " (" +
+                                  lookup.reason + "); rebuilt");
+      }
+    }
+    auto start = Clock::now();
+    Produced produced = produce();
+    info.produceMs = msSince(start);
+    start = Clock::now();
+    cookScene(produced.scene);
+    info.cookMs = msSince(start);
+    if (useCache_) {
+      start = Clock::now();
+      try {
+        cache_.store(key, produced.scene, produced.dependencies);
+      } catch (const std::exception& e) {
+        // A read-only or full cache must not stop a run; the next run simply cooks again.
+        result_.notices.push_back(std::string("could not store cooked cache entry: ") + e.what());
+      }
+      info.storeMs = msSince(start);
+    }
+    result_.parts.push_back(info);
+    return std::move(produced.scene);
+  }
+
+ private:
+  CookedCache cache_;
+  bool useCache_;
+  LoadedScene& result_;
+};
+
+Scene loadGenerator(PartLoader& loader, const SceneDescription& d, const Knobs& knobs) {
+  const GeneratorRef& generator = *d.generator;
+  const nlohmann::json params = resolveGeneratorParams(generator, knobs, d.path.string());
+  CacheKey key;
+  key.add("generator").add(generator.type).add(params.dump()).add(std::to_string(kCookerVersion));
+  return loader.load("generator:" + generator.type, key.finish(), {}, [&] {
+    return Produced{generate(generator.type, params), {}};
+  });
+}
+
+Scene loadModel(PartLoader& loader, const SceneDescription& d, const ModelRef& model) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(model.file, error)) {
+    throw InputError(d.path.string() + ": field '" + model.field + "': model file " + model.file.string() +
+                     " not found");
+  }
+  std::string signature;
+  ModelImporter importer;
+  {
+    ImporterSlot& slot = importerSlot();
+    std::lock_guard lock(slot.mutex);
+    signature = slot.signature;
+    importer = slot.importer;
+  }
+  CacheKey key;
+  key.add("model").addFile(model.file).add(signature).add(std::to_string(kCookerVersion));
+  const std::filesystem::path baseDir = model.file.parent_path();
+  return loader.load(model.file.string(), key.finish(), baseDir, [&] {
+    if (!importer) {
+      throw InputError(model.file.string() + ": no cooked cache entry, and this build has no model import support; "
+                       "cook it once with a full build (fgbench scene) using the same --cache");
+    }
+    ImportedModel imported = importer(model.file);
+    Produced produced{std::move(imported.scene), {}};
+    for (const std::string& dependency : imported.dependencies) {
+      if (auto described = describeDependency(baseDir, dependency)) produced.dependencies.push_back(*described);
+    }
+    return produced;
+  });
+}
+
+void applyKnobs(Scene& scene, const Knobs& knobs) {
+  Camera& c = scene.camera;
+  if (auto v = knobs.number("camera.fov")) c.verticalFovDeg = static_cast<float>(*v);
+  if (auto v = knobs.number("camera.near")) c.nearPlane = static_cast<float>(*v);
+  if (auto v = knobs.number("camera.far")) c.farPlane = static_cast<float>(*v);
+  if (auto v = knobs.vec3("camera.position")) c.position = *v;
+  if (auto v = knobs.vec3("camera.target")) c.target = *v;
+  if (!(c.verticalFovDeg > 0.0f && c.verticalFovDeg < 179.0f)) throw InputError("--set camera.fov: expected degrees in (0, 179)");
+  if (!(c.nearPlane > 0.0f && c.farPlane > c.nearPlane)) throw InputError("--set camera.near/far: expected 0 < near < far");
+  if (glm::length(c.target - c.position) <= 0.0f) throw InputError("--set camera.target: must differ from the position");
+  PostSettings& p = scene.post;
+  if (auto v = knobs.number("post.exposure")) p.exposure = static_cast<float>(*v);
+  if (auto v = knobs.flag("post.bloom")) p.bloom.enabled = *v;
+  if (auto v = knobs.number("post.bloom_threshold")) p.bloom.threshold = static_cast<float>(*v);
+  if (auto v = knobs.number("post.bloom_knee")) p.bloom.knee = static_cast<float>(*v);
+  if (auto v = knobs.number("post.bloom_intensity")) p.bloom.intensity = static_cast<float>(*v);
+  if (auto v = knobs.number("post.bloom_radius")) p.bloom.radius = static_cast<float>(*v);
+  if (knobs.flag("scene.lights") == false) scene.lights.clear();
+  if (knobs.flag("scene.particles") == false) scene.emitters.clear();
+  if (auto v = knobs.flag("scene.sun")) scene.sun.enabled = *v;
+}
+
+void applyDescription(Scene& scene, const SceneDescription& d) {
+  scene.lights.insert(scene.lights.end(), d.lights.begin(), d.lights.end());
+  scene.emitters.insert(scene.emitters.end(), d.emitters.begin(), d.emitters.end());
+  if (d.sun) scene.sun = *d.sun;
+  if (!scene.hasCamera) {
+    scene.camera = fitCamera(scene.bounds());
+    scene.hasCamera = true;
+  }
+  applyCameraOverrides(scene.camera, d.camera, d.path.string());
+  applyPostOverrides(scene.post, d.post, d.path.string());
+}
+
+}  // namespace
+
+void setModelImporter(std::string signature, ModelImporter importer) {
+  ImporterSlot& slot = importerSlot();
+  std::lock_guard lock(slot.mutex);
+  slot.signature = std::move(signature);
+  slot.importer = std::move(importer);
+}
+
+bool hasModelImporter() {
+  ImporterSlot& slot = importerSlot();
+  std::lock_guard lock(slot.mutex);
+  return static_cast<bool>(slot.importer);
+}
+
+Camera fitCamera(const Aabb& bounds) {
+  Camera camera;
+  if (bounds.isEmpty()) return camera;
+  const glm::vec3 centre = (bounds.min + bounds.max) * 0.5f;
+  const float radius = std::max(0.5f * glm::length(bounds.max - bounds.min), 1e-3f);
+  camera.target = centre;
+  camera.position = centre + glm::vec3(0.0f, 0.35f, 1.0f) * (radius * 2.0f);
+  camera.nearPlane = radius * 0.01f;
+  camera.farPlane = radius * 20.0f;
+  return camera;
+}
+
+LoadedScene loadScene(const std::filesystem::path& sceneFile, const LoadOptions& options) {
+  const auto start = Clock::now();
+  LoadedScene result;
+  result.description = parseSceneFile(sceneFile);
+  const Knobs knobs = Knobs::parse(options.knobs);
+  const SceneDescription& d = result.description;
+  PartLoader loader(options, result);
+
+  Scene scene;
+  if (d.generator) scene = loadGenerator(loader, d, knobs);
+  for (const ModelRef& model : d.models) mergeScene(scene, loadModel(loader, d, model), model.placement);
+  applyDescription(scene, d);
+  applyKnobs(scene, knobs);
+  result.scene = std::move(scene);
+  result.hash = contentHash(result.scene);
+  result.totalMs = msSince(start);
+  return result;
+}
+
+nlohmann::json toJson(const std::vector<PartLoad>& parts) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const PartLoad& p : parts) {
+    list.push_back({{"source", p.source},     {"cache", p.cache},    {"key", p.key},        {"entry", p.entry},
+                    {"produce_ms", p.produceMs}, {"cook_ms", p.cookMs}, {"store_ms", p.storeMs}, {"read_ms", p.readMs}});
+  }
+  return list;
+}
+
+}  // namespace fgb::scene

@@ -1,0 +1,54 @@
+// The CPU frustum test: the reference for the GPU cull.
+#include <fgb/scene/frustum.hpp>
+
+#include <gtest/gtest.h>
+
+using namespace fgb::scene;
+
+namespace {
+
+Camera lookingDownMinusZ() {
+  Camera c;
+  c.position = {0, 0, 0};
+  c.target = {0, 0, -1};
+  c.verticalFovDeg = 90.0f;
+  c.nearPlane = 0.1f;
+  c.farPlane = 100.0f;
+  return c;
+}
+
+Aabb boxAt(glm::vec3 centre, float half = 0.5f) { return {centre - half, centre + half}; }
+
+}  // namespace
+
+TEST(Frustum, BoxesInFrontAreVisibleBehindAndBeyondAreNot) {
+  const Frustum f = Frustum::fromCamera(lookingDownMinusZ(), 1.0f);
+  EXPECT_TRUE(f.intersects(boxAt({0, 0, -10})));
+  EXPECT_FALSE(f.intersects(boxAt({0, 0, 10})));         // behind
+  EXPECT_FALSE(f.intersects(boxAt({0, 0, -200})));       // past far
+  EXPECT_FALSE(f.intersects(boxAt({0, 0, -0.01f}, 0.005f)));  // before near
+  EXPECT_FALSE(f.intersects(boxAt({30, 0, -10})));       // right of the 45-degree half angle
+  EXPECT_TRUE(f.intersects(boxAt({10.4f, 0, -10})));     // straddles the right plane
+  EXPECT_FALSE(f.intersects(boxAt({0, -30, -10})));      // below
+  EXPECT_FALSE(f.intersects(Aabb::empty()));
+}
+
+TEST(Frustum, AspectWidensHorizontally) {
+  const Camera c = lookingDownMinusZ();
+  const Aabb wide = boxAt({15, 0, -10});
+  EXPECT_FALSE(Frustum::fromCamera(c, 1.0f).intersects(wide));
+  EXPECT_TRUE(Frustum::fromCamera(c, 2.0f).intersects(wide));
+}
+
+TEST(Frustum, CountVisibleSumsTriangles) {
+  Scene scene;
+  scene.meshes.push_back(Mesh{"m", 0, 3, 0, 3, {{-1, -1, -1}, {1, 1, 1}}});
+  for (float z : {-10.0f, 10.0f, -20.0f}) {
+    Instance i;
+    i.worldBounds = boxAt({0, 0, z}, 1.0f);
+    scene.instances.push_back(i);
+  }
+  const Visibility v = countVisible(scene, lookingDownMinusZ(), 1.0f);
+  EXPECT_EQ(v.instances, 2u);
+  EXPECT_EQ(v.triangles, 2u);
+}

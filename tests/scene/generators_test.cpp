@@ -1,0 +1,157 @@
+// Generators: the atrium's thesis statistics, determinism, and the stress generators.
+#include <fgb/core/error.hpp>
+#include <fgb/scene/cook.hpp>
+#include <fgb/scene/frustum.hpp>
+#include <fgb/scene/generators.hpp>
+#include <fgb/scene/stats.hpp>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace fgb::scene;
+using nlohmann::json;
+using ::testing::HasSubstr;
+
+namespace {
+
+Scene generateCooked(const std::string& type, json params = json::object(), std::vector<std::string> knobs = {}) {
+  Scene scene = generate(type, resolveGeneratorParams({type, std::move(params)}, Knobs::parse(knobs), "test.json"));
+  cookScene(scene);
+  return scene;
+}
+
+// The full-size atrium is generated once for the whole binary (it is the expensive one).
+const Scene& fullAtrium() {
+  static const Scene scene = generateCooked("atrium", {{"texture_size", 16}});
+  return scene;
+}
+
+bool everythingFinite(const Scene& s) {
+  for (const auto& p : s.positions) if (!std::isfinite(p.x + p.y + p.z)) return false;
+  for (const auto& n : s.normals) if (!std::isfinite(n.x + n.y + n.z)) return false;
+  for (const auto& t : s.tangents) if (!std::isfinite(t.x + t.y + t.z + t.w)) return false;
+  for (const auto& uv : s.uv0) if (!std::isfinite(uv.x + uv.y)) return false;
+  return true;
+}
+
+}  // namespace
+
+TEST(Atrium, ReproducesTheThesisCounts) {
+  const SceneStats s = stats(fullAtrium());
+  EXPECT_EQ(s.instances, 115u);
+  EXPECT_NEAR(double(s.triangles), 3781554.0, 3781554.0 * 0.01);
+  EXPECT_EQ(s.lights, 28u);
+  EXPECT_EQ(s.emitters, 1u);
+  EXPECT_GE(s.materials, 6u);
+  EXPECT_GE(s.textures, 6u);
+  // Heavy instancing: far fewer unique triangles than drawn ones.
+  EXPECT_LT(s.uniqueTriangles * 2, s.triangles);
+  // The thesis culled 115 -> 81 with its camera; ours is placed to match within a few.
+  EXPECT_NEAR(double(s.instancesVisible), 81.0, 3.0);
+  EXPECT_LT(s.trianglesVisible, s.triangles);
+  // Clean procedural geometry needs no repairs.
+  EXPECT_EQ(s.repairs.total(), 0u) << toJson(s.repairs).dump();
+  EXPECT_TRUE(everythingFinite(fullAtrium()));
+}
+
+TEST(Atrium, HasEveryAlphaModeAndDoubleSidedMaterials) {
+  bool mask = false, blend = false, opaque = false, doubleSided = false;
+  for (const Material& m : fullAtrium().materials) {
+    mask |= m.alphaMode == AlphaMode::Mask;
+    blend |= m.alphaMode == AlphaMode::Blend;
+    opaque |= m.alphaMode == AlphaMode::Opaque;
+    doubleSided |= m.doubleSided;
+  }
+  EXPECT_TRUE(mask && blend && opaque && doubleSided);
+}
+
+TEST(Atrium, NormalsAreUnitAndTangentsOrthogonal) {
+  const Scene& s = fullAtrium();
+  for (size_t v = 0; v < s.normals.size(); v += 97) {
+    ASSERT_NEAR(glm::length(s.normals[v]), 1.0f, 1e-3f) << v;
+    ASSERT_NEAR(glm::dot(glm::vec3(s.tangents[v]), s.normals[v]), 0.0f, 1e-3f) << v;
+  }
+}
+
+TEST(Atrium, SameSeedSameHashOtherSeedOtherHash) {
+  const json small = {{"scale", 0.02}, {"texture_size", 16}};
+  const std::string a = contentHash(generateCooked("atrium", small));
+  const std::string b = contentHash(generateCooked("atrium", small));
+  EXPECT_EQ(a, b);
+  json otherSeed = small;
+  otherSeed["seed"] = 2;
+  EXPECT_NE(contentHash(generateCooked("atrium", otherSeed)), a);
+}
+
+TEST(Atrium, ScaleMultipliesDensityNotInstances) {
+  const SceneStats small = stats(generateCooked("atrium", {{"scale", 0.02}, {"texture_size", 16}}));
+  const SceneStats smaller = stats(generateCooked("atrium", {{"texture_size", 16}}, {"atrium.scale=0.01"}));
+  EXPECT_EQ(small.instances, 115u);
+  EXPECT_EQ(smaller.instances, 115u);
+  EXPECT_NEAR(double(small.triangles), 0.02 * 3781554.0, 0.02 * 3781554.0 * 0.05);
+  EXPECT_NEAR(double(smaller.triangles) / double(small.triangles), 0.5, 0.05);
+}
+
+TEST(Generators, ParamsAreValidatedWithFieldNames) {
+  const auto error = [](const std::string& type, json params, std::vector<std::string> knobs = {}) {
+    try {
+      resolveGeneratorParams({type, std::move(params)}, Knobs::parse(knobs), "scenes/a.json");
+    } catch (const fgb::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  };
+  EXPECT_THAT(error("atrium", {{"scale", -1}}), HasSubstr("generator.scale"));
+  EXPECT_THAT(error("atrium", {{"texture_size", 100}}), HasSubstr("power of two"));
+  EXPECT_THAT(error("atrium", {{"colour", 1}}), HasSubstr("unknown parameter"));
+  EXPECT_THAT(error("sponza", {}), HasSubstr("generator.type"));
+  EXPECT_THAT(error("atrium", {}, {"atrium.scale=0"}), HasSubstr("--set"));
+  EXPECT_THAT(error("showcase", {{"alpha", "glass"}}), HasSubstr("generator.alpha"));
+}
+
+TEST(Stress, TrianglesKeepsSliversAndHugeRemovesDegenerateAndZeroArea) {
+  const Scene s = generateCooked("stress-triangles", {{"count", 400}});
+  EXPECT_EQ(s.repairs.degenerateTriangles, 100u);
+  EXPECT_EQ(s.repairs.zeroAreaTriangles, 100u);
+  EXPECT_EQ(stats(s).triangles, 200u);
+  EXPECT_GT(s.bounds().max.x - s.bounds().min.x, 1e5f);
+}
+
+TEST(Stress, NanInputsAreRepairedAndCounted) {
+  const Scene s = generateCooked("stress-nan", {{"fraction", 0.05}});
+  EXPECT_GT(s.repairs.nonFinitePositions, 0u);
+  EXPECT_GT(s.repairs.nonFiniteTriangles, 0u);
+  EXPECT_GT(s.repairs.nonFiniteNormals + s.repairs.zeroNormals, 0u);
+  EXPECT_GT(s.repairs.nonFiniteTangents, 0u);
+  EXPECT_GT(s.repairs.nonFiniteUvs, 0u);
+  EXPECT_TRUE(everythingFinite(s));
+  EXPECT_GT(stats(s).triangles, 0u);
+}
+
+TEST(Stress, FarDepthAndLights) {
+  const json small = {{"scale", 0.01}, {"texture_size", 8}};
+  const Scene far = generateCooked("stress-far", small);
+  EXPECT_GT(far.bounds().min.x, 0.9e6f);
+  EXPECT_GT(far.camera.position.x, 0.9e6f);
+  EXPECT_GT(stats(far).instancesVisible, 40u);  // the camera moved with the scene
+
+  const Scene depth = generateCooked("stress-depth", small);
+  EXPECT_FLOAT_EQ(depth.camera.nearPlane, 1e-4f);
+  EXPECT_FLOAT_EQ(depth.camera.farPlane, 1e5f);
+
+  const Scene lights = generateCooked("stress-lights", small, {"stress.seed=3"});
+  ASSERT_EQ(lights.lights.size(), 64u);
+  EXPECT_FLOAT_EQ(lights.lights.front().intensity, 1e-6f);
+  EXPECT_FLOAT_EQ(lights.lights.back().intensity, 1e6f);
+}
+
+TEST(Showcase, AlphaModesAndFeatureSwitches) {
+  const Scene blend = generateCooked("showcase", {{"alpha", "blend"}, {"floor", false}, {"lights", 0}, {"sun", false}});
+  EXPECT_TRUE(blend.lights.empty());
+  EXPECT_FALSE(blend.sun.enabled);
+  for (const Material& m : blend.materials) EXPECT_EQ(m.alphaMode, AlphaMode::Blend);
+  const Scene emissive = generateCooked("showcase", {{"emissive", true}});
+  EXPECT_GT(emissive.materials[0].emissiveStrength * glm::length(emissive.materials[0].emissiveFactor), 1.0f);
+}

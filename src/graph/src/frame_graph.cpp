@@ -26,22 +26,22 @@ const VersionDecl& FrameGraph::versionAt(uint32_t version, std::string_view what
   return versions_[version];
 }
 
-uint32_t FrameGraph::addResource(ResourceDecl decl) {
+ResourceDecl& FrameGraph::addResource(std::string_view name, ResourceKind kind, bool imported) {
   const auto resource = static_cast<uint32_t>(resources_.size());
   const auto version = static_cast<uint32_t>(versions_.size());
   versions_.push_back({resource, kInvalidIndex, kInvalidIndex});
+  // Built in place (no temporary ResourceDecl to move); the caller fills in the description.
+  ResourceDecl& decl = resources_.emplace_back();
+  decl.name = name;
+  decl.kind = kind;
+  decl.imported = imported;
   decl.firstVersion = version;
   decl.latestVersion = version;
-  resources_.push_back(std::move(decl));
-  return version;
+  return decl;
 }
 
 TextureHandle FrameGraph::importTexture(std::string_view name, const TextureDesc& desc, ExternalResource external,
                                         ImportState initial, ImportState final) {
-  ResourceDecl decl{.name = std::string(name), .kind = ResourceKind::Texture, .imported = true, .texture = desc};
-  decl.external = external;
-  decl.initialState = initial;
-  decl.finalState = final;
   if (desc.extentFrom.valid()) {
     const auto& source = versionAt(desc.extentFrom.version, "texture");
     if (resources_[source.resource].kind != ResourceKind::Texture) {
@@ -49,17 +49,22 @@ TextureHandle FrameGraph::importTexture(std::string_view name, const TextureDesc
                        quoted(resources_[source.resource].name));
     }
   }
-  return {addResource(std::move(decl))};
+  ResourceDecl& decl = addResource(name, ResourceKind::Texture, true);
+  decl.texture = desc;
+  decl.external = external;
+  decl.initialState = initial;
+  decl.finalState = final;
+  return {decl.firstVersion};
 }
 
 BufferHandle FrameGraph::importBuffer(std::string_view name, const BufferDesc& desc, ExternalResource external,
                                       ImportState initial, ImportState final) {
-  ResourceDecl decl{.name = std::string(name), .kind = ResourceKind::Buffer, .imported = true};
+  ResourceDecl& decl = addResource(name, ResourceKind::Buffer, true);
   decl.buffer = desc;
   decl.external = external;
   decl.initialState = initial;
   decl.finalState = final;
-  return {addResource(std::move(decl))};
+  return {decl.firstVersion};
 }
 
 TextureHandle FrameGraph::createTexture(std::string_view name, const TextureDesc& desc) {
@@ -76,8 +81,9 @@ TextureHandle FrameGraph::createTexture(std::string_view name, const TextureDesc
   } else if (desc.format == Format::Undefined) {
     throw GraphError("texture " + quoted(name) + ": format is UNDEFINED");
   }
-  ResourceDecl decl{.name = std::string(name), .kind = ResourceKind::Texture, .imported = false, .texture = desc};
-  return {addResource(std::move(decl))};
+  ResourceDecl& decl = addResource(name, ResourceKind::Texture, false);
+  decl.texture = desc;
+  return {decl.firstVersion};
 }
 
 BufferHandle FrameGraph::createBuffer(std::string_view name, const BufferDesc& desc) {
@@ -94,9 +100,9 @@ BufferHandle FrameGraph::createBuffer(std::string_view name, const BufferDesc& d
   } else if (desc.size == 0) {
     throw GraphError("buffer " + quoted(name) + ": size is 0");
   }
-  ResourceDecl decl{.name = std::string(name), .kind = ResourceKind::Buffer, .imported = false};
+  ResourceDecl& decl = addResource(name, ResourceKind::Buffer, false);
   decl.buffer = desc;
-  return {addResource(std::move(decl))};
+  return {decl.firstVersion};
 }
 
 NodeBuilder FrameGraph::addNode(std::string_view name, NodeType type) {
@@ -105,12 +111,12 @@ NodeBuilder FrameGraph::addNode(std::string_view name, NodeType type) {
 
 NodeBuilder FrameGraph::addNode(std::string_view name, NodeType type, QueueClass queue) {
   const auto node = static_cast<uint32_t>(nodes_.size());
-  NodeDecl decl;
-  decl.name = std::string(name);
+  // Built in place: NodeDecl is large (name, attachments, job), so a temporary costs a move of each.
+  NodeDecl& decl = nodes_.emplace_back();
+  decl.name = name;
   decl.type = type;
   decl.queue = queue;
   decl.firstUse = static_cast<uint32_t>(allUses_.size());
-  nodes_.push_back(std::move(decl));
   return NodeBuilder(*this, node);
 }
 

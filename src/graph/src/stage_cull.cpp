@@ -69,7 +69,11 @@ void cullNodes(CompileState& state) {
 
   for (uint32_t n = 0; n < count && !state.anyCulled; ++n) state.anyCulled = !state.alive[n];
   if (!state.anyCulled) return;
-  const Adjacency allReaders = collectVersionReaders(graph, std::vector<uint8_t>(count, 1));
+  // A version written by a culled node has only culled readers (an alive reader would have kept
+  // its producer), so the diagnostics need the readers among culled nodes only.
+  std::vector<uint8_t> culled(count);
+  for (uint32_t n = 0; n < count; ++n) culled[n] = !state.alive[n];
+  const Adjacency culledReaders = collectVersionReaders(graph, culled);
   for (uint32_t n = 0; n < count; ++n) {
     if (state.alive[n]) continue;
     NodeInfo& info = state.out.nodes[n];
@@ -77,7 +81,7 @@ void cullNodes(CompileState& state) {
     bool hasWrites = false;
     for (const Use& use : graph.uses(n)) hasWrites |= use.writeVersion != kInvalidIndex;
     info.reason = hasWrites ? CullReason::OutputsUnread : CullReason::NoOutputs;
-    info.why = cullDiagnostic(state, n, allReaders);
+    info.why = cullDiagnostic(state, n, culledReaders);
   }
 }
 

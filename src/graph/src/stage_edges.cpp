@@ -116,7 +116,32 @@ std::vector<uint32_t> nodesOnOrBehindCycles(uint32_t nodeCount, const Adjacency&
 
 }  // namespace
 
+namespace {
+
+// Declaration order is almost a topological order of the all-node edges: a producer is declared
+// before its readers, and a version's writer after the previous one. The only edges that can point
+// backwards are WAR edges from a node that reads a version after its successor's writer was
+// declared (an old-version read). Reader chains follow a topological order of the hazard edges, so
+// they cannot close a cycle on their own. Without such a read the whole declaration is acyclic.
+bool mayHaveCycle(const FrameGraph& graph) {
+  const auto& versions = graph.versions();
+  std::vector<uint32_t> nextWriter(versions.size(), kInvalidIndex);  // producer of the version over v
+  for (const VersionDecl& version : versions) {
+    if (version.previous != kInvalidIndex) nextWriter[version.previous] = version.producer;
+  }
+  const auto nodeCount = static_cast<uint32_t>(graph.nodes().size());
+  for (uint32_t n = 0; n < nodeCount; ++n) {
+    for (const Use& use : graph.uses(n)) {
+      if (use.readVersion != kInvalidIndex && nextWriter[use.readVersion] < n) return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
 void detectCycles(const CompileState& state) {
+  if (!mayHaveCycle(state.graph)) return;
   const std::vector<uint8_t> everyNode(state.nodeCount, 1);
   const Adjacency preds =
       predecessorsFromEdges(state.nodeCount, versionEdges(state.graph, everyNode, state.queueOf), nullptr);

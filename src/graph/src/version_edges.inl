@@ -92,7 +92,9 @@ void forEachVersionEdge(const FrameGraph& graph, const std::vector<uint8_t>& ali
     hazards.emplace_back(from, to);
     emit(from, to);
   });
-  const std::vector<uint32_t> rank = topologicalRank(static_cast<uint32_t>(graph.nodes().size()), hazards);
+  // The rank pass is only needed once some version has readers in two different runs; shapes
+  // where every version has one reader, or all readers agree, never pay for it.
+  std::vector<uint32_t> rank;
   struct Reader {
     uint32_t rank, node, queue;
     Layout layout;
@@ -106,10 +108,14 @@ void forEachVersionEdge(const FrameGraph& graph, const std::vector<uint8_t>& ali
     for (uint32_t i = readers.begin(v); i < readers.end(v); ++i) {
       const uint32_t node = readers.items[i];
       const auto [layout, alsoWrites] = readerUse(graph, node, v);
-      if (!alsoWrites) chain.push_back({rank[node], node, queueOf[node], texture ? layout : Layout::General});
+      if (!alsoWrites) chain.push_back({0, node, queueOf[node], texture ? layout : Layout::General});
     }
-    std::sort(chain.begin(), chain.end(), [](const Reader& a, const Reader& b) { return a.rank < b.rank; });
     auto sameRun = [](const Reader& a, const Reader& b) { return a.queue == b.queue && a.layout == b.layout; };
+    const bool oneRun = std::all_of(chain.begin(), chain.end(), [&](const Reader& r) { return sameRun(r, chain[0]); });
+    if (oneRun) continue;  // a single run has no neighbouring run to order against
+    if (rank.empty()) rank = topologicalRank(static_cast<uint32_t>(graph.nodes().size()), hazards);
+    for (Reader& reader : chain) reader.rank = rank[reader.node];
+    std::sort(chain.begin(), chain.end(), [](const Reader& a, const Reader& b) { return a.rank < b.rank; });
     // Runs [runStart, runEnd) and [runEnd, nextEnd): all-to-all edges between neighbouring runs.
     for (size_t runStart = 0, runEnd = 0; runStart < chain.size(); runStart = runEnd) {
       for (runEnd = runStart + 1; runEnd < chain.size() && sameRun(chain[runEnd], chain[runStart]);) ++runEnd;

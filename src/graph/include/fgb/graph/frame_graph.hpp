@@ -220,7 +220,7 @@ class FrameGraph {
 
  private:
   friend class NodeBuilder;
-  uint32_t addResource(ResourceDecl decl);
+  ResourceDecl& addResource(std::string_view name, ResourceKind kind, bool imported);
   uint32_t addUse(uint32_t node, uint32_t version, ResourceKind kind, Access access, StageMask stages);
   const VersionDecl& versionAt(uint32_t version, std::string_view what) const;
 

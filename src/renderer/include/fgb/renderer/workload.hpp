@@ -38,6 +38,7 @@ struct PassTiming {
   std::string queue;   // "graphics" | "compute" | "transfer"
   bool culled = false;
   double gpuMs = 0.0;  // 0 for culled passes
+  double gpuStartMs = -1.0;  // start relative to the frame's first timestamp; < 0 if not reported
 };
 
 struct FrameTiming {

@@ -1,0 +1,34 @@
+// The device-wide descriptor set (set 0) every pipeline shares; resources are addressed by index
+// (push constants carry the indices). Capacities must match src/rhi/vulkan/src/descriptors.hpp.
+// Storage buffers are declared per use with FGB_STORAGE_BUFFER (one binding, many block types).
+#ifndef FGB_BINDLESS_GLSL
+#define FGB_BINDLESS_GLSL
+
+#extension GL_EXT_samplerless_texture_functions : require
+
+#define FGB_MAX_STORAGE_BUFFERS 65536
+#define FGB_MAX_SAMPLED_TEXTURES 4096
+#define FGB_MAX_STORAGE_TEXTURES 1024
+#define FGB_MAX_SAMPLERS 64
+
+#define FGB_BINDING_STORAGE_BUFFERS 0
+#define FGB_BINDING_SAMPLED_TEXTURES 1
+#define FGB_BINDING_STORAGE_TEXTURES 2
+#define FGB_BINDING_SAMPLERS 3
+
+// FGB_STORAGE_BUFFER(Name, array, access) { members } -> bindless array "array" of blocks Name.
+#define FGB_STORAGE_BUFFER(BlockName, arrayName, qualifiers) \
+  layout(set = 0, binding = FGB_BINDING_STORAGE_BUFFERS, std430) qualifiers buffer BlockName
+
+layout(set = 0, binding = FGB_BINDING_SAMPLED_TEXTURES) uniform texture2D fgbTextures[FGB_MAX_SAMPLED_TEXTURES];
+layout(set = 0, binding = FGB_BINDING_SAMPLERS) uniform sampler fgbSamplers[FGB_MAX_SAMPLERS];
+
+vec4 fgbSample(uint textureIndex, uint samplerIndex, vec2 uv) {
+  return texture(sampler2D(fgbTextures[textureIndex], fgbSamplers[samplerIndex]), uv);
+}
+
+vec4 fgbFetch(uint textureIndex, ivec2 texel) {
+  return texelFetch(fgbTextures[textureIndex], texel, 0);
+}
+
+#endif

@@ -1,0 +1,100 @@
+// Shared declarations of the renderer's shaders. Structs mirror
+// src/renderer/features/context/gpu_types.hpp (std430); keep them in sync.
+#ifndef FGB_RENDERER_COMMON_GLSL
+#define FGB_RENDERER_COMMON_GLSL
+
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_nonuniform_qualifier : require
+#include "bindless.glsl"
+
+#define FGB_NONE 0xffffffffu
+const float PI = 3.14159265358979;
+
+struct FrameConstants {
+  mat4 view;
+  mat4 proj;
+  mat4 viewProj;
+  mat4 invProj;
+  vec4 cameraPosition;
+  vec4 sunDirection;  // w: 1 when enabled
+  vec4 sunColor;
+  vec4 viewport;      // w, h, 1/w, 1/h
+  vec4 depthRange;    // near, far, slice scale, slice bias
+  uvec4 clusterGrid;  // tiles x, tiles y, slices, tile size
+  uvec4 counts;       // lights, instances, max lights per cluster, debug view
+  vec4 ambient;
+};
+
+struct Instance {
+  mat4 model;
+  mat4 normalMatrix;
+  vec4 boundsMin;
+  vec4 boundsMax;
+  uint material;
+  uint drawGroup;
+  uint triangles;
+  uint pad;
+};
+
+struct Material {
+  vec4 baseColor;
+  vec4 emissive;  // w: normal scale
+  float metallic;
+  float roughness;
+  float alphaCutoff;
+  uint alphaMode;
+  int baseColorTexture;
+  int normalTexture;
+  int metallicRoughnessTexture;
+  int emissiveTexture;
+};
+
+struct PointLight {
+  vec4 positionRadius;
+  vec4 color;
+};
+
+struct DrawCommand {
+  uint indexCount;
+  uint instanceCount;
+  uint firstIndex;
+  int vertexOffset;
+  uint firstInstance;
+};
+
+FGB_STORAGE_BUFFER(FrameBlock, fgbFrames, readonly) { FrameConstants frame; } fgbFrames[FGB_MAX_STORAGE_BUFFERS];
+FGB_STORAGE_BUFFER(InstanceBlock, fgbInstances, readonly) { Instance instances[]; } fgbInstances[FGB_MAX_STORAGE_BUFFERS];
+FGB_STORAGE_BUFFER(MaterialBlock, fgbMaterials, readonly) { Material materials[]; } fgbMaterials[FGB_MAX_STORAGE_BUFFERS];
+FGB_STORAGE_BUFFER(LightBlock, fgbLights, readonly) { PointLight lights[]; } fgbLights[FGB_MAX_STORAGE_BUFFERS];
+FGB_STORAGE_BUFFER(CommandBlock, fgbCommands, ) { DrawCommand commands[]; } fgbCommands[FGB_MAX_STORAGE_BUFFERS];
+FGB_STORAGE_BUFFER(UintBlock, fgbUints, ) { uint values[]; } fgbUints[FGB_MAX_STORAGE_BUFFERS];
+FGB_STORAGE_BUFFER(Vec4Block, fgbVec4s, ) { vec4 values[]; } fgbVec4s[FGB_MAX_STORAGE_BUFFERS];
+
+// Texture lookups whose index may differ between invocations of one draw (per-instance materials).
+vec4 sampleMaterialTexture(int textureIndex, uint samplerIndex, vec2 uv) {
+  return texture(sampler2D(fgbTextures[nonuniformEXT(uint(textureIndex))], fgbSamplers[samplerIndex]), uv);
+}
+
+float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
+
+// Thesis attenuation max(1 - d/R, 0) / d^2, with d clamped to avoid the singularity at the light.
+float pointLightAttenuation(float distance, float radius) {
+  float d = max(distance, 0.05);
+  return max(1.0 - distance / radius, 0.0) / (d * d);
+}
+
+// Cluster of a fragment: 16x16-pixel tile and exponential depth slice.
+uint clusterIndex(FrameConstants frame, vec2 fragCoord, float viewDepth) {
+  uvec2 tile = min(uvec2(fragCoord) / frame.clusterGrid.w, frame.clusterGrid.xy - 1u);
+  float slice = floor(log(max(viewDepth, 1e-6)) * frame.depthRange.z + frame.depthRange.w);
+  uint z = uint(clamp(slice, 0.0, float(frame.clusterGrid.z - 1u)));
+  return (z * frame.clusterGrid.y + tile.y) * frame.clusterGrid.x + tile.x;
+}
+
+// A blue-green-yellow-red ramp for heat maps, t in [0, 1].
+vec3 heatRamp(float t) {
+  t = clamp(t, 0.0, 1.0);
+  return vec3(smoothstep(0.5, 1.0, t), sin(t * PI), 1.0 - smoothstep(0.0, 0.5, t));
+}
+
+#endif

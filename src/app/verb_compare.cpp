@@ -1,0 +1,104 @@
+// `fgbench compare A B`: image metrics between two EXR/PNG files (A is the reference), with an
+// optional heat map. NaN/Inf anywhere fails (exit 1), as do optional --max-* limits.
+#include "verb.hpp"
+
+#include <fgb/core/error.hpp>
+#include <fgb/harness/image_io.hpp>
+#include <fgb/harness/json_io.hpp>
+#include <fgb/harness/metrics.hpp>
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <iostream>
+#include <optional>
+
+namespace fgb::app {
+namespace {
+
+struct CompareOptions {
+  std::string reference, test, diff;
+  double channelThreshold = -1.0;
+  double pixelsPerDegree = harness::defaultPixelsPerDegree();
+  bool noFlip = false;
+  bool json = false;
+  bool quiet = false;
+  std::optional<double> maxFlipMean, maxRmse;
+};
+
+void printMetrics(const harness::ImageMetrics& m) {
+  std::cout << fmt::format("size                  {}x{} ({} values)\n", m.width, m.height, m.domain);
+  std::cout << fmt::format("max abs error         {:.6g}\n", m.maxAbsError);
+  std::cout << fmt::format("RMSE                  {:.6g}\n", m.rmse);
+  std::cout << fmt::format("PSNR                  {} (peak {:g})\n",
+                           std::isfinite(m.psnr) ? fmt::format("{:.3f} dB", m.psnr) : std::string("inf (identical)"), m.peak);
+  std::cout << fmt::format("over {:.4g}/channel    {:.4f}% of pixels\n", m.channelThreshold, m.shareOverThreshold * 100.0);
+  std::cout << fmt::format("NaN/Inf pixels        {} in A, {} in B\n", m.nonFiniteReference, m.nonFiniteTest);
+  if (m.flip) {
+    std::cout << fmt::format("FLIP ({})            mean {:.6f}  p50 {:.6f}  p95 {:.6f}  p99 {:.6f}  max {:.6f}\n", m.flip->mode,
+                             m.flip->mean, m.flip->p50, m.flip->p95, m.flip->p99, m.flip->max);
+    if (m.flip->mode == "hdr") {
+      std::cout << fmt::format("HDR-FLIP exposures    {} from {:+.3f} to {:+.3f} stops\n", m.flip->exposures,
+                               m.flip->startExposure, m.flip->stopExposure);
+    }
+  }
+}
+
+std::string limitFailures(const harness::ImageMetrics& m, const CompareOptions& o) {
+  std::string failures;
+  if (m.hasNonFinite()) failures += fmt::format(" {} NaN/Inf pixels in A, {} in B;", m.nonFiniteReference, m.nonFiniteTest);
+  if (o.maxFlipMean && m.flip && m.flip->mean > *o.maxFlipMean) {
+    failures += fmt::format(" FLIP mean {:.6f} > {:.6f};", m.flip->mean, *o.maxFlipMean);
+  }
+  if (o.maxRmse && m.rmse > *o.maxRmse) failures += fmt::format(" RMSE {:.6g} > {:.6g};", m.rmse, *o.maxRmse);
+  return failures;
+}
+
+int compareVerb(const CompareOptions& o) {
+  const harness::Image a = harness::readImage(o.reference);
+  const harness::Image b = harness::readImage(o.test);
+  if (a.width != b.width || a.height != b.height) {
+    throw InputError(fmt::format("{} is {} but {} is {}: images must have the same size", o.reference,
+                                 harness::describeSize(a), o.test, harness::describeSize(b)));
+  }
+  harness::MetricOptions metricOptions;
+  metricOptions.channelThreshold = o.channelThreshold;
+  metricOptions.pixelsPerDegree = o.pixelsPerDegree;
+  metricOptions.flip = !o.noFlip;
+  const harness::Comparison c = harness::compareImages(a, b, metricOptions);
+  if (!o.diff.empty()) harness::writePng(o.diff, harness::heatMap(c.errorMap, c.nonFiniteMask, a.width, a.height));
+
+  if (o.json) {
+    nlohmann::json j = harness::toJson(c.metrics);
+    j["reference"] = o.reference;
+    j["test"] = o.test;
+    if (!o.diff.empty()) j["diff"] = o.diff;
+    std::cout << harness::dumpJson(j);
+  } else if (!o.quiet) {
+    printMetrics(c.metrics);
+  }
+  const std::string failures = limitFailures(c.metrics, o);
+  if (!failures.empty()) throw CheckFailed(o.reference + " vs " + o.test + ":" + failures);
+  return kExitOk;
+}
+
+static VerbRegistrar reg(30, [](CLI::App& app) {
+  auto o = std::make_shared<CompareOptions>();
+  CLI::App* sub = app.add_subcommand("compare", "Image metrics (max abs, RMSE, PSNR, share over threshold, FLIP) between A and B");
+  sub->add_option("a", o->reference, "Reference image (EXR or PNG)")->required();
+  sub->add_option("b", o->test, "Test image (EXR or PNG)")->required();
+  sub->add_option("--diff", o->diff, "Write a heat map PNG of the per-pixel error (FLIP, or abs error with --no-flip)");
+  sub->add_option("--threshold", o->channelThreshold, "Per-channel threshold for the share of differing pixels "
+                                                      "(default 2/255 for PNG, 0.01 for EXR)");
+  sub->add_option("--ppd", o->pixelsPerDegree, "FLIP observer: pixels per degree (default 67: 0.7 m wide 4K at 0.7 m)")
+      ->check(CLI::Range(1.0, 1000.0));
+  sub->add_flag("--no-flip", o->noFlip, "Skip FLIP");
+  sub->add_option("--max-flip-mean", o->maxFlipMean, "Exit 1 when the mean FLIP error is above this");
+  sub->add_option("--max-rmse", o->maxRmse, "Exit 1 when the RMSE is above this");
+  sub->add_flag("--json", o->json, "Machine-readable output on stdout");
+  sub->add_flag("--quiet", o->quiet, "No output unless failing");
+  return Verb{sub, [o] { return compareVerb(*o); }};
+});
+
+}  // namespace
+}  // namespace fgb::app

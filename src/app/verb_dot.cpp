@@ -1,0 +1,65 @@
+// fgbench dot SCENE [--detail brief|full] [-o FILE]: the compiled frame graph as Graphviz.
+#include "verb.hpp"
+
+#include <fgb/core/atomic_file.hpp>
+#include <fgb/core/error.hpp>
+#include <fgb/renderer/workload.hpp>
+
+#include <iostream>
+#include <map>
+
+namespace fgb::app {
+namespace {
+
+struct DotOptions {
+  std::string scene;
+  std::string detail = "brief";
+  std::string output;  // empty: stdout
+  CommonOptions common;
+};
+
+std::map<std::string, std::string> parseKnobs(const std::vector<std::string>& sets) {
+  std::map<std::string, std::string> knobs;
+  for (const auto& set : sets) {
+    const auto equals = set.find('=');
+    if (equals == std::string::npos || equals == 0) throw InputError("--set " + set + ": expected key=value");
+    knobs[set.substr(0, equals)] = set.substr(equals + 1);
+  }
+  return knobs;
+}
+
+int dotVerb(const DotOptions& o) {
+  render::WorkloadConfig config;
+  config.scenePath = o.scene;
+  config.device = o.common.device;
+  config.width = o.common.width;
+  config.height = o.common.height;
+  config.msaa = o.common.msaa;
+  config.validation = o.common.validation;
+  config.knobs = parseKnobs(o.common.sets);
+  const auto workload = render::openWorkload(config);
+  const std::string dot =
+      workload->graphviz(o.detail == "full" ? render::GraphDetail::Full : render::GraphDetail::Brief);
+  if (o.output.empty() || o.output == "-") {
+    std::cout << dot;
+  } else {
+    writeFileAtomic(o.output, dot);
+    if (!o.common.quiet) std::cerr << "fgbench: wrote " << o.output << "\n";
+  }
+  return 0;
+}
+
+const VerbRegistrar reg(40, [](CLI::App& app) {
+  auto options = std::make_shared<DotOptions>();
+  CLI::App* sub = app.add_subcommand("dot", "Write the compiled frame graph of SCENE as Graphviz");
+  sub->add_option("scene", options->scene, "Scene file (scenes/*.json) or builtin:proof")->required();
+  sub->add_option("--detail", options->detail, "brief (nodes, resource flow) | full (+ barriers, queues, aliasing)")
+      ->check(CLI::IsMember({"brief", "full"}))
+      ->capture_default_str();
+  sub->add_option("-o,--output", options->output, "Output file (default: stdout)");
+  addCommonOptions(*sub, options->common);
+  return Verb{sub, [options] { return dotVerb(*options); }};
+});
+
+}  // namespace
+}  // namespace fgb::app

@@ -1,0 +1,174 @@
+// `fgbench run SCENE`: warm-up + measured frames, per-pass GPU timings, images, graph dumps and
+// reports into --out DIR; optional budget and golden checks (exit 1 when either fails).
+#include "verb.hpp"
+
+#include <fgb/core/error.hpp>
+#include <fgb/harness/budget.hpp>
+#include <fgb/harness/dart.hpp>
+#include <fgb/harness/golden.hpp>
+#include <fgb/harness/json_io.hpp>
+#include <fgb/harness/progress.hpp>
+#include <fgb/harness/report.hpp>
+#include <fgb/harness/run_loop.hpp>
+#include <fgb/harness/run_outputs.hpp>
+#include <fgb/renderer/workload.hpp>
+
+#include <fmt/format.h>
+
+#include <iostream>
+#include <optional>
+
+namespace fgb::app {
+namespace {
+
+struct RunVerbOptions {
+  CommonOptions common;
+  std::string scene;
+  std::string out;
+  std::string budget;
+  double tolerance = -1.0;
+  std::string golden;
+  bool dart = false;
+};
+
+// A golden fixes what it was rendered with; options the user did not give follow it, so that
+// `run --golden` compares like with like.
+void adoptGoldenConfig(const harness::Golden& golden, const CLI::App& command, CommonOptions& common,
+                       std::map<std::string, std::string>& knobs) {
+  if (!command.count("--width") && golden.config.width) common.width = golden.config.width;
+  if (!command.count("--height") && golden.config.height) common.height = golden.config.height;
+  if (!command.count("--msaa") && golden.config.msaa) common.msaa = golden.config.msaa;
+  // Animated content (particles) depends on how many frames were rendered.
+  if (!command.count("--frames") && golden.config.frames) common.frames = golden.config.frames;
+  if (!command.count("--warmup") && golden.config.hasWarmup) common.warmup = golden.config.warmup;
+  for (const auto& [key, value] : golden.config.knobs) knobs.try_emplace(key, value);  // --set wins
+}
+
+render::WorkloadConfig workloadConfig(const std::string& scene, const CommonOptions& common,
+                                      const std::map<std::string, std::string>& knobs) {
+  render::WorkloadConfig config;
+  config.scenePath = scene;
+  config.device = common.device;
+  config.width = common.width;
+  config.height = common.height;
+  config.msaa = common.msaa;
+  config.validation = common.validation;
+  config.knobs = knobs;
+  return config;
+}
+
+harness::RunArtifacts render(render::Workload& workload, const RunVerbOptions& o,
+                             const std::map<std::string, std::string>& knobs) {
+  harness::ProgressBar bar(std::cerr, "rendering", !o.common.quiet && harness::ProgressBar::stderrIsTerminal());
+  harness::RunOptions runOptions;
+  runOptions.warmup = o.common.warmup;
+  runOptions.frames = o.common.frames;
+  runOptions.progress = [&](uint32_t done, uint32_t total) { bar.update(done, total); };
+  harness::RunArtifacts a;
+  a.run = harness::runBenchmark(workload, runOptions);
+  bar.finish();
+  if (workload.validationMessages() > 0) {
+    throw DeviceError(fmt::format("{} validation message(s) while rendering {}", workload.validationMessages(), o.scene));
+  }
+  a.images.hdr = harness::fromRendered(workload.readHdr());
+  a.images.display = harness::fromRendered(workload.readDisplay());
+  a.graphBrief = workload.graphviz(render::GraphDetail::Brief);
+  a.graphFull = workload.graphviz(render::GraphDetail::Full);
+
+  harness::RunResult& run = a.run;
+  run.toolVersion = FGBENCH_VERSION;
+  run.scene = o.scene;
+  run.sceneHash = harness::sceneHash(o.scene);
+  const auto msaa = run.stats.find("msaa");
+  run.config = {a.images.hdr.width, a.images.hdr.height,
+                msaa != run.stats.end() ? static_cast<uint32_t>(msaa->second) : o.common.msaa,
+                o.common.frames, o.common.warmup, knobs};
+  return a;
+}
+
+void printSummary(const harness::RunResult& run, const std::string& out) {
+  std::cout << fmt::format("{} on {}: {}x{}, {} frames\n", run.scene, run.device.name, run.config.width, run.config.height,
+                           run.config.frames);
+  for (const auto& p : run.passes) {
+    if (p.culled) {
+      std::cout << fmt::format("  {:<28} culled\n", p.name);
+    } else {
+      std::cout << fmt::format("  {:<28} {:>9.4f} ms (p5 {:.4f}, p95 {:.4f}){}\n", p.name, p.gpu.median, p.gpu.p5, p.gpu.p95,
+                               p.unstable ? "  unstable" : "");
+    }
+  }
+  std::cout << fmt::format("  {:<28} {:>9.4f} ms GPU, {:.4f} ms CPU\n", "frame", run.frameGpu.median, run.frameCpu.median);
+  if (run.device.hostTimestamps) std::cout << "  note: " << harness::timestampSourceNote(run.device) << "\n";
+  if (run.budget) std::cout << "  budget: " << run.budget->verdict << "\n";
+  if (run.golden) std::cout << "  golden: " << run.golden->verdict << "\n";
+  std::cout << "  results in " << out << "\n";
+}
+
+// One line naming what failed, for stderr and the CheckFailed exception.
+std::string failureLine(const harness::RunResult& run) {
+  std::string line;
+  if (run.budget && run.budget->verdict == "fail") {
+    line += "budget " + run.budget->file + ":";
+    for (const auto* l : run.budget->failing()) {
+      line += l->status == "missing" ? fmt::format(" {} not measured;", l->pass)
+                                     : fmt::format(" {} {:.4f} ms > {:.3f} ms (+{:.1f}%);", l->pass, *l->measuredMs, l->budgetMs,
+                                                   l->overPercent());
+    }
+  }
+  if (run.golden && run.golden->verdict == "fail") {
+    line += (line.empty() ? "" : " ") + std::string("golden ") + run.golden->file + ":";
+    for (const auto& image : run.golden->images) {
+      for (const auto& f : image.failures) line += " " + image.kind + " " + f + ";";
+    }
+    if (!run.golden->diffImage.empty()) line += " heat map " + run.golden->diffImage;
+  }
+  return line;
+}
+
+int runVerb(const CLI::App& command, RunVerbOptions o) {
+  auto knobs = harness::parseKnobs(o.common.sets);
+  // Inputs are checked before rendering: a bad budget or a missing golden fails fast (exit 2).
+  std::optional<harness::Budget> budget;
+  if (!o.budget.empty()) budget = harness::loadBudget(o.budget);
+  std::optional<harness::Golden> golden;
+  if (!o.golden.empty()) {
+    golden = harness::loadGolden(o.golden);
+    adoptGoldenConfig(*golden, command, o.common, knobs);
+  }
+  if (o.out.empty()) o.out = "out/" + harness::sceneName(o.scene);
+
+  auto workload = render::openWorkload(workloadConfig(o.scene, o.common, knobs));
+  harness::RunArtifacts artifacts = render(*workload, o, knobs);
+  harness::RunResult& run = artifacts.run;
+  if (budget) run.budget = harness::checkBudget(*budget, run.medians(), o.tolerance);
+  if (golden) run.golden = harness::checkGolden(*golden, artifacts.images, o.out);
+  harness::writeRunOutputs(o.out, artifacts);
+
+  if (o.common.json) {
+    std::cout << harness::dumpJson(harness::toJson(run));
+  } else if (!o.common.quiet) {
+    printSummary(run, o.out);
+  }
+  if (o.dart) std::cout << harness::dartMeasurements(run);
+  const std::string failure = failureLine(run);
+  if (!failure.empty()) throw CheckFailed(failure);
+  return kExitOk;
+}
+
+static VerbRegistrar reg(20, [](CLI::App& app) {
+  auto options = std::make_shared<RunVerbOptions>();
+  CLI::App* sub = app.add_subcommand("run", "Render SCENE headless; write frames, timings, graph dumps and reports");
+  sub->add_option("scene", options->scene, "Scene file (scenes/*.json) or builtin:proof")->required();
+  addCommonOptions(*sub, options->common);
+  sub->add_option("--out", options->out, "Output directory (default: out/<scene>)");
+  sub->add_option("--budget", options->budget, "Per-pass budget JSON (bench/budgets/*.json); exit 1 when over");
+  sub->add_option("--tolerance", options->tolerance, "Budget tolerance as a fraction (default: the budget file's)")
+      ->check(CLI::Range(0.0, 10.0));
+  sub->add_option("--golden", options->golden,
+                  "Golden JSON (golden/<scene>/<device-class>/<config>.json) or its directory; exit 1 over threshold");
+  sub->add_flag("--dart", options->dart, "Print <DartMeasurement> tags for CTest/CDash");
+  return Verb{sub, [sub, options] { return runVerb(*sub, *options); }};
+});
+
+}  // namespace
+}  // namespace fgb::app

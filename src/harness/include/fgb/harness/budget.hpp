@@ -1,0 +1,61 @@
+// Per-pass millisecond budgets (bench/budgets/*.json) and the check of measured medians against them.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace fgb::harness {
+
+struct Budget {
+  std::string file;
+  std::string name;
+  std::string deviceName;
+  uint32_t width = 0, height = 0, msaa = 0;  // what the budget was measured at (0: unspecified)
+  double tolerance = 0.10;                   // relative: a pass fails above budget * (1 + tolerance)
+  std::vector<std::pair<std::string, double>> passesMs;  // in file order
+  std::optional<double> frameMs;
+};
+
+// Throws InputError naming the file and field on any problem.
+Budget loadBudget(const std::filesystem::path& path);
+
+struct BudgetLine {
+  std::string pass;  // "(frame)" for the whole frame
+  double budgetMs = 0.0;
+  double limitMs = 0.0;  // budget * (1 + tolerance)
+  std::optional<double> measuredMs;  // median; empty when the pass was not measured (absent or culled)
+  std::string status;  // "ok" | "over" | "missing"
+  double overMs() const { return measuredMs ? *measuredMs - budgetMs : 0.0; }
+  double overPercent() const { return measuredMs && budgetMs > 0 ? (*measuredMs / budgetMs - 1.0) * 100.0 : 0.0; }
+};
+
+struct BudgetResult {
+  std::string file;
+  std::string verdict = "none";  // "pass" | "fail" | "none"
+  double tolerance = 0.0;
+  std::vector<BudgetLine> lines;
+  std::vector<std::string> warnings;  // e.g. resolution differs from the budget's
+
+  std::vector<const BudgetLine*> failing() const;
+};
+
+struct MeasuredMedians {
+  std::map<std::string, double> passMs;  // measured (not culled) passes only
+  std::optional<double> frameMs;
+  uint32_t width = 0, height = 0, msaa = 0;
+};
+
+// tolerance < 0 keeps the budget file's tolerance. A pass fails when its median exceeds the limit
+// or when it was not measured; the verdict is "fail" if any line fails.
+BudgetResult checkBudget(const Budget& budget, const MeasuredMedians& measured, double tolerance = -1.0);
+
+// The contract's timings.json "budget" object.
+nlohmann::json toJson(const BudgetResult& result);
+
+}  // namespace fgb::harness

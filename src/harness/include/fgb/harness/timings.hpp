@@ -1,0 +1,81 @@
+// A benchmark run's results and its files: timings.json (contract schema, plus per-frame samples
+// so `compare-runs` can test significance) and timings.csv (one row per pass per frame).
+#pragma once
+
+#include <fgb/harness/budget.hpp>
+#include <fgb/harness/golden.hpp>
+#include <fgb/harness/stats.hpp>
+#include <fgb/renderer/workload.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace fgb::harness {
+
+inline constexpr int kTimingsSchema = 1;
+
+struct PassRecord {
+  std::string name;
+  std::string queue;
+  bool culled = false;
+  std::vector<double> samplesMs;  // one per measured frame (empty when culled)
+  std::vector<double> startMs;    // start offsets within the frame when the workload reports them
+  Summary gpu;
+  bool unstable = false;
+};
+
+// Time spent around rendering: wall time of the measured loop, time inside the workload's calls,
+// and the harness' own share (bookkeeping, progress) — reported apart from GPU time.
+struct HarnessOverhead {
+  double loopWallMs = 0.0;
+  double workloadCallsMs = 0.0;
+  double harnessMs = 0.0;
+  double perFrameUs = 0.0;
+};
+
+struct RunConfig {
+  uint32_t width = 0, height = 0, msaa = 0, frames = 0, warmup = 0;
+  std::map<std::string, std::string> knobs;
+};
+
+struct RunResult {
+  std::string toolVersion;
+  std::string scene;
+  std::string sceneHash;
+  render::DeviceDescription device;
+  RunConfig config;
+  std::map<std::string, double> stats;
+  std::vector<PassRecord> passes;  // declaration order
+  std::vector<double> frameGpuMs, frameCpuMs;
+  Summary frameGpu, frameCpu;
+  HarnessOverhead overhead;
+  std::optional<BudgetResult> budget;
+  std::optional<GoldenResult> golden;
+
+  const PassRecord* findPass(const std::string& name) const;
+  MeasuredMedians medians() const;
+};
+
+// Fills the summaries and the unstable flags from the samples.
+void summarizeRun(RunResult& run, double unstableSpread = kDefaultUnstableSpread);
+
+nlohmann::json toJson(const RunResult& run);
+std::string toCsv(const RunResult& run);
+
+// Timings of a previous run, for compare-runs. Needs schema 1 and per-frame samples; anything
+// else is InputError naming the file and field.
+struct LoadedTimings {
+  std::string file;
+  std::string scene;
+  std::string deviceName;
+  std::vector<PassRecord> passes;  // with samples
+  std::vector<double> frameGpuMs;
+};
+LoadedTimings loadTimings(const std::filesystem::path& path);
+
+}  // namespace fgb::harness

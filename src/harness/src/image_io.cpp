@@ -1,0 +1,156 @@
+#include <fgb/harness/image_io.hpp>
+
+#include <fgb/core/atomic_file.hpp>
+#include <fgb/core/error.hpp>
+
+#include <OpenEXR/ImfArray.h>
+#include <OpenEXR/ImfRgbaFile.h>
+#include <OpenEXR/ImfThreading.h>
+#include <png.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <mutex>
+#include <thread>
+
+namespace fgb::harness {
+namespace {
+
+std::string lowercaseExtension(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+void requireReadableFile(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw InputError(path.string() + ": no such file");
+  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path.string() + ": not a regular file");
+}
+
+// OpenEXR decodes ZIP blocks in parallel when given a thread pool; set it up once.
+void enableExrThreads() {
+  static std::once_flag once;
+  std::call_once(once, [] { Imf::setGlobalThreadCount(static_cast<int>(std::max(1u, std::thread::hardware_concurrency()))); });
+}
+
+}  // namespace
+
+ImageFormat detectImageFormat(const std::filesystem::path& path) {
+  const std::string ext = lowercaseExtension(path);
+  if (ext == ".exr") return ImageFormat::Exr;
+  if (ext == ".png") return ImageFormat::Png;
+  requireReadableFile(path);
+  std::array<unsigned char, 8> magic{};
+  std::ifstream in(path, std::ios::binary);
+  in.read(reinterpret_cast<char*>(magic.data()), magic.size());
+  static constexpr std::array<unsigned char, 4> kExrMagic{0x76, 0x2f, 0x31, 0x01};
+  static constexpr std::array<unsigned char, 8> kPngMagic{0x89, 'P', 'N', 'G', 0x0d, 0x0a, 0x1a, 0x0a};
+  if (std::equal(kExrMagic.begin(), kExrMagic.end(), magic.begin())) return ImageFormat::Exr;
+  if (std::equal(kPngMagic.begin(), kPngMagic.end(), magic.begin())) return ImageFormat::Png;
+  throw InputError(path.string() + ": not an OpenEXR or PNG image");
+}
+
+Image readImage(const std::filesystem::path& path) {
+  return detectImageFormat(path) == ImageFormat::Exr ? readExr(path) : readPng(path);
+}
+
+Image readExr(const std::filesystem::path& path) {
+  requireReadableFile(path);
+  enableExrThreads();
+  try {
+    Imf::RgbaInputFile file(path.c_str());
+    const Imath::Box2i window = file.dataWindow();
+    const long width = static_cast<long>(window.max.x) - window.min.x + 1;
+    const long height = static_cast<long>(window.max.y) - window.min.y + 1;
+    if (width <= 0 || height <= 0) throw InputError(path.string() + ": empty data window");
+    Imf::Array2D<Imf::Rgba> pixels(height, width);
+    const auto base = static_cast<std::ptrdiff_t>(window.min.x) + static_cast<std::ptrdiff_t>(window.min.y) * width;
+    file.setFrameBuffer(&pixels[0][0] - base, 1, static_cast<std::size_t>(width));
+    file.readPixels(window.min.y, window.max.y);
+
+    Image image = makeImage(static_cast<uint32_t>(width), static_cast<uint32_t>(height), Encoding::Linear);
+    const bool hasAlpha = (file.channels() & Imf::WRITE_A) != 0;
+    float* out = image.rgba.data();
+    for (long y = 0; y < height; ++y) {
+      for (long x = 0; x < width; ++x, out += 4) {
+        const Imf::Rgba& p = pixels[y][x];
+        out[0] = p.r;
+        out[1] = p.g;
+        out[2] = p.b;
+        out[3] = hasAlpha ? static_cast<float>(p.a) : 1.0f;
+      }
+    }
+    return image;
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    std::string reason = e.what();
+    std::replace(reason.begin(), reason.end(), '\n', ' ');
+    throw InputError(path.string() + ": not a readable OpenEXR image (" + reason + ")");
+  }
+}
+
+Image readPng(const std::filesystem::path& path) {
+  requireReadableFile(path);
+  png_image png;
+  std::memset(&png, 0, sizeof png);
+  png.version = PNG_IMAGE_VERSION;
+  if (png_image_begin_read_from_file(&png, path.c_str()) == 0) {
+    throw InputError(path.string() + ": not a readable PNG image (" + png.message + ")");
+  }
+  png.format = PNG_FORMAT_RGBA;  // 8-bit sRGB; libpng converts grey, palette and 16-bit input
+  std::vector<unsigned char> bytes(PNG_IMAGE_SIZE(png));
+  if (png_image_finish_read(&png, nullptr, bytes.data(), 0, nullptr) == 0) {
+    const std::string reason = png.message;
+    png_image_free(&png);
+    throw InputError(path.string() + ": corrupt PNG image (" + reason + ")");
+  }
+  Image image = makeImage(png.width, png.height, Encoding::Srgb);
+  std::transform(bytes.begin(), bytes.end(), image.rgba.begin(), [](unsigned char b) { return static_cast<float>(b) / 255.0f; });
+  return image;
+}
+
+void writeExr(const std::filesystem::path& path, const Image& linear) {
+  enableExrThreads();
+  std::vector<Imf::Rgba> pixels(linear.pixelCount());
+  for (std::size_t i = 0; i < pixels.size(); ++i) {
+    const float* p = &linear.rgba[i * 4];
+    pixels[i] = Imf::Rgba(p[0], p[1], p[2], p[3]);
+  }
+  writeViaTemporary(path, [&](const std::filesystem::path& temporary) {
+    Imf::RgbaOutputFile file(temporary.c_str(), static_cast<int>(linear.width), static_cast<int>(linear.height),
+                             Imf::WRITE_RGBA, 1.0f, Imath::V2f(0, 0), 1.0f, Imf::INCREASING_Y, Imf::ZIP_COMPRESSION);
+    file.setFrameBuffer(pixels.data(), 1, linear.width);
+    file.writePixels(static_cast<int>(linear.height));
+  });
+}
+
+void writePng(const std::filesystem::path& path, const Image& image) {
+  const Image encoded = quantizeToSrgb8(image);
+  std::vector<unsigned char> bytes(image.pixelCount() * 3);
+  for (std::size_t i = 0; i < image.pixelCount(); ++i) {
+    for (int c = 0; c < 3; ++c) {
+      bytes[i * 3 + c] = static_cast<unsigned char>(std::lround(encoded.rgba[i * 4 + c] * 255.0f));
+    }
+  }
+  writeViaTemporary(path, [&](const std::filesystem::path& temporary) {
+    png_image png;
+    std::memset(&png, 0, sizeof png);
+    png.version = PNG_IMAGE_VERSION;
+    png.width = image.width;
+    png.height = image.height;
+    png.format = PNG_FORMAT_RGB;
+    if (png_image_write_to_file(&png, temporary.c_str(), 0, bytes.data(), 0, nullptr) == 0) {
+      const std::string reason = png.message;
+      png_image_free(&png);
+      throw std::runtime_error(path.string() + ": cannot write PNG (" + reason + ")");
+    }
+  });
+}
+
+}  // namespace fgb::harness

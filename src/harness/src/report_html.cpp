@@ -1,0 +1,92 @@
+#include <fgb/harness/report.hpp>
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace fgb::harness {
+namespace {
+
+constexpr const char* kStyle =
+    "body{font-family:sans-serif;max-width:900px;margin:2em auto;color:#222}"
+    "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #ccc;padding:3px 8px;text-align:right}"
+    "td:first-child,th:first-child{text-align:left}.bad{color:#c0392b;font-weight:bold}.ok{color:#2e7d32}"
+    ".note{color:#555}";
+
+std::string verdictSpan(const std::string& verdict) {
+  const char* cls = verdict == "fail" ? "bad" : (verdict == "pass" ? "ok" : "note");
+  return fmt::format(R"(<span class="{}">{}</span>)", cls, escapeXml(verdict));
+}
+
+std::string passRows(const RunResult& run) {
+  std::string rows;
+  auto cells = [](const Summary& s) {
+    return fmt::format("<td>{:.4f}</td><td>{:.4f}</td><td>{:.4f}</td><td>{:.4f}</td><td>{:.4f}</td><td>{:.4f}</td><td>{}</td>",
+                       s.median, s.p5, s.p95, s.mean, s.min, s.max, s.n);
+  };
+  for (const auto& p : run.passes) {
+    rows += fmt::format("<tr><td>{}</td><td>{}</td>{}<td>{}</td></tr>\n", escapeXml(p.name), escapeXml(p.queue),
+                        p.culled ? std::string(R"(<td colspan="7">culled</td>)") : cells(p.gpu),
+                        p.unstable ? R"(<span class="bad">unstable</span>)" : "");
+  }
+  rows += fmt::format("<tr><th>frame (GPU)</th><td></td>{}<td></td></tr>\n", cells(run.frameGpu));
+  rows += fmt::format("<tr><th>frame (CPU)</th><td></td>{}<td></td></tr>\n", cells(run.frameCpu));
+  return rows;
+}
+
+std::string budgetHtml(const RunResult& run) {
+  if (!run.budget) return "<p class=\"note\">No budget given.</p>\n";
+  std::string out = fmt::format("<p>{}: {}</p>\n<ul>\n", escapeXml(run.budget->file), verdictSpan(run.budget->verdict));
+  for (const auto* line : run.budget->failing()) {
+    out += line->status == "missing"
+               ? fmt::format("<li>{}: not measured (budget {:.3f} ms)</li>\n", escapeXml(line->pass), line->budgetMs)
+               : fmt::format("<li>{}: {:.4f} ms against {:.3f} ms, over by {:.4f} ms ({:+.1f}%)</li>\n", escapeXml(line->pass),
+                             *line->measuredMs, line->budgetMs, line->overMs(), line->overPercent());
+  }
+  for (const auto& w : run.budget->warnings) out += "<li class=\"note\">" + escapeXml(w) + "</li>\n";
+  return out + "</ul>\n";
+}
+
+std::string goldenHtml(const RunResult& run) {
+  if (!run.golden) return "<p class=\"note\">No golden compared.</p>\n";
+  std::string out = fmt::format("<p>{}: {}</p>\n<table><tr><th>image</th><th>max abs</th><th>RMSE</th><th>PSNR dB</th>"
+                                "<th>share over</th><th>FLIP mean</th><th>FLIP p99</th><th>NaN/Inf</th><th>failures</th></tr>\n",
+                                escapeXml(run.golden->file), verdictSpan(run.golden->verdict));
+  for (const auto& image : run.golden->images) {
+    const auto& m = image.metrics;
+    std::string failures;
+    for (const auto& f : image.failures) failures += (failures.empty() ? "" : "; ") + f;
+    out += fmt::format("<tr><td>{}</td><td>{:.5f}</td><td>{:.5f}</td><td>{}</td><td>{:.4f}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
+                       image.kind, m.maxAbsError, m.rmse, std::isfinite(m.psnr) ? fmt::format("{:.2f}", m.psnr) : "∞",
+                       m.shareOverThreshold, m.flip ? fmt::format("{:.5f}", m.flip->mean) : "–",
+                       m.flip ? fmt::format("{:.5f}", m.flip->p99) : "–", m.nonFiniteReference + m.nonFiniteTest,
+                       escapeXml(failures.empty() ? "none" : failures));
+  }
+  return out + "</table>\n";
+}
+
+}  // namespace
+
+std::string htmlReport(const RunResult& run) {
+  std::string html = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n";
+  html += fmt::format("<title>fgbench report: {}</title>\n<style>{}</style></head><body>\n", escapeXml(run.scene), kStyle);
+  html += fmt::format("<h1>fgbench report: {}</h1>\n", escapeXml(run.scene));
+  html += fmt::format("<p>{} ({}), driver {}, Vulkan {}<br>{}x{}, MSAA {}, {} measured frames after {} warm-up; tool {}</p>\n",
+                      escapeXml(run.device.name), escapeXml(run.device.type), escapeXml(run.device.driver),
+                      escapeXml(run.device.apiVersion), run.config.width, run.config.height, msaaLabel(run.config.msaa),
+                      run.config.frames, run.config.warmup, escapeXml(run.toolVersion));
+  html += "<p class=\"note\">" + escapeXml(timestampSourceNote(run.device)) + "</p>\n";
+  html += "<h2>Passes against budget</h2>\n" + passBarsSvg(run);
+  html += "<h2>Frame time series</h2>\n" + frameSeriesSvg(run);
+  html += "<h2>Queue timeline</h2>\n" + queueTimelineSvg(run);
+  html += "<h2>Timings (ms)</h2>\n<table><tr><th>pass</th><th>queue</th><th>median</th><th>p5</th><th>p95</th><th>mean</th>"
+          "<th>min</th><th>max</th><th>n</th><th></th></tr>\n" + passRows(run) + "</table>\n";
+  html += fmt::format("<p class=\"note\">Harness overhead around rendering: {:.3f} ms ({:.1f} µs per frame), apart from {:.3f} ms "
+                      "inside the workload.</p>\n",
+                      run.overhead.harnessMs, run.overhead.perFrameUs, run.overhead.workloadCallsMs);
+  html += "<h2>Budget</h2>\n" + budgetHtml(run);
+  html += "<h2>Golden image</h2>\n" + goldenHtml(run);
+  return html + "</body></html>\n";
+}
+
+}  // namespace fgb::harness

@@ -1,0 +1,78 @@
+// The scene as uploaded to the GPU (persistent RHI objects, alive for the whole run) and the
+// per-frame render targets. Both travel through the blackboard.
+#pragma once
+
+#include "gpu_types.hpp"
+#include "render_settings.hpp"
+
+#include <fgb/graph/frame_graph.hpp>
+#include <fgb/rhi/types.hpp>
+#include <fgb/scene/scene.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace fgb::features {
+
+// Vertex attribute streams inside GpuScene::vertices (byte offsets).
+struct VertexStreams {
+  uint64_t positions = 0;  // vec3
+  uint64_t normals = 0;    // vec3
+  uint64_t tangents = 0;   // vec4
+  uint64_t uvs = 0;        // vec2
+};
+
+// Which pipeline a draw group uses; also the order in which forward passes draw them.
+enum class DrawClass : uint8_t { Opaque, Masked, Transparent };
+
+// One indirect command: every instance of one mesh in one draw class (transparent instances get a
+// group each, sorted back to front, so the multi-draw's command order is the blend order).
+struct DrawGroup {
+  uint32_t mesh = 0;
+  DrawClass drawClass = DrawClass::Opaque;
+  uint32_t firstSlot = 0;  // first entry in the visible-instance list (= firstInstance)
+  uint32_t capacity = 0;   // instances in the group
+};
+
+struct GpuScene {
+  const scene::Scene* scene = nullptr;
+  rhi::BufferId vertices;          // all attribute streams (vertex + storage usage)
+  VertexStreams streams;
+  rhi::BufferId indices;           // uint32, mesh-local
+  rhi::BufferId instances;         // InstanceGpu[], ordered by draw group
+  rhi::BufferId materials;         // MaterialGpu[]
+  rhi::BufferId lights;            // PointLightGpu[] (at least one entry)
+  rhi::BufferId frameConstants;    // FrameConstantsGpu
+  rhi::BufferId commandTemplate;   // DrawIndexedCommand[] with instanceCount 0 (reset source)
+  rhi::SamplerId materialSampler;
+  rhi::SamplerId linearClampSampler;
+  std::vector<rhi::TextureId> textures;
+  std::vector<DrawGroup> groups;   // in command order: opaque, masked, transparent
+  std::vector<uint32_t> instanceOrder;  // GPU instance i is scene instance instanceOrder[i]
+  FrameConstantsGpu constants;     // what frameConstants holds
+  uint32_t instanceCount = 0;
+  uint32_t lightCount = 0;
+
+  // Range of groups of one class: [first, first + count).
+  [[nodiscard]] std::pair<uint32_t, uint32_t> groupRange(DrawClass drawClass) const;
+};
+
+// The frame's colour and depth targets. Forward passes draw into `color` (multisampled when
+// samples > 1) and the last of them resolves into `hdr`, the imported single-sample HDR image.
+struct FrameTargets {
+  graph::Extent extent{};
+  uint32_t samples = 1;
+  graph::TextureHandle color;  // latest version of the (MSAA) colour target
+  graph::TextureHandle depth;  // latest version of the (MSAA) depth target
+  graph::TextureHandle hdr;    // the resolved HDR image (imported); written by the last colour pass
+  graph::TextureHandle display;  // tone-mapped output (imported)
+  uint32_t colorPasses = 0;  // forward passes still to declare; the last one resolves
+  bool colorCleared = false;     // the first colour pass clears colour
+  bool depthCleared = false;     // the first pass using depth (maybe a depth prepass) clears it
+};
+
+inline constexpr graph::Format kHdrFormat = graph::Format::R16G16B16A16Sfloat;
+inline constexpr graph::Format kDepthFormat = graph::Format::D32Sfloat;
+inline constexpr graph::Format kDisplayFormat = graph::Format::R8G8B8A8Srgb;
+
+}  // namespace fgb::features

@@ -1,0 +1,71 @@
+// CPU mirrors of the std430 structs the renderer's shaders read (shaders/renderer/include/
+// common.glsl). Keep field order and padding identical; the static_asserts catch size drift.
+#pragma once
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec4.hpp>
+
+#include <cstdint>
+
+namespace fgb::features {
+
+// Camera and view data, uploaded once per run (the benchmark camera does not move).
+struct FrameConstantsGpu {
+  glm::mat4 view{1.0f};
+  glm::mat4 proj{1.0f};      // Vulkan clip space, Y flipped for a top-left origin
+  glm::mat4 viewProj{1.0f};
+  glm::mat4 invProj{1.0f};
+  glm::vec4 cameraPosition{0.0f};
+  glm::vec4 sunDirection{0.0f};  // xyz: direction light travels; w: 1 when enabled
+  glm::vec4 sunColor{0.0f};      // rgb * intensity
+  glm::vec4 viewport{0.0f};      // width, height, 1/width, 1/height
+  glm::vec4 depthRange{0.0f};    // near, far, slice scale, slice bias (clusters)
+  glm::uvec4 clusterGrid{0u};    // tiles x, tiles y, slices, tile size in pixels
+  glm::uvec4 counts{0u};         // lights, instances, max lights per cluster, debug view
+  glm::vec4 ambient{0.0f};       // rgb: constant ambient term
+};
+static_assert(sizeof(FrameConstantsGpu) == 4 * 64 + 8 * 16);
+
+struct InstanceGpu {
+  glm::mat4 model{1.0f};
+  glm::mat4 normalMatrix{1.0f};  // inverse transpose of the model's 3x3, in a mat4
+  glm::vec4 boundsMin{0.0f};     // world AABB
+  glm::vec4 boundsMax{0.0f};
+  uint32_t material = 0;
+  uint32_t drawGroup = 0;        // index of the indirect command drawing this instance
+  uint32_t triangles = 0;
+  uint32_t pad = 0;
+};
+static_assert(sizeof(InstanceGpu) == 176);
+
+struct MaterialGpu {
+  glm::vec4 baseColor{1.0f};
+  glm::vec4 emissive{0.0f};      // rgb * strength, w: normal scale
+  float metallic = 1.0f;
+  float roughness = 1.0f;
+  float alphaCutoff = 0.5f;
+  uint32_t alphaMode = 0;        // 0 opaque, 1 mask, 2 blend
+  int32_t baseColorTexture = -1; // bindless sampled-texture indices, -1: none
+  int32_t normalTexture = -1;
+  int32_t metallicRoughnessTexture = -1;
+  int32_t emissiveTexture = -1;
+};
+static_assert(sizeof(MaterialGpu) == 64);
+
+struct PointLightGpu {
+  glm::vec4 positionRadius{0.0f};
+  glm::vec4 color{0.0f};  // rgb * intensity
+};
+static_assert(sizeof(PointLightGpu) == 32);
+
+// VkDrawIndexedIndirectCommand.
+struct DrawIndexedCommand {
+  uint32_t indexCount = 0;
+  uint32_t instanceCount = 0;
+  uint32_t firstIndex = 0;
+  int32_t vertexOffset = 0;
+  uint32_t firstInstance = 0;
+};
+static_assert(sizeof(DrawIndexedCommand) == 20);
+
+}  // namespace fgb::features

@@ -1,0 +1,46 @@
+#include "render_feature.hpp"
+
+namespace fgb::features {
+namespace {
+
+constexpr graph::ClearValue kBackground{{0.02f, 0.025f, 0.035f, 1.0f}, 1.0f, 0};
+
+}  // namespace
+
+std::pair<uint32_t, uint32_t> GpuScene::groupRange(DrawClass drawClass) const {
+  uint32_t first = 0;
+  while (first < groups.size() && groups[first].drawClass < drawClass) ++first;
+  uint32_t last = first;
+  while (last < groups.size() && groups[last].drawClass == drawClass) ++last;
+  return {first, last - first};
+}
+
+graph::NodeBuilder addForwardPass(graph::FrameGraph& graph, FrameTargets& targets, std::string_view name,
+                                  bool writesDepth) {
+  if (targets.colorPasses == 0) throw std::logic_error("forward pass '" + std::string(name) + "' was not announced");
+  auto node = graph.addNode(name, graph::NodeType::Graphics);
+  const bool first = !targets.colorCleared;
+  const bool last = --targets.colorPasses == 0;
+  const graph::LoadOp load = first ? graph::LoadOp::Clear : graph::LoadOp::Load;
+
+  if (targets.samples == 1) {
+    // Single-sampled: the HDR image is the colour target itself.
+    targets.color = node.addColorTarget(targets.color, load, kBackground);
+    targets.hdr = targets.color;
+  } else if (last) {
+    graph::TextureHandle newColor;
+    targets.hdr = node.addColorTargetWithResolve(targets.color, targets.hdr, &newColor, load, kBackground);
+    targets.color = newColor;
+  } else {
+    targets.color = node.addColorTarget(targets.color, load, kBackground);
+  }
+
+  if (!targets.depthCleared) targets.depth = node.setDepthStencil(targets.depth, graph::LoadOp::Clear, kBackground);
+  else if (writesDepth) targets.depth = node.setDepthStencil(targets.depth, graph::LoadOp::Load);
+  else node.setDepthStencilReadOnly(targets.depth);
+  targets.colorCleared = true;
+  targets.depthCleared = true;
+  return node;
+}
+
+}  // namespace fgb::features

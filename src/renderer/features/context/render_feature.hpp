@@ -1,0 +1,46 @@
+// IRenderFeature: one renderer feature (meshes, lights, particles, bloom, ...). A feature creates
+// its pipelines and persistent resources once, then declares its frame-graph nodes, reading and
+// publishing graph handles through the blackboard. Node names match the thesis' table.
+#pragma once
+
+#include "blackboard.hpp"
+#include "gpu_scene.hpp"
+#include "render_settings.hpp"
+
+#include <fgb/graph/frame_graph.hpp>
+#include <fgb/rhi/device.hpp>
+
+#include <map>
+#include <string>
+#include <string_view>
+
+namespace fgb::features {
+
+struct FeatureInit {
+  rhi::Device& device;
+  const GpuScene& scene;
+  const RenderSettings& settings;
+};
+
+class IRenderFeature {
+ public:
+  virtual ~IRenderFeature() = default;
+  [[nodiscard]] virtual std::string_view name() const = 0;
+  // False when the scene needs none of this feature's work: it then declares nothing.
+  [[nodiscard]] virtual bool enabled() const { return true; }
+  // Forward passes this feature will declare that draw into FrameTargets::color.
+  [[nodiscard]] virtual uint32_t colorPasses() const { return 0; }
+  // Once per run, after the scene upload: pipelines and persistent GPU resources.
+  virtual void initialize(FeatureInit& init) = 0;
+  // Declares this frame's nodes. Called once; the compiled graph is executed every frame.
+  virtual void declare(graph::FrameGraph& graph, Blackboard& board) = 0;
+  // Adds run statistics (read back from the GPU where needed) after frames were rendered.
+  virtual void addStats(std::map<std::string, double>& /*stats*/) const {}
+};
+
+// Convenience: one forward colour pass over FrameTargets, resolving when it is the last one.
+// Returns the builder so the caller can add reads and the job.
+graph::NodeBuilder addForwardPass(graph::FrameGraph& graph, FrameTargets& targets, std::string_view name,
+                                  bool writesDepth);
+
+}  // namespace fgb::features

@@ -1,0 +1,134 @@
+#include "clustered_lighting.hpp"
+
+#include "../context/handles.hpp"
+
+#include <fgb/rhi/job_context.hpp>
+
+#include <algorithm>
+#include <cstring>
+
+namespace fgb::features {
+namespace {
+
+using graph::Access;
+
+struct BoundsPush {
+  uint32_t frame;
+  uint32_t bounds;
+  uint32_t clusterCount;
+};
+
+struct CullPush {
+  uint32_t frame;
+  uint32_t bounds;
+  uint32_t lights;
+  uint32_t counts;
+  uint32_t indices;
+};
+
+constexpr uint32_t kMaxCapacity = 1024;  // MAX_LIGHTS_PER_CLUSTER in light_cull.comp
+
+// The bounds buffer is written by compute and read by compute, frame after frame.
+constexpr graph::ImportState kBoundsState{graph::kStageComputeShader,
+                                          graph::kAccessShaderStorageRead | graph::kAccessShaderStorageWrite,
+                                          graph::Layout::Undefined, graph::QueueClass::Graphics};
+
+}  // namespace
+
+void ClusteredLighting::initialize(FeatureInit& init) {
+  configure(init.scene);
+  device_ = &init.device;
+  scene_ = &init.scene;
+  if (!enabled()) return;
+  const auto& grid = init.scene.constants.clusterGrid;
+  clusterCount_ = grid.x * grid.y * grid.z;
+  capacity_ = std::min(init.settings.maxLightsPerCluster, kMaxCapacity);
+  boundsPipeline_ = init.device.createComputePipeline({"cluster bounds", "renderer/cluster_bounds.comp"});
+  cullPipeline_ = init.device.createComputePipeline({"clustered light cull", "renderer/light_cull.comp"});
+  bounds_ = init.device.createBuffer(
+      {"cluster bounds", uint64_t{32} * clusterCount_, rhi::kBufferStorage, rhi::MemoryUsage::DeviceLocal});
+  countsReadback_ = init.device.createBuffer(
+      {"cluster counts readback", uint64_t{4} * clusterCount_, rhi::kBufferTransferDst, rhi::MemoryUsage::Readback});
+  std::memset(init.device.mapped(countsReadback_).data(), 0, uint64_t{4} * clusterCount_);
+}
+
+graph::BufferHandle ClusteredLighting::declareBounds(graph::FrameGraph& graph) {
+  auto bounds = graph.importBuffer("cluster bounds", {uint64_t{32} * clusterCount_, {}}, rhi::external(bounds_),
+                                   kBoundsState, kBoundsState);
+  auto node = graph.addNode("Cluster Bounds", graph::NodeType::Compute);
+  bounds = node.write(bounds, Access::StorageReadWrite);  // read-write: contents kept when not rebuilt
+  const BoundsPush push{device_->storageBufferIndex(scene_->frameConstants), device_->storageBufferIndex(bounds_),
+                        clusterCount_};
+  node.setJob([push, pipeline = boundsPipeline_, state = boundsState_, projection = scene_->constants.proj](
+                  graph::JobContext& context) {
+    if (state->built && state->builtFor == projection) return;  // projection unchanged: keep bounds
+    auto& cmd = rhi::rhiContext(context).cmd();
+    cmd.bindPipeline(pipeline);
+    cmd.push(push);
+    cmd.dispatch((push.clusterCount + 63) / 64);
+    state->built = true;
+    state->builtFor = projection;
+  });
+  return bounds;
+}
+
+void ClusteredLighting::declareStatsReadback(graph::FrameGraph& graph, graph::BufferHandle counts) {
+  const graph::ImportState hostState{graph::kStageHost | graph::kStageTransfer,
+                                     graph::kAccessHostRead | graph::kAccessTransferWrite, graph::Layout::Undefined,
+                                     graph::QueueClass::Graphics};
+  auto target = graph.importBuffer("cluster counts readback", {uint64_t{4} * clusterCount_, {}},
+                                   rhi::external(countsReadback_), hostState, hostState);
+  auto node = graph.addNode("Light Stats Readback", graph::NodeType::Transfer);
+  node.read(counts, Access::TransferSrc);
+  target = node.write(target, Access::TransferDst);
+  node.sideEffect();
+  node.setJob([counts, target, bytes = uint64_t{4} * clusterCount_](graph::JobContext& context) {
+    auto& ctx = rhi::rhiContext(context);
+    ctx.cmd().copyBuffer(ctx.buffer(counts), ctx.buffer(target), bytes);
+  });
+}
+
+void ClusteredLighting::declare(graph::FrameGraph& graph, Blackboard& board) {
+  if (!enabled()) return;
+  const auto bounds = declareBounds(graph);
+  ClusteredLights lists;
+  lists.counts = graph.createBuffer("cluster light counts", {uint64_t{4} * clusterCount_, {}});
+  lists.indices = graph.createBuffer("cluster light indices", {uint64_t{4} * clusterCount_ * capacity_, {}});
+
+  auto node = graph.addNode("Clustered Light Cull", graph::NodeType::Compute);
+  node.read(bounds, Access::StorageRead);
+  lists.counts = node.write(lists.counts, Access::StorageWrite);
+  lists.indices = node.write(lists.indices, Access::StorageWrite);
+  CullPush push{device_->storageBufferIndex(scene_->frameConstants), device_->storageBufferIndex(bounds_),
+                device_->storageBufferIndex(scene_->lights), 0, 0};
+  node.setJob([push, pipeline = cullPipeline_, lists, clusters = clusterCount_](graph::JobContext& context) mutable {
+    auto& ctx = rhi::rhiContext(context);
+    push.counts = ctx.storageBufferIndex(lists.counts);
+    push.indices = ctx.storageBufferIndex(lists.indices);
+    ctx.cmd().bindPipeline(pipeline);
+    ctx.cmd().push(push);
+    ctx.cmd().dispatch(clusters);  // one workgroup per cluster
+  });
+  declareStatsReadback(graph, lists.counts);
+  board.set(lists);
+}
+
+void ClusteredLighting::addStats(std::map<std::string, double>& stats) const {
+  stats["clusters"] = clusterCount_;
+  if (!enabled() || clusterCount_ == 0) return;
+  std::vector<uint32_t> counts(clusterCount_);
+  std::memcpy(counts.data(), device_->mapped(countsReadback_).data(), counts.size() * 4);
+  uint64_t sum = 0;
+  uint32_t max = 0;
+  uint32_t overflowed = 0;
+  for (const uint32_t count : counts) {
+    sum += count;
+    max = std::max(max, count);
+    if (count > capacity_) ++overflowed;
+  }
+  stats["lights_per_cluster_avg"] = double(sum) / double(clusterCount_);
+  stats["lights_per_cluster_max"] = max;
+  stats["clusters_overflowed"] = overflowed;
+}
+
+}  // namespace fgb::features

@@ -1,0 +1,44 @@
+// Clustered light culling (thesis): "Cluster Bounds" rebuilds the clusters' view-space AABBs only
+// when the projection changes (a persistent buffer); "Clustered Light Cull" fills per-cluster light
+// lists that the forward passes read (published as ClusteredLights). A scene without point lights
+// declares none of this. Stats: average/max lights per cluster (read back every frame).
+#pragma once
+
+#include "../context/render_feature.hpp"
+
+#include <memory>
+
+namespace fgb::features {
+
+class ClusteredLighting final : public IRenderFeature {
+ public:
+  [[nodiscard]] std::string_view name() const override { return "clustered lighting"; }
+  [[nodiscard]] bool enabled() const override { return lightCount_ > 0; }
+  void configure(const GpuScene& scene) { lightCount_ = scene.lightCount; }
+  void initialize(FeatureInit& init) override;
+  void declare(graph::FrameGraph& graph, Blackboard& board) override;
+  void addStats(std::map<std::string, double>& stats) const override;
+
+ private:
+  // The projection the bounds buffer was last built for, shared with the job across executions.
+  struct BoundsState {
+    glm::mat4 builtFor{0.0f};
+    bool built = false;
+  };
+
+  graph::BufferHandle declareBounds(graph::FrameGraph& graph);
+  void declareStatsReadback(graph::FrameGraph& graph, graph::BufferHandle counts);
+
+  rhi::Device* device_ = nullptr;
+  const GpuScene* scene_ = nullptr;
+  rhi::PipelineId boundsPipeline_;
+  rhi::PipelineId cullPipeline_;
+  rhi::BufferId bounds_;         // persistent: vec4 min, max per cluster
+  rhi::BufferId countsReadback_;
+  std::shared_ptr<BoundsState> boundsState_ = std::make_shared<BoundsState>();
+  uint32_t lightCount_ = 0;
+  uint32_t clusterCount_ = 0;
+  uint32_t capacity_ = 0;
+};
+
+}  // namespace fgb::features

@@ -1,0 +1,189 @@
+#include "particle_feature.hpp"
+
+#include <fgb/rhi/job_context.hpp>
+#include <fgb/rhi/upload.hpp>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include <cmath>
+#include <numeric>
+#include <span>
+
+namespace fgb::features {
+namespace {
+
+using graph::Access;
+
+// Mirrors shaders/renderer/include/particles.glsl.
+struct ParticleGpu {
+  glm::vec4 positionAge{0.0f};
+  glm::vec4 velocityLifetime{0.0f};
+  uint32_t emitter = 0;
+  uint32_t alive = 0;
+  uint32_t pad0 = 0;
+  uint32_t pad1 = 0;
+};
+static_assert(sizeof(ParticleGpu) == 48);
+
+struct EmitterGpu {
+  glm::vec4 positionRate;
+  glm::vec4 directionCone;
+  glm::vec4 colorStart;
+  glm::vec4 colorEnd;
+  glm::vec4 speedSize;
+  glm::vec4 lifetime;
+  glm::uvec4 seed;
+};
+static_assert(sizeof(EmitterGpu) == 112);
+
+struct EmitPush {
+  uint32_t emitters, particles, freeList, frameIndex;
+};
+struct UpdatePush {
+  uint32_t particles, freeList, drawArgs, aliveList, poolSize;
+};
+struct RenderPush {
+  uint32_t frame, particles, emitters, aliveList;
+};
+
+constexpr uint64_t kArgsBytes = sizeof(DrawIndexedCommand);
+
+// Pool state persists across frames: written and read by compute, frame after frame.
+constexpr graph::ImportState kPoolState{graph::kStageComputeShader,
+                                        graph::kAccessShaderStorageRead | graph::kAccessShaderStorageWrite,
+                                        graph::Layout::Undefined, graph::QueueClass::Graphics};
+
+EmitterGpu toGpu(const scene::Emitter& e, uint32_t seedOffset) {
+  EmitterGpu out{};
+  out.positionRate = glm::vec4(e.position, e.rate);
+  out.directionCone = glm::vec4(glm::normalize(e.direction), std::cos(glm::radians(e.coneAngleDeg)));
+  out.colorStart = e.colorStart;
+  out.colorEnd = e.colorEnd;
+  out.speedSize = {e.speedMin, e.speedMax, e.sizeStart, e.sizeEnd};
+  out.lifetime = {e.lifetime, 0.0f, 0.0f, 0.0f};
+  out.seed = {e.seed + seedOffset, 0u, 0u, 0u};
+  return out;
+}
+
+template <class T>
+std::span<const std::byte> bytesOf(const std::vector<T>& values) {
+  return std::as_bytes(std::span(values));
+}
+
+}  // namespace
+
+void ParticleFeature::configure(const GpuScene& scene) {
+  poolSize_ = 0;
+  for (const auto& emitter : scene.scene->emitters) poolSize_ += emitter.maxParticles;
+  emitterCount_ = uint32_t(scene.scene->emitters.size());
+}
+
+void ParticleFeature::createState(rhi::Device& device, const scene::Scene& scene, uint32_t seedOffset) {
+  auto storage = [&](const char* name, uint64_t size, rhi::BufferUsage extra = 0) {
+    return device.createBuffer({name, size, rhi::kBufferStorage | rhi::kBufferTransferDst | extra, rhi::MemoryUsage::DeviceLocal});
+  };
+  pool_ = storage("particle pool", sizeof(ParticleGpu) * poolSize_);
+  freeList_ = storage("particle free list", uint64_t{4} * (poolSize_ + 1));
+  emitters_ = storage("particle emitters", sizeof(EmitterGpu) * emitterCount_);
+  quadIndices_ = device.createBuffer({"particle quad", 24, rhi::kBufferIndex | rhi::kBufferTransferDst, rhi::MemoryUsage::DeviceLocal});
+  argsTemplate_ = storage("particle draw template", kArgsBytes, rhi::kBufferTransferSrc);
+
+  std::vector<uint32_t> freeList{poolSize_};  // [0]: count, then every slot
+  freeList.resize(size_t{poolSize_} + 1);
+  std::iota(freeList.begin() + 1, freeList.end(), 0u);
+  std::vector<EmitterGpu> emitters;
+  for (const auto& emitter : scene.emitters) emitters.push_back(toGpu(emitter, seedOffset));
+  rhi::uploadBuffer(device, pool_, bytesOf(std::vector<ParticleGpu>(poolSize_)));
+  rhi::uploadBuffer(device, freeList_, bytesOf(freeList));
+  rhi::uploadBuffer(device, emitters_, bytesOf(emitters));
+  rhi::uploadBuffer(device, quadIndices_, bytesOf(std::vector<uint32_t>{0, 1, 2, 2, 1, 3}));
+  rhi::uploadBuffer(device, argsTemplate_, bytesOf(std::vector<DrawIndexedCommand>{{6, 0, 0, 0, 0}}));
+}
+
+void ParticleFeature::initialize(FeatureInit& init) {
+  configure(init.scene);
+  device_ = &init.device;
+  scene_ = &init.scene;
+  if (!enabled()) return;
+  createState(init.device, *init.scene.scene, init.settings.particleSeedOffset);
+  emitPipeline_ = init.device.createComputePipeline({"particle emit", "renderer/particle_emit.comp"});
+  updatePipeline_ = init.device.createComputePipeline({"particle update", "renderer/particle_update.comp"});
+  rhi::GraphicsPipelineDesc desc;
+  desc.name = "particle render";
+  desc.vertexShader = "renderer/particle.vert";
+  desc.fragmentShader = "renderer/particle.frag";
+  desc.colorFormats = {kHdrFormat};
+  desc.blend = {rhi::BlendMode::Alpha};
+  desc.depthFormat = kDepthFormat;
+  desc.depthTest = true;
+  desc.depthWrite = false;
+  desc.depthCompare = rhi::CompareOp::LessOrEqual;
+  desc.samples = init.settings.msaa;
+  renderPipeline_ = init.device.createGraphicsPipeline(desc);
+}
+
+void ParticleFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
+  if (!enabled()) return;
+  auto pool = graph.importBuffer("particle pool", {sizeof(ParticleGpu) * poolSize_, {}}, rhi::external(pool_), kPoolState, kPoolState);
+  auto freeList = graph.importBuffer("particle free list", {uint64_t{4} * (poolSize_ + 1), {}}, rhi::external(freeList_),
+                                     kPoolState, kPoolState);
+  auto args = graph.createBuffer("particle draw args", {kArgsBytes, {}});
+  auto alive = graph.createBuffer("alive particles", {uint64_t{4} * poolSize_, {}});
+
+  auto reset = graph.addNode("Particle Reset", graph::NodeType::Transfer);
+  args = reset.write(args, Access::TransferDst);
+  reset.setJob([templ = argsTemplate_, args](graph::JobContext& context) {
+    auto& ctx = rhi::rhiContext(context);
+    ctx.cmd().copyBuffer(templ, ctx.buffer(args), kArgsBytes);
+  });
+
+  auto emit = graph.addNode("Particle Emit", graph::NodeType::Compute);
+  pool = emit.write(pool, Access::StorageReadWrite);
+  freeList = emit.write(freeList, Access::StorageReadWrite);
+  const EmitPush emitPush{device_->storageBufferIndex(emitters_), device_->storageBufferIndex(pool_),
+                          device_->storageBufferIndex(freeList_), 0};
+  emit.setJob([push = emitPush, pipeline = emitPipeline_, emitters = emitterCount_](graph::JobContext& context) mutable {
+    auto& ctx = rhi::rhiContext(context);
+    push.frameIndex = uint32_t(ctx.execution());  // the simulation step: deterministic per frame
+    ctx.cmd().bindPipeline(pipeline);
+    ctx.cmd().push(push);
+    ctx.cmd().dispatch(emitters);
+  });
+
+  auto update = graph.addNode("Particle Update", graph::NodeType::Compute);
+  pool = update.write(pool, Access::StorageReadWrite);
+  freeList = update.write(freeList, Access::StorageReadWrite);
+  args = update.write(args, Access::StorageReadWrite);
+  alive = update.write(alive, Access::StorageWrite);
+  UpdatePush updatePush{device_->storageBufferIndex(pool_), device_->storageBufferIndex(freeList_), 0, 0, poolSize_};
+  update.setJob([push = updatePush, pipeline = updatePipeline_, args, alive](graph::JobContext& context) mutable {
+    auto& ctx = rhi::rhiContext(context);
+    push.drawArgs = ctx.storageBufferIndex(args);
+    push.aliveList = ctx.storageBufferIndex(alive);
+    ctx.cmd().bindPipeline(pipeline);
+    ctx.cmd().push(push);
+    ctx.cmd().dispatch((push.poolSize + 63) / 64);
+  });
+
+  auto render = addForwardPass(graph, board.get<FrameTargets>(), "Particle Render", false);
+  render.read(args, Access::Indirect);
+  render.read(alive, Access::StorageRead, graph::kStageVertexShader);
+  render.read(pool, Access::StorageRead, graph::kStageVertexShader);
+  RenderPush renderPush{device_->storageBufferIndex(scene_->frameConstants), device_->storageBufferIndex(pool_),
+                        device_->storageBufferIndex(emitters_), 0};
+  render.setJob([push = renderPush, pipeline = renderPipeline_, quad = quadIndices_, args, alive](graph::JobContext& context) mutable {
+    auto& ctx = rhi::rhiContext(context);
+    push.aliveList = ctx.storageBufferIndex(alive);
+    ctx.cmd().bindPipeline(pipeline);
+    ctx.cmd().push(push);
+    ctx.cmd().bindIndexBuffer(quad, 0, rhi::IndexType::Uint32);
+    ctx.cmd().drawIndexedIndirect(ctx.buffer(args), 0, 1, sizeof(DrawIndexedCommand));
+  });
+}
+
+void ParticleFeature::addStats(std::map<std::string, double>& stats) const {
+  stats["particle_pool"] = poolSize_;
+}
+
+}  // namespace fgb::features

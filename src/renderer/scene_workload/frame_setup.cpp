@@ -1,0 +1,87 @@
+// Frame constants and draw groups: the CPU-side preparation of the uploaded scene.
+#include "gpu_upload.hpp"
+
+#include <fgb/scene/frustum.hpp>
+
+#include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace fgb::render {
+namespace {
+
+using features::DrawClass;
+
+DrawClass drawClassOf(const scene::Material& material) {
+  switch (material.alphaMode) {
+    case scene::AlphaMode::Mask: return DrawClass::Masked;
+    case scene::AlphaMode::Blend: return DrawClass::Transparent;
+    default: return DrawClass::Opaque;
+  }
+}
+
+constexpr uint32_t kTileSize = 16;
+
+}  // namespace
+
+features::FrameConstantsGpu makeFrameConstants(const scene::Scene& scene, const features::RenderSettings& settings) {
+  const scene::Camera& camera = scene.camera;
+  const float aspect = float(settings.width) / float(settings.height);
+  features::FrameConstantsGpu c;
+  c.view = scene::viewMatrix(camera);
+  c.proj = scene::projectionMatrix(camera, aspect);
+  c.proj[1][1] = -c.proj[1][1];  // Vulkan's framebuffer Y points down; keep images upright
+  c.viewProj = c.proj * c.view;
+  c.invProj = glm::inverse(c.proj);
+  c.cameraPosition = glm::vec4(camera.position, 1.0f);
+  if (scene.sun.enabled) {
+    c.sunDirection = glm::vec4(glm::normalize(scene.sun.direction), 1.0f);
+    c.sunColor = glm::vec4(scene.sun.color * scene.sun.intensity, 0.0f);
+  }
+  c.viewport = {float(settings.width), float(settings.height), 1.0f / float(settings.width),
+                1.0f / float(settings.height)};
+  // Exponential slices z = near * (far/near)^(slice/slices)  <=>  slice = log(z)*scale + bias.
+  const float logRatio = std::log(camera.farPlane / camera.nearPlane);
+  const auto slices = float(settings.clusterSlices);
+  c.depthRange = {camera.nearPlane, camera.farPlane, slices / logRatio, -slices * std::log(camera.nearPlane) / logRatio};
+  c.clusterGrid = {(settings.width + kTileSize - 1) / kTileSize, (settings.height + kTileSize - 1) / kTileSize,
+                   settings.clusterSlices, kTileSize};
+  c.counts = {uint32_t(scene.lights.size()), uint32_t(scene.instances.size()), settings.maxLightsPerCluster,
+              settings.debugView == features::DebugView::LightComplexity ? 1u : 0u};
+  c.ambient = {0.03f, 0.03f, 0.035f, 0.0f};
+  return c;
+}
+
+void buildDrawGroups(const scene::Scene& scene, const glm::vec3& cameraPosition, features::GpuScene& gpu) {
+  // Opaque and masked instances share a group per (class, mesh); transparent ones get one each.
+  std::map<std::pair<DrawClass, uint32_t>, std::vector<uint32_t>> shared;
+  std::vector<std::pair<float, uint32_t>> transparent;
+  for (uint32_t i = 0; i < scene.instances.size(); ++i) {
+    const auto& instance = scene.instances[i];
+    const DrawClass drawClass = drawClassOf(scene.materials.at(instance.material));
+    if (drawClass != DrawClass::Transparent) {
+      shared[{drawClass, instance.mesh}].push_back(i);
+      continue;
+    }
+    const glm::vec3 center = 0.5f * (instance.worldBounds.min + instance.worldBounds.max);
+    transparent.emplace_back(glm::distance(center, cameraPosition), i);
+  }
+  // Back to front: the multi-draw executes commands in order, which is the blend order.
+  std::stable_sort(transparent.begin(), transparent.end(), [](auto a, auto b) { return a.first > b.first; });
+
+  gpu.groups.clear();
+  gpu.instanceOrder.clear();
+  auto addGroup = [&](DrawClass drawClass, uint32_t mesh, const std::vector<uint32_t>& members) {
+    features::DrawGroup group{mesh, drawClass, uint32_t(gpu.instanceOrder.size()), uint32_t(members.size())};
+    gpu.groups.push_back(group);
+    gpu.instanceOrder.insert(gpu.instanceOrder.end(), members.begin(), members.end());
+  };
+  for (const auto& [key, members] : shared) addGroup(key.first, key.second, members);
+  for (const auto& [distance, index] : transparent) addGroup(DrawClass::Transparent, scene.instances[index].mesh, {index});
+}
+
+}  // namespace fgb::render

@@ -1,0 +1,228 @@
+#include "gpu_upload.hpp"
+
+#include <fgb/core/error.hpp>
+#include <fgb/rhi/job_context.hpp>
+
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
+
+#include <cstring>
+#include <span>
+
+namespace fgb::render {
+namespace {
+
+using features::GpuScene;
+
+// Bytes to copy into one buffer, gathered into the staging buffer.
+struct PendingBuffer {
+  rhi::BufferId target;
+  uint64_t stagingOffset = 0;
+  uint64_t size = 0;
+};
+struct PendingMip {
+  rhi::TextureId target;
+  uint32_t mip = 0;
+  uint64_t stagingOffset = 0;
+};
+
+class StagingBuilder {
+ public:
+  uint64_t append(std::span<const std::byte> bytes) {
+    const uint64_t offset = (bytes_.size() + 15) & ~uint64_t{15};
+    bytes_.resize(offset + bytes.size());
+    std::memcpy(bytes_.data() + offset, bytes.data(), bytes.size());
+    return offset;
+  }
+  template <class T>
+  uint64_t append(const std::vector<T>& values) {
+    return append(std::as_bytes(std::span(values)));
+  }
+  [[nodiscard]] const std::vector<std::byte>& bytes() const { return bytes_; }
+
+ private:
+  std::vector<std::byte> bytes_;
+};
+
+// Every shader-visible state a persistent resource may be read in after the upload.
+constexpr graph::ImportState kReadState{
+    graph::kStageAllCommands,
+    graph::kAccessShaderStorageRead | graph::kAccessShaderSampledRead | graph::kAccessVertexAttributeRead |
+        graph::kAccessIndexRead | graph::kAccessIndirectCommandRead | graph::kAccessTransferRead,
+    graph::Layout::ShaderReadOnly, graph::QueueClass::Graphics};
+constexpr graph::ImportState kFreshState{graph::kStageNone, graph::kAccessNone, graph::Layout::Undefined,
+                                         graph::QueueClass::Graphics};
+
+class SceneUploader {
+ public:
+  explicit SceneUploader(rhi::Device& device) : device_(device) {}
+
+  rhi::BufferId buffer(const std::string& name, std::span<const std::byte> bytes, rhi::BufferUsage usage) {
+    const uint64_t size = std::max<uint64_t>(bytes.size(), 16);
+    const auto id = device_.createBuffer({name, size, usage | rhi::kBufferTransferDst, rhi::MemoryUsage::DeviceLocal});
+    if (!bytes.empty()) buffers_.push_back({id, staging_.append(bytes), bytes.size()});
+    return id;
+  }
+
+  rhi::TextureId texture(const scene::Texture& source) {
+    rhi::TextureDesc desc;
+    desc.name = source.name;
+    desc.format = source.srgb ? graph::Format::R8G8B8A8Srgb : graph::Format::R8G8B8A8Unorm;
+    desc.extent = {source.width, source.height, 1};
+    desc.mipLevels = uint32_t(source.mips.size());
+    desc.usage = rhi::kTextureSampled | rhi::kTextureTransferDst;
+    const auto id = device_.createTexture(desc);
+    for (uint32_t mip = 0; mip < source.mips.size(); ++mip) {
+      const auto& level = source.mips[mip];
+      const auto bytes = std::as_bytes(std::span(source.data)).subspan(level.offset, uint64_t{level.width} * level.height * 4);
+      mips_.push_back({id, mip, staging_.append(bytes)});
+    }
+    textureDescs_.push_back({id, desc});
+    return id;
+  }
+
+  // Runs every gathered copy in one transfer node and waits for it.
+  void submit() {
+    const auto& bytes = staging_.bytes();
+    const auto staging = device_.createBuffer(
+        {"scene staging", std::max<uint64_t>(bytes.size(), 16), rhi::kBufferTransferSrc, rhi::MemoryUsage::Upload});
+    std::memcpy(device_.mapped(staging).data(), bytes.data(), bytes.size());
+
+    graph::FrameGraph graph;
+    auto node = graph.addNode("Scene Upload", graph::NodeType::Transfer);
+    node.sideEffect();
+    for (const auto& pending : buffers_) {
+      auto handle = graph.importBuffer("upload", {pending.size, {}}, rhi::external(pending.target), kFreshState, kReadState);
+      node.write(handle, graph::Access::TransferDst);
+    }
+    for (const auto& [id, desc] : textureDescs_) {
+      graph::TextureDesc graphDesc{desc.format, desc.extent, desc.mipLevels, 1, 1, {}, 0};
+      auto handle = graph.importTexture(desc.name, graphDesc, rhi::external(id), kFreshState, kReadState);
+      node.write(handle, graph::Access::TransferDst);
+    }
+    node.setJob([staging, buffers = buffers_, mips = mips_](graph::JobContext& context) {
+      auto& cmd = rhi::rhiContext(context).cmd();
+      for (const auto& pending : buffers) {
+        const rhi::BufferCopy region{pending.stagingOffset, 0, pending.size};
+        cmd.copyBuffer(staging, pending.target, std::span(&region, 1));
+      }
+      for (const auto& mip : mips) cmd.copyBufferToTexture(staging, mip.target, mip.stagingOffset, mip.mip);
+    });
+    rhi::GraphOptions options;
+    options.name = "scene upload";
+    options.timestamps = false;
+    auto executable = device_.compile(std::move(graph), options);
+    device_.wait(device_.execute(*executable));
+  }
+
+ private:
+  rhi::Device& device_;
+  StagingBuilder staging_;
+  std::vector<PendingBuffer> buffers_;
+  std::vector<PendingMip> mips_;
+  std::vector<std::pair<rhi::TextureId, rhi::TextureDesc>> textureDescs_;
+};
+
+template <class T>
+std::span<const std::byte> bytesOf(const std::vector<T>& values) {
+  return std::as_bytes(std::span(values));
+}
+
+std::vector<features::InstanceGpu> gpuInstances(const scene::Scene& scene, const GpuScene& gpu) {
+  std::vector<features::InstanceGpu> result(gpu.instanceOrder.size());
+  for (uint32_t group = 0; group < gpu.groups.size(); ++group) {
+    const auto& g = gpu.groups[group];
+    for (uint32_t slot = g.firstSlot; slot < g.firstSlot + g.capacity; ++slot) {
+      const auto& source = scene.instances[gpu.instanceOrder[slot]];
+      auto& out = result[slot];
+      out.model = source.transform;
+      out.normalMatrix = glm::mat4(glm::transpose(glm::inverse(glm::mat3(source.transform))));
+      out.boundsMin = glm::vec4(source.worldBounds.min, 0.0f);
+      out.boundsMax = glm::vec4(source.worldBounds.max, 0.0f);
+      out.material = source.material;
+      out.drawGroup = group;
+      out.triangles = scene.meshes[source.mesh].triangleCount();
+    }
+  }
+  return result;
+}
+
+std::vector<features::MaterialGpu> gpuMaterials(const scene::Scene& scene, const std::vector<uint32_t>& textureIndices) {
+  auto texture = [&](int32_t index) { return index < 0 ? -1 : int32_t(textureIndices.at(uint32_t(index))); };
+  std::vector<features::MaterialGpu> result;
+  for (const auto& m : scene.materials) {
+    features::MaterialGpu out;
+    out.baseColor = m.baseColorFactor;
+    out.emissive = glm::vec4(m.emissiveFactor * m.emissiveStrength, m.normalScale);
+    out.metallic = m.metallicFactor;
+    out.roughness = m.roughnessFactor;
+    out.alphaCutoff = m.alphaCutoff;
+    out.alphaMode = uint32_t(m.alphaMode);
+    out.baseColorTexture = texture(m.baseColorTexture);
+    out.normalTexture = texture(m.normalTexture);
+    out.metallicRoughnessTexture = texture(m.metallicRoughnessTexture);
+    out.emissiveTexture = texture(m.emissiveTexture);
+    result.push_back(out);
+  }
+  return result;
+}
+
+std::vector<features::DrawIndexedCommand> commandTemplate(const scene::Scene& scene, const GpuScene& gpu) {
+  std::vector<features::DrawIndexedCommand> result;
+  for (const auto& group : gpu.groups) {
+    const auto& mesh = scene.meshes[group.mesh];
+    result.push_back({mesh.indexCount, 0, mesh.firstIndex, int32_t(mesh.firstVertex), group.firstSlot});
+  }
+  return result;
+}
+
+std::vector<features::PointLightGpu> gpuLights(const scene::Scene& scene) {
+  std::vector<features::PointLightGpu> result;
+  for (const auto& light : scene.lights)
+    result.push_back({glm::vec4(light.position, light.radius), glm::vec4(light.color * light.intensity, 0.0f)});
+  if (result.empty()) result.emplace_back();  // a valid (unused) buffer keeps descriptors simple
+  return result;
+}
+
+void uploadGeometry(SceneUploader& uploader, const scene::Scene& scene, GpuScene& gpu) {
+  StagingBuilder vertices;  // one buffer, four streams
+  gpu.streams.positions = vertices.append(scene.positions);
+  gpu.streams.normals = vertices.append(scene.normals);
+  gpu.streams.tangents = vertices.append(scene.tangents);
+  gpu.streams.uvs = vertices.append(scene.uv0);
+  gpu.vertices = uploader.buffer("scene vertices", vertices.bytes(), rhi::kBufferVertex | rhi::kBufferStorage);
+  gpu.indices = uploader.buffer("scene indices", bytesOf(scene.indices), rhi::kBufferIndex | rhi::kBufferStorage);
+}
+
+}  // namespace
+
+GpuScene uploadScene(rhi::Device& device, const scene::Scene& scene, const features::RenderSettings& settings) {
+  GpuScene gpu;
+  gpu.scene = &scene;
+  gpu.constants = makeFrameConstants(scene, settings);
+  buildDrawGroups(scene, scene.camera.position, gpu);
+  gpu.instanceCount = uint32_t(gpu.instanceOrder.size());
+  gpu.lightCount = uint32_t(scene.lights.size());
+
+  SceneUploader uploader(device);
+  uploadGeometry(uploader, scene, gpu);
+  std::vector<uint32_t> textureIndices;
+  for (const auto& texture : scene.textures) {
+    gpu.textures.push_back(uploader.texture(texture));
+    textureIndices.push_back(device.sampledTextureIndex(gpu.textures.back()));
+  }
+  gpu.instances = uploader.buffer("scene instances", bytesOf(gpuInstances(scene, gpu)), rhi::kBufferStorage);
+  gpu.materials = uploader.buffer("scene materials", bytesOf(gpuMaterials(scene, textureIndices)), rhi::kBufferStorage);
+  gpu.lights = uploader.buffer("scene lights", bytesOf(gpuLights(scene)), rhi::kBufferStorage);
+  gpu.frameConstants = uploader.buffer("frame constants", std::as_bytes(std::span(&gpu.constants, 1)), rhi::kBufferStorage);
+  gpu.commandTemplate = uploader.buffer("draw command template", bytesOf(commandTemplate(scene, gpu)),
+                                        rhi::kBufferTransferSrc | rhi::kBufferStorage);
+  gpu.materialSampler = device.createSampler({"material", rhi::Filter::Linear, rhi::Filter::Linear, rhi::Filter::Linear,
+                                              rhi::AddressMode::Repeat, 8.0f});
+  gpu.linearClampSampler = device.createSampler({"linear clamp", rhi::Filter::Linear, rhi::Filter::Linear,
+                                                 rhi::Filter::Nearest, rhi::AddressMode::ClampToEdge, 1.0f});
+  uploader.submit();
+  return gpu;
+}
+
+}  // namespace fgb::render

@@ -1,0 +1,79 @@
+#include "image_readback.hpp"
+
+#include <fgb/core/error.hpp>
+#include <fgb/rhi/job_context.hpp>
+
+#include <cmath>
+#include <cstring>
+
+namespace fgb::render {
+namespace {
+
+float halfToFloat(uint16_t half) {
+  const uint32_t sign = (half >> 15) & 1u;
+  const uint32_t exponent = (half >> 10) & 0x1fu;
+  const uint32_t mantissa = half & 0x3ffu;
+  float value = 0.0f;
+  if (exponent == 0) value = std::ldexp(float(mantissa), -24);
+  else if (exponent == 31) value = mantissa == 0 ? INFINITY : NAN;
+  else value = std::ldexp(float(mantissa | 0x400u), int(exponent) - 25);
+  return sign ? -value : value;
+}
+
+float srgbToLinear(uint8_t encoded) {
+  const float c = float(encoded) / 255.0f;
+  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+}  // namespace
+
+ImageReadback::ImageReadback(rhi::Device& device, rhi::TextureId texture, graph::Format format, graph::Extent extent,
+                             graph::ImportState finalState)
+    : device_(device), format_(format), extent_(extent) {
+  const uint64_t size = uint64_t{extent.width} * extent.height * graph::bytesPerPixel(format);
+  buffer_ = device.createBuffer({"image readback", size, rhi::kBufferTransferDst, rhi::MemoryUsage::Readback});
+  const graph::ImportState hostState{graph::kStageHost, graph::kAccessHostRead, graph::Layout::Undefined,
+                                     graph::QueueClass::Graphics};
+  graph::FrameGraph graph;
+  auto source = graph.importTexture("frame image", {format, extent, 1, 1, 1, {}, 0}, rhi::external(texture),
+                                    finalState, finalState);
+  auto target = graph.importBuffer("image readback", {size, {}}, rhi::external(buffer_), hostState, hostState);
+  auto node = graph.addNode("Image Readback", graph::NodeType::Transfer);
+  node.read(source, graph::Access::TransferSrc);
+  target = node.write(target, graph::Access::TransferDst);
+  node.sideEffect();
+  node.setJob([source, target](graph::JobContext& context) {
+    auto& ctx = rhi::rhiContext(context);
+    ctx.cmd().copyTextureToBuffer(ctx.texture(source), ctx.buffer(target));
+  });
+  rhi::GraphOptions options;
+  options.name = "image readback";
+  options.timestamps = false;
+  graph_ = device.compile(std::move(graph), options);
+}
+
+ImageRGBA32F ImageReadback::read() {
+  device_.waitIdle();
+  device_.wait(device_.execute(*graph_));
+  ImageRGBA32F image{extent_.width, extent_.height, {}};
+  const size_t values = size_t{extent_.width} * extent_.height * 4;
+  image.pixels.resize(values);
+  const auto bytes = device_.mapped(buffer_);
+  if (format_ == graph::Format::R16G16B16A16Sfloat) {
+    for (size_t i = 0; i < values; ++i) {
+      uint16_t half = 0;
+      std::memcpy(&half, bytes.data() + 2 * i, 2);
+      image.pixels[i] = halfToFloat(half);
+    }
+  } else if (format_ == graph::Format::R8G8B8A8Srgb) {
+    for (size_t i = 0; i < values; ++i) {
+      const auto encoded = uint8_t(bytes[i]);
+      image.pixels[i] = i % 4 == 3 ? float(encoded) / 255.0f : srgbToLinear(encoded);
+    }
+  } else {
+    throw DeviceError("image readback: unsupported format " + std::string(graph::toString(format_)));
+  }
+  return image;
+}
+
+}  // namespace fgb::render

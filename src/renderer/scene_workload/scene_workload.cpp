@@ -1,0 +1,227 @@
+// SceneWorkload: a scene file rendered by the render features through one compiled frame graph.
+#include "gpu_upload.hpp"
+#include "image_readback.hpp"
+
+#include "../features/bloom/bloom_feature.hpp"
+#include "../features/context/render_feature.hpp"
+#include "../features/lighting/clustered_lighting.hpp"
+#include "../features/meshes/mesh_feature.hpp"
+#include "../features/particles/particle_feature.hpp"
+#include "../features/tonemap/tonemap_feature.hpp"
+
+#include <fgb/core/error.hpp>
+#include <fgb/graph/dot.hpp>
+#include <fgb/renderer/scene_workload.hpp>
+#include <fgb/scene/load.hpp>
+#include <fgb/scene/stats.hpp>
+#include <fgb/vulkan/backend.hpp>
+
+#include <chrono>
+#include <deque>
+#include <iostream>
+
+namespace fgb::render {
+namespace {
+
+using features::FrameTargets;
+
+// The frame graph leaves the HDR image sampled by tone mapping and the display image as a target.
+constexpr graph::ImportState kHdrFinal{graph::kStageFragmentShader, graph::kAccessShaderSampledRead,
+                                       graph::Layout::ShaderReadOnly, graph::QueueClass::Graphics};
+constexpr graph::ImportState kDisplayFinal{graph::kStageColorAttachmentOutput, graph::kAccessColorAttachmentWrite,
+                                           graph::Layout::ColorAttachment, graph::QueueClass::Graphics};
+constexpr graph::ImportState kDiscard{graph::kStageNone, graph::kAccessNone, graph::Layout::Undefined,
+                                      graph::QueueClass::Graphics};
+
+DeviceDescription describe(const rhi::AdapterInfo& adapter) {
+  return {adapter.index, adapter.name, adapter.driver, adapter.type, adapter.apiVersion, adapter.timestampPeriodNs,
+          adapter.hostTimestamps, adapter.queueFamilies};
+}
+
+uint32_t jsonCount(const nlohmann::json& section, const char* key, uint32_t fallback) {
+  if (!section.is_object() || !section.contains(key) || !section[key].is_number_unsigned()) return fallback;
+  return section[key].get<uint32_t>();
+}
+
+features::RenderSettings makeSettings(const WorkloadConfig& config, const scene::SceneDescription& description,
+                                      uint32_t maxSamples) {
+  const nlohmann::json render = description.renderer.is_object() && description.renderer.contains("render")
+                                    ? description.renderer["render"]
+                                    : nlohmann::json();
+  features::RenderSettings settings;
+  settings.width = config.width ? config.width : jsonCount(render, "width", 640);
+  settings.height = config.height ? config.height : jsonCount(render, "height", 360);
+  uint32_t msaa = config.msaa ? config.msaa : jsonCount(render, "msaa", 1);
+  if (msaa != 1 && msaa != 2 && msaa != 4 && msaa != 8)
+    throw InputError("--msaa " + std::to_string(msaa) + ": expected 1|2|4|8");
+  if (msaa > maxSamples) {
+    std::cerr << "warning: --msaa " << msaa << " clamped to " << maxSamples << " (device limit)\n";
+    msaa = maxSamples;
+  }
+  settings.msaa = msaa;
+  features::applyRendererKnobs(settings, config.knobs);
+  return settings;
+}
+
+std::vector<std::string> knobList(const std::map<std::string, std::string>& knobs) {
+  std::vector<std::string> list;
+  for (const auto& [key, value] : knobs) list.push_back(key + "=" + value);
+  return list;
+}
+
+class SceneWorkload final : public Workload {
+ public:
+  explicit SceneWorkload(const WorkloadConfig& config) {
+    scene::LoadOptions loadOptions;
+    if (!config.cacheDir.empty()) loadOptions.cacheDir = config.cacheDir;
+    loadOptions.knobs = knobList(config.knobs);
+    loaded_ = scene::loadScene(config.scenePath, loadOptions);
+
+    rhi::DeviceOptions deviceOptions;
+    deviceOptions.selector = config.device;
+    deviceOptions.validation = config.validation;
+    device_ = vulkan::createDevice(deviceOptions);
+    description_ = describe(device_->adapter());
+    settings_ = makeSettings(config, loaded_.description, device_->maxSamples());
+
+    gpu_ = uploadScene(*device_, loaded_.scene, settings_);
+    createFeatures();
+    buildFrameGraph();
+  }
+
+  const DeviceDescription& device() const override { return description_; }
+
+  FrameTiming renderFrame() override {
+    const auto start = std::chrono::steady_clock::now();
+    device_->execute(*graph_);
+    collectTimings();
+    const double cpuMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    cpuMs_.push_back(cpuMs);
+    if (ready_.empty()) return {};
+    FrameTiming timing = std::move(ready_.front());
+    ready_.pop_front();
+    return timing;
+  }
+
+  std::vector<FrameTiming> finish() override {
+    device_->waitIdle();
+    collectTimings();
+    std::vector<FrameTiming> rest(ready_.begin(), ready_.end());
+    ready_.clear();
+    return rest;
+  }
+
+  ImageRGBA32F readHdr() override { return hdrReadback_->read(); }
+  ImageRGBA32F readDisplay() override { return displayReadback_->read(); }
+
+  std::string graphviz(GraphDetail detail) const override {
+    return graph::toDot(graph_->declaration(), graph_->compiled(),
+                        detail == GraphDetail::Brief ? graph::DotDetail::Brief : graph::DotDetail::Full);
+  }
+
+  std::map<std::string, double> stats() const override {
+    const auto sceneStats = scene::stats(loaded_.scene, float(settings_.width) / float(settings_.height));
+    std::map<std::string, double> result{{"instances", sceneStats.instances},
+                                         {"triangles", double(sceneStats.triangles)},
+                                         {"lights", sceneStats.lights},
+                                         {"emitters", sceneStats.emitters},
+                                         {"materials", sceneStats.materials}};
+    for (const auto& feature : features_) feature->addStats(result);
+    return result;
+  }
+
+  uint64_t validationMessages() const override { return device_->validationMessages(); }
+
+ private:
+  void createFeatures() {
+    // Declaration order: producers before consumers (lights -> meshes -> post).
+    features_.push_back(std::make_unique<features::ClusteredLighting>());
+    features_.push_back(std::make_unique<features::MeshFeature>());
+    features_.push_back(std::make_unique<features::ParticleFeature>());
+    features_.push_back(std::make_unique<features::BloomFeature>());
+    features_.push_back(std::make_unique<features::TonemapFeature>());
+    features::FeatureInit init{*device_, gpu_, settings_};
+    for (auto& feature : features_) feature->initialize(init);
+  }
+
+  FrameTargets makeTargets(graph::FrameGraph& graph) {
+    const graph::Extent extent{settings_.width, settings_.height, 1};
+    hdrTexture_ = device_->createTexture({"hdr", features::kHdrFormat, extent, 1, 1, 1,
+                                          rhi::kTextureColorAttachment | rhi::kTextureSampled | rhi::kTextureTransferSrc});
+    displayTexture_ = device_->createTexture({"display", features::kDisplayFormat, extent, 1, 1, 1,
+                                              rhi::kTextureColorAttachment | rhi::kTextureTransferSrc});
+    FrameTargets targets;
+    targets.extent = extent;
+    targets.samples = settings_.msaa;
+    targets.hdr = graph.importTexture("hdr", {features::kHdrFormat, extent, 1, 1, 1, {}, 0},
+                                      rhi::external(hdrTexture_), kDiscard, kHdrFinal);
+    targets.display = graph.importTexture("display", {features::kDisplayFormat, extent, 1, 1, 1, {}, 0},
+                                          rhi::external(displayTexture_), kDiscard, kDisplayFinal);
+    targets.color = settings_.msaa == 1
+                        ? targets.hdr
+                        : graph.createTexture("hdr msaa", {features::kHdrFormat, {}, 1, 1, settings_.msaa, targets.hdr, 0});
+    targets.depth = graph.createTexture("depth", {features::kDepthFormat, {}, 1, 1, settings_.msaa, targets.hdr, 0});
+    for (const auto& feature : features_)
+      if (feature->enabled()) targets.colorPasses += feature->colorPasses();
+    return targets;
+  }
+
+  void buildFrameGraph() {
+    graph::FrameGraph graph;
+    features::Blackboard board;
+    auto& targets = board.set(makeTargets(graph));
+    // Nothing draws (empty scene): one pass still clears the HDR image for tone mapping.
+    if (targets.colorPasses == 0) {
+      targets.colorPasses = 1;
+      features::addForwardPass(graph, targets, "Clear", true).setJob([](graph::JobContext&) {});
+    }
+    for (auto& feature : features_)
+      if (feature->enabled()) feature->declare(graph, board);
+    rhi::GraphOptions options;
+    options.name = "frame";
+    graph_ = device_->compile(std::move(graph), options);
+    const graph::Extent extent = targets.extent;
+    hdrReadback_ = std::make_unique<ImageReadback>(*device_, hdrTexture_, features::kHdrFormat, extent, kHdrFinal);
+    displayReadback_ =
+        std::make_unique<ImageReadback>(*device_, displayTexture_, features::kDisplayFormat, extent, kDisplayFinal);
+  }
+
+  void collectTimings() {
+    const auto& nodes = graph_->declaration().nodes();
+    const auto& compiled = graph_->compiled();
+    for (const auto& timings : graph_->takeTimings()) {
+      FrameTiming frame;
+      for (uint32_t i = 0; i < nodes.size(); ++i) {
+        const bool culled = compiled.nodes[i].culled;
+        frame.passes.push_back({nodes[i].name, std::string(graph::toString(nodes[i].queue)), culled,
+                                culled || i >= timings.nodeMs.size() ? 0.0 : timings.nodeMs[i], -1.0});
+      }
+      frame.gpuFrameMs = timings.gpuMs;
+      frame.cpuFrameMs = cpuMs_.empty() ? 0.0 : cpuMs_.front();
+      if (!cpuMs_.empty()) cpuMs_.pop_front();
+      ready_.push_back(std::move(frame));
+    }
+  }
+
+  scene::LoadedScene loaded_;
+  std::unique_ptr<rhi::Device> device_;
+  DeviceDescription description_;
+  features::RenderSettings settings_;
+  features::GpuScene gpu_;
+  std::vector<std::unique_ptr<features::IRenderFeature>> features_;
+  rhi::TextureId hdrTexture_;
+  rhi::TextureId displayTexture_;
+  std::unique_ptr<rhi::ExecutableGraph> graph_;
+  std::unique_ptr<ImageReadback> hdrReadback_;
+  std::unique_ptr<ImageReadback> displayReadback_;
+  std::deque<FrameTiming> ready_;
+  std::deque<double> cpuMs_;
+};
+
+}  // namespace
+
+std::unique_ptr<Workload> openSceneWorkload(const WorkloadConfig& config) {
+  return std::make_unique<SceneWorkload>(config);
+}
+
+}  // namespace fgb::render

@@ -1,0 +1,131 @@
+// The RHI device: creates resources and pipelines, and runs frame graphs. There are no queues,
+// command buffers or semaphores in this interface — all GPU work is a frame-graph node; the backend
+// compiles a graph once (ExecutableGraph) and executes it every frame.
+#pragma once
+
+#include <fgb/graph/compiled_graph.hpp>
+#include <fgb/graph/frame_graph.hpp>
+#include <fgb/rhi/types.hpp>
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace fgb::rhi {
+
+struct AdapterInfo {
+  uint32_t index = 0;          // position in the backend's enumeration (the --device INDEX)
+  std::string name;
+  std::string driver;          // driver name + info, e.g. "llvmpipe (Mesa 25.0.7 ...)"
+  std::string type;            // "cpu" | "discrete" | "integrated" | "virtual" | "other"
+  std::string apiVersion;      // "1.4.305"
+  double timestampPeriodNs = 1.0;
+  uint32_t timestampValidBits = 64;
+  bool hostTimestamps = false; // the device's "GPU" clock is the host clock (CPU implementations)
+  std::vector<std::string> queueFamilies;  // "0: graphics|compute|transfer x1"
+  bool usable = true;          // meets the backend's requirements (Vulkan 1.3 features)
+  std::string unusableReason;
+};
+
+struct DeviceOptions {
+  std::string selector = "auto";  // auto | lavapipe | gpu | INDEX
+  bool validation = false;        // validation + synchronization validation; every message counted
+  bool forceDescriptorFallback = false;  // use the non-bindless descriptor path even if supported
+  bool debugLabels = true;        // per-node debug-utils labels (when the extension is present)
+  uint32_t framesInFlight = 2;    // executions of one graph that may be pending on the GPU
+};
+
+struct GraphOptions {
+  std::string name = "graph";
+  // Logical queues (1..3): graphics, compute, transfer nodes go to their own queue when > 1. Each
+  // logical queue maps to a device queue of a fitting family (all to one queue where only one exists).
+  // 0: one logical queue per distinct family the device offers for the three classes.
+  uint32_t queues = 0;
+  bool cull = true;
+  bool alias = true;
+  bool timestamps = true;
+  // Test only: drop every barrier that keeps the layout (same-layout RAW/WAW/WAR), to prove that
+  // synchronization validation catches the hazards they prevent.
+  bool testDropSameLayoutBarriers = false;
+};
+
+enum class RunMode : uint8_t {
+  Sequential,  // waits for the previous sequential run to finish on the GPU (timeline-chained)
+  Async,       // no ordering with other graphs; completion is polled or reported by a callback
+};
+
+struct RunTicket {
+  uint32_t graph = kInvalidId;
+  uint64_t execution = 0;
+};
+
+// GPU times of one execution of a graph.
+struct GraphTimings {
+  uint64_t execution = 0;
+  std::vector<double> nodeMs;  // per declared node; 0 for culled nodes
+  std::vector<double> nodeStartMs;  // per declared node, from the execution's first timestamp; -1 if none
+  double gpuMs = 0.0;          // first node start to last node end
+};
+
+class ExecutableGraph {
+ public:
+  virtual ~ExecutableGraph() = default;
+  [[nodiscard]] virtual const graph::FrameGraph& declaration() const = 0;
+  [[nodiscard]] virtual const graph::CompiledGraph& compiled() const = 0;
+  [[nodiscard]] virtual uint64_t executions() const = 0;
+  // Timings of finished executions not taken yet, oldest first. Never waits for the GPU: results
+  // of execution N are normally available while execution N+1 is recorded.
+  virtual std::vector<GraphTimings> takeTimings() = 0;
+  // The physical object behind a resource of the graph (transient or imported).
+  [[nodiscard]] virtual BufferId buffer(uint32_t resource) const = 0;
+  [[nodiscard]] virtual TextureId texture(uint32_t resource) const = 0;
+};
+
+class Device {
+ public:
+  virtual ~Device() = default;
+  [[nodiscard]] virtual const AdapterInfo& adapter() const = 0;
+  // Highest sample count (1, 2, 4, 8) usable for colour and depth attachments on this device.
+  [[nodiscard]] virtual uint32_t maxSamples() const = 0;
+  [[nodiscard]] virtual bool bindless() const = 0;
+
+  virtual BufferId createBuffer(const BufferDesc& desc) = 0;
+  virtual TextureId createTexture(const TextureDesc& desc) = 0;
+  virtual SamplerId createSampler(const SamplerDesc& desc) = 0;
+  virtual PipelineId createGraphicsPipeline(const GraphicsPipelineDesc& desc) = 0;
+  virtual PipelineId createComputePipeline(const ComputePipelineDesc& desc) = 0;
+  // Destroys an object now; the caller guarantees no pending execution still uses it (e.g. after
+  // wait() on the run that used it last). Everything else lives as long as the Device.
+  virtual void destroyBuffer(BufferId buffer) = 0;
+  virtual void destroyTexture(TextureId texture) = 0;
+  // Host-visible buffers (Upload, Readback) stay mapped; empty span for device-local ones.
+  virtual std::span<std::byte> mapped(BufferId buffer) = 0;
+
+  [[nodiscard]] virtual uint32_t storageBufferIndex(BufferId buffer) const = 0;
+  [[nodiscard]] virtual uint32_t sampledTextureIndex(TextureId texture) const = 0;
+  [[nodiscard]] virtual uint32_t storageTextureIndex(TextureId texture) const = 0;
+  [[nodiscard]] virtual uint32_t samplerIndex(SamplerId sampler) const = 0;
+
+  // Compiles a graph for this device (real memory requirements, queue mapping), creates and binds
+  // its transient resources, and takes the nodes' jobs. Throws graph::GraphError on bad graphs.
+  virtual std::unique_ptr<ExecutableGraph> compile(graph::FrameGraph&& graph, const GraphOptions& options) = 0;
+  // Records and submits one execution. Never waits for this execution; waits only when the
+  // graph's frames-in-flight are all still pending. `onComplete` (async runs) is called from
+  // poll(), execute() or waitIdle() once the GPU finished.
+  virtual RunTicket execute(ExecutableGraph& graph, RunMode mode = RunMode::Sequential,
+                            std::function<void()> onComplete = {}) = 0;
+  [[nodiscard]] virtual bool isComplete(const RunTicket& ticket) const = 0;
+  virtual void wait(const RunTicket& ticket) = 0;
+  // Invokes the callbacks of finished async runs.
+  virtual void poll() = 0;
+  virtual void waitIdle() = 0;
+
+  // Validation messages so far (0 with validation off). Each is also printed on stderr.
+  [[nodiscard]] virtual uint64_t validationMessages() const = 0;
+  [[nodiscard]] virtual std::vector<std::string> validationLog() const = 0;
+};
+
+}  // namespace fgb::rhi

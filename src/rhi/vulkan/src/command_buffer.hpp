@@ -1,0 +1,48 @@
+// The CommandBuffer a job records into: a VkCommandBuffer owned by the executor, plus the device
+// tables to resolve RHI ids. Binds the shared descriptor set lazily per bind point.
+#pragma once
+
+#include "device.hpp"
+
+#include <fgb/rhi/command_buffer.hpp>
+
+namespace fgb::vulkan {
+
+class VulkanCommandBuffer final : public rhi::CommandBuffer {
+ public:
+  explicit VulkanCommandBuffer(const VulkanDevice& device) : device_(&device) {}
+
+  // Starts recording a new node into `cmd` (set bound state is kept within one VkCommandBuffer).
+  void begin(VkCommandBuffer cmd);
+  [[nodiscard]] VkCommandBuffer get() const { return cmd_; }
+
+  void bindPipeline(rhi::PipelineId pipeline) override;
+  void pushConstants(const void* data, uint32_t size, uint32_t offset) override;
+  void dispatch(uint32_t x, uint32_t y, uint32_t z) override;
+  void dispatchIndirect(rhi::BufferId arguments, uint64_t offset) override;
+  void setViewport(float x, float y, float width, float height) override;
+  void setScissor(int32_t x, int32_t y, uint32_t width, uint32_t height) override;
+  void bindVertexBuffer(uint32_t binding, rhi::BufferId buffer, uint64_t offset) override;
+  void bindIndexBuffer(rhi::BufferId buffer, uint64_t offset, rhi::IndexType type) override;
+  void draw(uint32_t vertexCount, uint32_t instanceCount, uint32_t firstVertex, uint32_t firstInstance) override;
+  void drawIndexed(uint32_t indexCount, uint32_t instanceCount, uint32_t firstIndex, int32_t vertexOffset,
+                   uint32_t firstInstance) override;
+  void drawIndexedIndirect(rhi::BufferId arguments, uint64_t offset, uint32_t drawCount, uint32_t stride) override;
+  void drawIndexedIndirectCount(rhi::BufferId arguments, uint64_t offset, rhi::BufferId count, uint64_t countOffset,
+                                uint32_t maxDrawCount, uint32_t stride) override;
+  void copyBuffer(rhi::BufferId src, rhi::BufferId dst, std::span<const rhi::BufferCopy> regions) override;
+  void copyTextureToBuffer(rhi::TextureId src, rhi::BufferId dst, uint64_t dstOffset, uint32_t mipLevel) override;
+  void copyBufferToTexture(rhi::BufferId src, rhi::TextureId dst, uint64_t srcOffset, uint32_t mipLevel) override;
+  void fillBuffer(rhi::BufferId buffer, uint64_t offset, uint64_t size, uint32_t value) override;
+  void clearTexture(rhi::TextureId texture, const std::array<float, 4>& color) override;
+
+ private:
+  VkBuffer vkBuffer(rhi::BufferId id) const { return device_->buffer(id).buffer.get(); }
+
+  const VulkanDevice* device_;
+  VkCommandBuffer cmd_ = VK_NULL_HANDLE;
+  bool graphicsSetBound_ = false;
+  bool computeSetBound_ = false;
+};
+
+}  // namespace fgb::vulkan

@@ -1,0 +1,439 @@
+// VulkanGraph construction: compile with the device's real memory requirements and queue families,
+// create the transient resources inside their aliasing heaps, and translate every barrier and
+// rendering info to Vulkan structures once, so executing a frame only records and submits.
+#include "executable_graph.hpp"
+
+#include "translate.hpp"
+
+#include <fgb/core/error.hpp>
+#include <fgb/graph/compiler.hpp>
+
+#include <algorithm>
+#include <queue>
+#include <unordered_map>
+
+namespace fgb::vulkan {
+namespace {
+
+rhi::TextureDesc textureDesc(const std::string& name, const graph::TextureDesc& t, rhi::TextureUsage usage) {
+  return {name, t.format, t.extent, t.mipLevels, t.layers, t.samples, usage};
+}
+
+rhi::BufferDesc bufferDesc(const std::string& name, const graph::BufferDesc& b, rhi::BufferUsage usage) {
+  return {name, b.size, usage, rhi::MemoryUsage::DeviceLocal};
+}
+
+uint64_t alignUp(uint64_t value, uint64_t alignment) { return (value + alignment - 1) / alignment * alignment; }
+
+}  // namespace
+
+VulkanGraph::VulkanGraph(VulkanDevice& device, graph::FrameGraph&& graph, const rhi::GraphOptions& options)
+    : device_(device), id_(device.registerGraph(this)), options_(options), declaration_(std::move(graph)),
+      commandBuffer_(device) {
+  try {
+    mapQueues(options.queues);
+    compiled_ = graph::compile(declaration_, compileOptions());
+    for (auto& node : declaration_.mutableNodes()) jobs_.push_back(std::move(node.job));
+    createResources();
+    translateBarriers();
+    translateRendering();
+    orderSubmits();
+    createSyncAndSlots();
+  } catch (...) {
+    device_.unregisterGraph(id_);
+    for (uint32_t r = 0; r < ownsResource_.size(); ++r) {
+      if (!ownsResource_[r]) continue;
+      if (buffers_[r].valid()) device_.destroyBuffer(buffers_[r]);
+      if (textures_[r].valid()) device_.destroyTexture(textures_[r]);
+    }
+    for (const auto& heap : heaps_) device_.memory().free(heap);
+    throw;
+  }
+}
+
+VulkanGraph::~VulkanGraph() {
+  waitForAll();
+  device_.unregisterGraph(id_);
+  for (uint32_t r = 0; r < ownsResource_.size(); ++r) {
+    if (!ownsResource_[r]) continue;
+    if (buffers_[r].valid()) device_.destroyBuffer(buffers_[r]);
+    if (textures_[r].valid()) device_.destroyTexture(textures_[r]);
+  }
+  for (const auto& heap : heaps_) device_.memory().free(heap);
+}
+
+void VulkanGraph::mapQueues(uint32_t requested) {
+  const auto& deviceQueues = device_.queues();
+  const auto& ofClass = device_.queueOfClass();
+  logicalQueues_ = requested == 0 ? static_cast<uint32_t>(deviceQueues.size()) : std::min(requested, 3u);
+  // Logical queue q serves queue class q (the last logical queue also serves the classes beyond it).
+  deviceQueueOf_.resize(logicalQueues_);
+  for (uint32_t q = 0; q < logicalQueues_; ++q) deviceQueueOf_[q] = ofClass[q];
+  VkPhysicalDeviceProperties properties{};
+  vkGetPhysicalDeviceProperties(device_.physical(), &properties);
+  uint32_t familyCount = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(device_.physical(), &familyCount, nullptr);
+  std::vector<VkQueueFamilyProperties> families(familyCount);
+  vkGetPhysicalDeviceQueueFamilyProperties(device_.physical(), &familyCount, families.data());
+  timestampMask_.resize(logicalQueues_);
+  for (uint32_t q = 0; q < logicalQueues_; ++q) {
+    const uint32_t bits = families[deviceQueues[deviceQueueOf_[q]].family].timestampValidBits;
+    timestampMask_[q] = bits == 0 ? 0 : bits >= 64 ? ~0ull : (1ull << bits) - 1;
+  }
+}
+
+graph::CompileOptions VulkanGraph::compileOptions() {
+  graph::CompileOptions options;
+  options.queueCount = logicalQueues_;
+  for (uint32_t c = 0; c < graph::kQueueClassCount; ++c) options.queueOfClass[c] = std::min(c, logicalQueues_ - 1);
+  for (uint32_t q = 0; q < logicalQueues_; ++q) {
+    options.familyOfQueue[q] = device_.queues()[deviceQueueOf_[q]].family;
+  }
+  options.cull = options_.cull;
+  options.alias = options_.alias;
+
+  // Real requirements of the resource as it will be created (usages gathered from the graph).
+  auto textureUsage = std::make_shared<std::vector<rhi::TextureUsage>>(textureUsages());
+  auto bufferUsage = std::make_shared<std::vector<rhi::BufferUsage>>(bufferUsages());
+  auto indexOfFirstVersion = std::make_shared<std::unordered_map<uint32_t, uint32_t>>();
+  const auto& resources = declaration_.resources();
+  for (uint32_t r = 0; r < resources.size(); ++r) indexOfFirstVersion->emplace(resources[r].firstVersion, r);
+  VkPhysicalDeviceProperties properties{};
+  vkGetPhysicalDeviceProperties(device_.physical(), &properties);
+  const uint64_t granularity = properties.limits.bufferImageGranularity;
+  const VkDevice device = device_.device();
+
+  options.requirements = [=](const graph::ResourceDecl& decl, const graph::ResolvedResource& resolved) {
+    const uint32_t r = indexOfFirstVersion->at(decl.firstVersion);
+    auto requirements = vkStruct<VkMemoryRequirements2>(VK_STRUCTURE_TYPE_MEMORY_REQUIREMENTS_2);
+    if (decl.kind == graph::ResourceKind::Texture) {
+      const VkImageCreateInfo info = VulkanDevice::imageInfo(textureDesc(decl.name, resolved.texture, (*textureUsage)[r]));
+      auto query = vkStruct<VkDeviceImageMemoryRequirements>(VK_STRUCTURE_TYPE_DEVICE_IMAGE_MEMORY_REQUIREMENTS);
+      query.pCreateInfo = &info;
+      vkGetDeviceImageMemoryRequirements(device, &query, &requirements);
+    } else {
+      const VkBufferCreateInfo info = VulkanDevice::bufferInfo(bufferDesc(decl.name, resolved.buffer, (*bufferUsage)[r]));
+      auto query = vkStruct<VkDeviceBufferMemoryRequirements>(VK_STRUCTURE_TYPE_DEVICE_BUFFER_MEMORY_REQUIREMENTS);
+      query.pCreateInfo = &info;
+      vkGetDeviceBufferMemoryRequirements(device, &query, &requirements);
+    }
+    const auto& m = requirements.memoryRequirements;
+    // Heaps hold one kind only, but they sit next to other blocks' neighbours: keep granularity.
+    return graph::MemoryRequirements{m.size, std::max<uint64_t>(m.alignment, granularity), m.memoryTypeBits};
+  };
+  return options;
+}
+
+std::vector<rhi::TextureUsage> VulkanGraph::textureUsages() const {
+  std::vector<rhi::TextureUsage> usage(declaration_.resources().size(), 0);
+  for (const auto& use : declaration_.allUses()) usage[use.resource] |= textureUsageFor(use.access);
+  return usage;
+}
+
+std::vector<rhi::BufferUsage> VulkanGraph::bufferUsages() const {
+  std::vector<rhi::BufferUsage> usage(declaration_.resources().size(), 0);
+  for (const auto& use : declaration_.allUses()) usage[use.resource] |= bufferUsageFor(use.access);
+  return usage;
+}
+
+void VulkanGraph::createResources() {
+  const auto& decls = declaration_.resources();
+  const auto& plan = compiled_.aliasing;
+  VkPhysicalDeviceProperties properties{};
+  vkGetPhysicalDeviceProperties(device_.physical(), &properties);
+  for (const auto& heap : plan.heaps) {
+    const VkMemoryRequirements requirements{alignUp(heap.size, properties.limits.bufferImageGranularity),
+                                            heap.alignment, heap.memoryTypeBits};
+    const Tiling tiling = heap.kind == graph::ResourceKind::Buffer ? Tiling::Linear : Tiling::Optimal;
+    heaps_.push_back(device_.memory().allocate(requirements, rhi::MemoryUsage::DeviceLocal, tiling,
+                                               "graph '" + options_.name + "' aliasing heap"));
+  }
+  const auto textureUsage = textureUsages();
+  const auto bufferUsage = bufferUsages();
+  buffers_.assign(decls.size(), {});
+  textures_.assign(decls.size(), {});
+  ownsResource_.assign(decls.size(), false);
+  for (uint32_t r = 0; r < decls.size(); ++r) {
+    const auto& decl = decls[r];
+    const bool texture = decl.kind == graph::ResourceKind::Texture;
+    if (decl.imported) {
+      if (texture) textures_[r] = rhi::externalTexture(decl.external);
+      else buffers_[r] = rhi::externalBuffer(decl.external);
+      if (!(texture ? textures_[r].valid() : buffers_[r].valid())) {
+        throw InputError("graph '" + options_.name + "': imported " + (texture ? "texture '" : "buffer '") + decl.name +
+                         "' does not name an RHI " + (texture ? "texture" : "buffer") + " (use rhi::external)");
+      }
+      continue;
+    }
+    if (!compiled_.resourceAlive[r]) continue;  // culled: never created
+    const graph::Placement& placement = plan.placements[r];
+    Allocation at{};
+    const Allocation* where = nullptr;
+    if (placement.heap != graph::kInvalidIndex) {
+      at = heaps_[placement.heap];
+      at.offset += placement.offset;
+      at.size = placement.size;
+      if (at.mapped) at.mapped += placement.offset;
+      where = &at;
+    }
+    const std::string name = options_.name + "/" + decl.name;
+    if (texture) {
+      textures_[r] = device_.createTextureIn(textureDesc(name, compiled_.resources[r].texture, textureUsage[r]), where);
+    } else {
+      buffers_[r] = device_.createBufferIn(bufferDesc(name, compiled_.resources[r].buffer, bufferUsage[r]), where);
+    }
+    ownsResource_[r] = true;
+  }
+}
+
+void VulkanGraph::translateBarriers() {
+  const auto& barriers = compiled_.barriers;
+  const auto familyOf = [&](uint32_t logical) { return device_.queues()[deviceQueueOf_[logical]].family; };
+  std::vector<int32_t> imageSlot(barriers.size(), -1);
+  std::vector<int32_t> bufferSlot(barriers.size(), -1);
+  imageBarriers_.clear();
+  bufferBarriers_.clear();
+  for (uint32_t i = 0; i < barriers.size(); ++i) {
+    const graph::Barrier& b = barriers[i];
+    const bool texture = textures_[b.resource].valid();
+    const bool sameFamily = familyOf(b.srcQueue) == familyOf(b.dstQueue);
+    // Same family (e.g. every logical queue on lavapipe's one queue): no ownership transfer; the
+    // release half is dropped and the acquire half does the layout change after the semaphore.
+    if (b.kind == graph::Barrier::Kind::Release && sameFamily) continue;
+    if (options_.testDropSameLayoutBarriers && b.kind == graph::Barrier::Kind::Transition &&
+        (!texture || b.oldLayout == b.newLayout)) {
+      continue;
+    }
+    VkPipelineStageFlags2 srcStages = toVkStages(b.srcStages);
+    VkAccessFlags2 srcAccess = toVkAccess(b.srcAccess);
+    VkPipelineStageFlags2 dstStages = toVkStages(b.dstStages);
+    VkAccessFlags2 dstAccess = toVkAccess(b.dstAccess);
+    uint32_t srcFamily = VK_QUEUE_FAMILY_IGNORED;
+    uint32_t dstFamily = VK_QUEUE_FAMILY_IGNORED;
+    if (b.kind != graph::Barrier::Kind::Transition && !sameFamily) {
+      srcFamily = familyOf(b.srcQueue);
+      dstFamily = familyOf(b.dstQueue);
+    }
+    // The half of an ownership transfer recorded on the other queue has no scope here.
+    if (b.kind == graph::Barrier::Kind::Release && !sameFamily) dstStages = dstAccess = 0;
+    if (b.kind == graph::Barrier::Kind::Acquire) srcStages = srcAccess = 0;
+    if (texture) {
+      const TextureRecord& record = device_.texture(textures_[b.resource]);
+      auto barrier = vkStruct<VkImageMemoryBarrier2>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2);
+      barrier.srcStageMask = srcStages;
+      barrier.srcAccessMask = srcAccess;
+      barrier.dstStageMask = dstStages;
+      barrier.dstAccessMask = dstAccess;
+      barrier.oldLayout = toVk(b.oldLayout);
+      barrier.newLayout = toVk(b.newLayout);
+      barrier.srcQueueFamilyIndex = srcFamily;
+      barrier.dstQueueFamilyIndex = dstFamily;
+      barrier.image = record.image.get();
+      barrier.subresourceRange = {record.aspect, 0, VK_REMAINING_MIP_LEVELS, 0, VK_REMAINING_ARRAY_LAYERS};
+      imageSlot[i] = static_cast<int32_t>(imageBarriers_.size());
+      imageBarriers_.push_back(barrier);
+    } else {
+      auto barrier = vkStruct<VkBufferMemoryBarrier2>(VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2);
+      barrier.srcStageMask = srcStages;
+      barrier.srcAccessMask = srcAccess;
+      barrier.dstStageMask = dstStages;
+      barrier.dstAccessMask = dstAccess;
+      barrier.srcQueueFamilyIndex = srcFamily;
+      barrier.dstQueueFamilyIndex = dstFamily;
+      barrier.buffer = device_.buffer(buffers_[b.resource]).buffer.get();
+      barrier.size = VK_WHOLE_SIZE;
+      bufferSlot[i] = static_cast<int32_t>(bufferBarriers_.size());
+      bufferBarriers_.push_back(barrier);
+    }
+  }
+
+  // Each step's before/after range becomes one VkDependencyInfo; the compiler emits barriers of a
+  // range contiguously, so their translated copies are contiguous too (dropped ones excepted).
+  const auto dependency = [&](graph::BarrierRange range) {
+    auto info = vkStruct<VkDependencyInfo>(VK_STRUCTURE_TYPE_DEPENDENCY_INFO);
+    int32_t firstImage = -1;
+    int32_t firstBuffer = -1;
+    for (uint32_t i = range.first; i < range.first + range.count; ++i) {
+      if (imageSlot[i] >= 0) {
+        if (firstImage < 0) firstImage = imageSlot[i];
+        ++info.imageMemoryBarrierCount;
+      }
+      if (bufferSlot[i] >= 0) {
+        if (firstBuffer < 0) firstBuffer = bufferSlot[i];
+        ++info.bufferMemoryBarrierCount;
+      }
+    }
+    info.pImageMemoryBarriers = firstImage >= 0 ? &imageBarriers_[static_cast<size_t>(firstImage)] : nullptr;
+    info.pBufferMemoryBarriers = firstBuffer >= 0 ? &bufferBarriers_[static_cast<size_t>(firstBuffer)] : nullptr;
+    return info;
+  };
+  steps_.resize(compiled_.steps.size());
+  for (uint32_t s = 0; s < compiled_.steps.size(); ++s) {
+    const graph::Step& step = compiled_.steps[s];
+    steps_[s].node = step.node;
+    steps_[s].type = declaration_.nodes()[step.node].type;
+    steps_[s].logicalQueue = compiled_.nodes[step.node].queue;
+    steps_[s].before = dependency(step.before);
+    steps_[s].after = dependency(step.after);
+  }
+}
+
+void VulkanGraph::translateRendering() {
+  // Count first: attachments_ must not reallocate once steps point into it.
+  size_t count = 0;
+  for (const auto& node : declaration_.nodes()) count += node.colorAttachments.size() + 2;
+  attachments_.clear();
+  attachments_.reserve(count);
+  for (auto& step : steps_) {
+    const graph::NodeDecl& node = declaration_.nodes()[step.node];
+    if (node.type != graph::NodeType::Graphics) continue;
+    const size_t first = attachments_.size();
+    graph::Extent extent{0, 0, 1};
+    for (const auto& color : node.colorAttachments) {
+      const TextureRecord& target = device_.texture(textureOf(color.target));
+      auto info = vkStruct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
+      info.imageView = target.view.get();
+      info.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+      info.loadOp = toVk(color.load);
+      info.storeOp = toVk(color.store);
+      std::copy(color.clear.color.begin(), color.clear.color.end(), info.clearValue.color.float32);
+      if (color.resolveTarget.valid()) {
+        const TextureRecord& resolve = device_.texture(textureOf(color.resolveTarget));
+        const bool integer = target.desc.format == graph::Format::R32Uint;
+        info.resolveMode = integer ? VK_RESOLVE_MODE_SAMPLE_ZERO_BIT : VK_RESOLVE_MODE_AVERAGE_BIT;
+        info.resolveImageView = resolve.view.get();
+        info.resolveImageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+      }
+      if (extent.width == 0) extent = target.desc.extent;
+      attachments_.push_back(info);
+    }
+    step.renderingInfo.colorAttachmentCount = static_cast<uint32_t>(attachments_.size() - first);
+    step.renderingInfo.pColorAttachments = step.renderingInfo.colorAttachmentCount ? &attachments_[first] : nullptr;
+    const graph::DepthAttachment& depth = node.depthAttachment;
+    if (depth.target.valid()) {
+      const TextureRecord& target = device_.texture(textureOf(depth.target));
+      auto info = vkStruct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
+      info.imageView = target.view.get();
+      info.imageLayout = depth.readOnly ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL
+                                        : VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+      info.loadOp = toVk(depth.load);
+      info.storeOp = toVk(depth.store);
+      info.clearValue.depthStencil = {depth.clear.depth, depth.clear.stencil};
+      attachments_.push_back(info);
+      step.renderingInfo.pDepthAttachment = &attachments_.back();
+      if (graph::hasStencil(target.desc.format)) step.renderingInfo.pStencilAttachment = &attachments_.back();
+      if (extent.width == 0) extent = target.desc.extent;
+    }
+    // A graphics node without attachments records outside a rendering scope (e.g. copies on the
+    // graphics queue); draws need attachments.
+    if (extent.width == 0) continue;
+    step.rendering = true;
+    step.extent = extent;
+    step.renderingInfo.renderArea = {{0, 0}, {extent.width, extent.height}};
+    step.renderingInfo.layerCount = 1;
+  }
+}
+
+void VulkanGraph::orderSubmits() {
+  // Several logical queues may share one device queue (lavapipe has one). Submitting a batch that
+  // waits for a later batch of the same VkQueue would deadlock, so order the submits
+  // topologically: a submit goes after every submit it waits for and after its queue predecessor.
+  const auto& submits = compiled_.submits;
+  const auto count = static_cast<uint32_t>(submits.size());
+  std::vector<std::vector<uint32_t>> successors(count);
+  std::vector<uint32_t> pending(count, 0);
+  std::vector<std::vector<uint32_t>> byQueue(logicalQueues_);
+  for (uint32_t s = 0; s < count; ++s) byQueue[submits[s].queue].push_back(s);
+  for (auto& list : byQueue) {
+    std::sort(list.begin(), list.end(), [&](uint32_t a, uint32_t b) { return submits[a].signalValue < submits[b].signalValue; });
+    for (size_t i = 1; i < list.size(); ++i) {
+      successors[list[i - 1]].push_back(list[i]);
+      ++pending[list[i]];
+    }
+  }
+  for (uint32_t s = 0; s < count; ++s) {
+    for (const auto& wait : submits[s].waits) {
+      const auto& list = byQueue.at(wait.queue);
+      const auto producer = std::find_if(list.begin(), list.end(),
+                                         [&](uint32_t t) { return submits[t].signalValue >= wait.value; });
+      if (producer == list.end()) {
+        throw DeviceError("graph '" + options_.name + "': a submit waits for a value no submit signals");
+      }
+      successors[*producer].push_back(s);
+      ++pending[s];
+    }
+  }
+  // Ready submits by position of their first step in the topological order.
+  const auto key = [&](uint32_t s) { return compiled_.nodes[compiled_.steps[submits[s].firstStep].node].orderIndex; };
+  const auto later = [&](uint32_t a, uint32_t b) { return key(a) > key(b); };
+  std::priority_queue<uint32_t, std::vector<uint32_t>, decltype(later)> ready(later);
+  for (uint32_t s = 0; s < count; ++s) {
+    if (pending[s] == 0) ready.push(s);
+  }
+  submitOrder_.clear();
+  while (!ready.empty()) {
+    const uint32_t s = ready.top();
+    ready.pop();
+    submitOrder_.push_back(s);
+    for (uint32_t next : successors[s]) {
+      if (--pending[next] == 0) ready.push(next);
+    }
+  }
+  if (submitOrder_.size() != count) throw DeviceError("graph '" + options_.name + "': submits wait in a cycle");
+}
+
+void VulkanGraph::createSyncAndSlots() {
+  const VkDevice device = device_.device();
+  uint32_t maxSubmits = 0;
+  for (uint32_t n : compiled_.submitsPerQueue) maxSubmits = std::max(maxSubmits, n);
+  valuesPerExecution_ = maxSubmits + 1;
+  for (uint32_t q = 0; q < logicalQueues_; ++q) {
+    auto type = vkStruct<VkSemaphoreTypeCreateInfo>(VK_STRUCTURE_TYPE_SEMAPHORE_TYPE_CREATE_INFO);
+    type.semaphoreType = VK_SEMAPHORE_TYPE_TIMELINE;
+    auto info = vkStruct<VkSemaphoreCreateInfo>(VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO);
+    info.pNext = &type;
+    VkSemaphore semaphore = VK_NULL_HANDLE;
+    check(vkCreateSemaphore(device, &info, nullptr, &semaphore), "vkCreateSemaphore (timeline)");
+    timelines_.emplace_back(device, semaphore, vkDestroySemaphore);
+    device_.setName(VK_OBJECT_TYPE_SEMAPHORE, reinterpret_cast<uint64_t>(semaphore),
+                    options_.name + " timeline q" + std::to_string(q));
+  }
+  slots_.resize(std::max(1u, device_.framesInFlight_));
+  for (auto& slot : slots_) {
+    for (uint32_t q = 0; q < logicalQueues_; ++q) {
+      auto info = vkStruct<VkCommandPoolCreateInfo>(VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO);
+      info.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
+      info.queueFamilyIndex = device_.queues()[deviceQueueOf_[q]].family;
+      VkCommandPool pool = VK_NULL_HANDLE;
+      check(vkCreateCommandPool(device, &info, nullptr, &pool), "vkCreateCommandPool");
+      slot.pools.emplace_back(device, pool, vkDestroyCommandPool);
+    }
+    slot.commandBuffers.resize(compiled_.submits.size());
+    for (uint32_t s = 0; s < compiled_.submits.size(); ++s) {
+      auto info = vkStruct<VkCommandBufferAllocateInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO);
+      info.commandPool = slot.pools[compiled_.submits[s].queue].get();
+      info.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+      info.commandBufferCount = 1;
+      check(vkAllocateCommandBuffers(device, &info, &slot.commandBuffers[s]), "vkAllocateCommandBuffers");
+    }
+    if (options_.timestamps && !steps_.empty()) {
+      auto info = vkStruct<VkQueryPoolCreateInfo>(VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO);
+      info.queryType = VK_QUERY_TYPE_TIMESTAMP;
+      info.queryCount = static_cast<uint32_t>(steps_.size() * 2);
+      VkQueryPool pool = VK_NULL_HANDLE;
+      check(vkCreateQueryPool(device, &info, nullptr, &pool), "vkCreateQueryPool");
+      slot.queries = Owned<VkQueryPool>(device, pool, vkDestroyQueryPool);
+      vkResetQueryPool(device, pool, 0, info.queryCount);
+    }
+  }
+}
+
+rhi::BufferId VulkanGraph::bufferOf(graph::BufferHandle handle) const {
+  return buffers_.at(declaration_.resourceOf(handle));
+}
+
+rhi::TextureId VulkanGraph::textureOf(graph::TextureHandle handle) const {
+  return textures_.at(declaration_.resourceOf(handle));
+}
+
+}  // namespace fgb::vulkan

@@ -1,0 +1,118 @@
+// VulkanGraph: a frame graph compiled for this device, ready to execute every frame without
+// creating anything: transient resources bound into the aliasing heaps, barriers and rendering
+// infos translated to Vulkan once, command buffers and query pools per frame in flight, one
+// timeline semaphore per logical queue. Built in executable_graph.cpp, run by executor.cpp,
+// timed by timestamps.cpp.
+#pragma once
+
+#include "command_buffer.hpp"
+#include "device.hpp"
+
+#include <fgb/graph/compiler.hpp>
+#include <fgb/rhi/device.hpp>
+
+#include <deque>
+#include <string>
+#include <vector>
+
+namespace fgb::vulkan {
+
+class VulkanGraph final : public rhi::ExecutableGraph {
+ public:
+  VulkanGraph(VulkanDevice& device, graph::FrameGraph&& graph, const rhi::GraphOptions& options);
+  ~VulkanGraph() override;
+
+  const graph::FrameGraph& declaration() const override { return declaration_; }
+  const graph::CompiledGraph& compiled() const override { return compiled_; }
+  uint64_t executions() const override { return executions_; }
+  std::vector<rhi::GraphTimings> takeTimings() override;
+  rhi::BufferId buffer(uint32_t resource) const override { return buffers_.at(resource); }
+  rhi::TextureId texture(uint32_t resource) const override { return textures_.at(resource); }
+
+  // executor.cpp
+  uint64_t submit(rhi::RunMode mode);  // returns the execution index
+  [[nodiscard]] bool isComplete(uint64_t execution) const;
+  void waitFor(uint64_t execution) const;
+  void waitForAll() const;
+  [[nodiscard]] uint32_t id() const { return id_; }
+  [[nodiscard]] const std::vector<TimelinePoint>& lastPoints() const { return lastPoints_; }
+
+  // Used by the job context.
+  [[nodiscard]] rhi::BufferId bufferOf(graph::BufferHandle handle) const;
+  [[nodiscard]] rhi::TextureId textureOf(graph::TextureHandle handle) const;
+
+ private:
+  struct Step {
+    uint32_t node = 0;
+    graph::NodeType type = graph::NodeType::Graphics;
+    uint32_t logicalQueue = 0;
+    VkDependencyInfo before = vkStruct<VkDependencyInfo>(VK_STRUCTURE_TYPE_DEPENDENCY_INFO);
+    VkDependencyInfo after = vkStruct<VkDependencyInfo>(VK_STRUCTURE_TYPE_DEPENDENCY_INFO);
+    bool rendering = false;
+    VkRenderingInfo renderingInfo = vkStruct<VkRenderingInfo>(VK_STRUCTURE_TYPE_RENDERING_INFO);
+    graph::Extent extent{};
+  };
+  struct Slot {
+    std::vector<Owned<VkCommandPool>> pools;  // per logical queue
+    std::vector<VkCommandBuffer> commandBuffers;  // per compiled submit
+    Owned<VkQueryPool> queries;
+    uint64_t execution = 0;
+    bool pending = false;
+    bool timed = false;  // timings not yet read
+  };
+
+  // executable_graph.cpp
+  graph::CompileOptions compileOptions();
+  void mapQueues(uint32_t requested);
+  std::vector<rhi::TextureUsage> textureUsages() const;
+  std::vector<rhi::BufferUsage> bufferUsages() const;
+  void createResources();
+  void translateBarriers();
+  void translateRendering();
+  void orderSubmits();
+  void createSyncAndSlots();
+  // executor.cpp
+  void recordSubmit(Slot& slot, uint32_t submitIndex, uint64_t execution);
+  void recordStep(VkCommandBuffer cmd, uint32_t stepIndex, uint64_t execution, VkQueryPool queries);
+  void submitAll(const Slot& slot, uint64_t execution, rhi::RunMode mode);
+  uint64_t timelineBase(uint64_t execution) const { return (execution + 1) * valuesPerExecution_; }
+  // timestamps.cpp
+  void collectTimings(Slot& slot);
+  void collectFinishedTimings();
+
+  VulkanDevice& device_;
+  uint32_t id_;
+  rhi::GraphOptions options_;
+  graph::FrameGraph declaration_;
+  graph::CompiledGraph compiled_;
+  std::vector<graph::Job> jobs_;  // per node, moved out of the declaration
+
+  uint32_t logicalQueues_ = 1;
+  std::vector<uint32_t> deviceQueueOf_;     // per logical queue
+  std::vector<uint64_t> timestampMask_;     // per logical queue; 0: no timestamps there
+  std::vector<rhi::BufferId> buffers_;      // per resource
+  std::vector<rhi::TextureId> textures_;    // per resource
+  std::vector<bool> ownsResource_;          // transient: created (and destroyed) by this graph
+  std::vector<Allocation> heaps_;
+
+  std::vector<Step> steps_;
+  std::vector<VkImageMemoryBarrier2> imageBarriers_;
+  std::vector<VkBufferMemoryBarrier2> bufferBarriers_;
+  std::vector<VkRenderingAttachmentInfo> attachments_;
+  std::vector<uint32_t> submitOrder_;
+  std::vector<Owned<VkSemaphore>> timelines_;  // per logical queue
+  uint64_t valuesPerExecution_ = 1;
+  std::vector<Slot> slots_;
+  uint64_t executions_ = 0;
+  std::vector<TimelinePoint> lastPoints_;  // completion points of the latest execution
+  std::deque<rhi::GraphTimings> timings_;
+  VulkanCommandBuffer commandBuffer_;
+
+  // Scratch for submission, reused every execution (no per-frame allocation once warm).
+  std::vector<VkSubmitInfo2> submitInfos_;
+  std::vector<VkSemaphoreSubmitInfo> waitInfos_;
+  std::vector<VkSemaphoreSubmitInfo> signalInfos_;
+  std::vector<VkCommandBufferSubmitInfo> commandInfos_;
+};
+
+}  // namespace fgb::vulkan

@@ -1,0 +1,312 @@
+// Running compiled graphs: record every step in order (barriers, debug label, timestamps, dynamic
+// rendering, the node's job), submit per the plan with one timeline semaphore per logical queue,
+// and chain executions — of the same graph (frames in flight) and of sequential graphs.
+#include "executable_graph.hpp"
+#include "translate.hpp"
+
+#include <fgb/core/error.hpp>
+#include <fgb/rhi/job_context.hpp>
+
+#include <algorithm>
+
+namespace fgb::vulkan {
+namespace {
+
+class VulkanJobContext final : public rhi::JobContext {
+ public:
+  VulkanJobContext(const VulkanGraph& graph, const VulkanDevice& device, VulkanCommandBuffer& cmd, uint64_t execution)
+      : graph_(graph), device_(device), cmd_(cmd), execution_(execution) {}
+
+  void setExtent(graph::Extent extent) { extent_ = extent; }
+
+  rhi::CommandBuffer& cmd() override { return cmd_; }
+  rhi::BufferId buffer(graph::BufferHandle handle) const override { return graph_.bufferOf(handle); }
+  rhi::TextureId texture(graph::TextureHandle handle) const override { return graph_.textureOf(handle); }
+  uint32_t storageBufferIndex(graph::BufferHandle handle) const override {
+    return device_.storageBufferIndex(graph_.bufferOf(handle));
+  }
+  uint32_t sampledTextureIndex(graph::TextureHandle handle) const override {
+    return device_.sampledTextureIndex(graph_.textureOf(handle));
+  }
+  uint32_t storageTextureIndex(graph::TextureHandle handle) const override {
+    return device_.storageTextureIndex(graph_.textureOf(handle));
+  }
+  uint64_t execution() const override { return execution_; }
+  graph::Extent renderExtent() const override { return extent_; }
+
+ private:
+  const VulkanGraph& graph_;
+  const VulkanDevice& device_;
+  VulkanCommandBuffer& cmd_;
+  uint64_t execution_;
+  graph::Extent extent_{1, 1, 1};
+};
+
+VkPipelineStageFlags2 waitStages(graph::StageMask stages) {
+  const VkPipelineStageFlags2 vk = toVkStages(stages);
+  return vk == VK_PIPELINE_STAGE_2_NONE ? VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT : vk;
+}
+
+// Label colours by node type, as RenderDoc and friends show them.
+constexpr float kLabelColors[3][4] = {
+    {0.95f, 0.55f, 0.15f, 1.0f},  // graphics: orange
+    {0.25f, 0.55f, 0.95f, 1.0f},  // compute: blue
+    {0.30f, 0.80f, 0.35f, 1.0f},  // transfer: green
+};
+
+}  // namespace
+
+uint64_t VulkanGraph::submit(rhi::RunMode mode) {
+  const uint64_t execution = executions_;
+  Slot& slot = slots_[execution % slots_.size()];
+  if (slot.pending) {
+    // Every frame in flight is still in use: wait for the oldest (the only stall, by design).
+    waitFor(slot.execution);
+    collectTimings(slot);
+  }
+  collectFinishedTimings();  // earlier executions that completed meanwhile: no waiting
+  for (const auto& pool : slot.pools) check(vkResetCommandPool(device_.device(), pool.get(), 0), "vkResetCommandPool");
+  if (slot.queries) vkResetQueryPool(device_.device(), slot.queries.get(), 0, static_cast<uint32_t>(steps_.size() * 2));
+
+  for (uint32_t s = 0; s < compiled_.submits.size(); ++s) recordSubmit(slot, s, execution);
+  submitAll(slot, execution, mode);
+
+  slot.execution = execution;
+  slot.pending = true;
+  slot.timed = static_cast<bool>(slot.queries);
+  ++executions_;
+  return execution;
+}
+
+void VulkanGraph::recordSubmit(Slot& slot, uint32_t submitIndex, uint64_t execution) {
+  const graph::Submit& submit = compiled_.submits[submitIndex];
+  const VkCommandBuffer cmd = slot.commandBuffers[submitIndex];
+  auto begin = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
+  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  check(vkBeginCommandBuffer(cmd, &begin), "vkBeginCommandBuffer");
+  commandBuffer_.begin(VK_NULL_HANDLE);  // forget descriptor bindings of the previous buffer
+  commandBuffer_.begin(cmd);
+  for (uint32_t s = submit.firstStep; s < submit.firstStep + submit.stepCount; ++s) {
+    recordStep(cmd, s, execution, slot.queries.get());
+  }
+  check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
+}
+
+void VulkanGraph::recordStep(VkCommandBuffer cmd, uint32_t stepIndex, uint64_t execution, VkQueryPool queries) {
+  const Step& step = steps_[stepIndex];
+  const bool labels = device_.debugLabels();
+  if (labels) {
+    auto label = vkStruct<VkDebugUtilsLabelEXT>(VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT);
+    label.pLabelName = declaration_.nodes()[step.node].name.c_str();
+    std::copy(std::begin(kLabelColors[static_cast<int>(step.type)]), std::end(kLabelColors[static_cast<int>(step.type)]),
+              label.color);
+    vkCmdBeginDebugUtilsLabelEXT(cmd, &label);
+  }
+  if (step.before.imageMemoryBarrierCount + step.before.bufferMemoryBarrierCount > 0) {
+    vkCmdPipelineBarrier2(cmd, &step.before);
+  }
+  const bool timed = queries != VK_NULL_HANDLE && timestampMask_[step.logicalQueue] != 0;
+  if (timed) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries, stepIndex * 2);
+
+  const graph::Job& job = jobs_[step.node];
+  if (step.rendering) {
+    vkCmdBeginRendering(cmd, &step.renderingInfo);
+    const VkViewport viewport{0, 0, static_cast<float>(step.extent.width), static_cast<float>(step.extent.height), 0, 1};
+    const VkRect2D scissor{{0, 0}, {step.extent.width, step.extent.height}};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    vkCmdSetScissor(cmd, 0, 1, &scissor);
+  }
+  if (job) {
+    VulkanJobContext context(*this, device_, commandBuffer_, execution);
+    if (step.rendering) context.setExtent(step.extent);
+    job(context);
+  }
+  if (step.rendering) vkCmdEndRendering(cmd);
+
+  if (timed) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries, stepIndex * 2 + 1);
+  if (step.after.imageMemoryBarrierCount + step.after.bufferMemoryBarrierCount > 0) {
+    vkCmdPipelineBarrier2(cmd, &step.after);
+  }
+  if (labels) vkCmdEndDebugUtilsLabelEXT(cmd);
+}
+
+void VulkanGraph::submitAll(const Slot& slot, uint64_t execution, rhi::RunMode mode) {
+  const auto& submits = compiled_.submits;
+  const uint64_t base = timelineBase(execution);
+  std::vector<TimelinePoint>& tail = device_.sequentialTail();
+
+  // Pointers into these vectors are taken below: size them fully first.
+  size_t waitCount = 0;
+  for (const auto& submit : submits) waitCount += submit.waits.size();
+  waitCount += logicalQueues_ * (logicalQueues_ + tail.size());
+  waitInfos_.clear();
+  waitInfos_.reserve(waitCount);
+  signalInfos_.assign(submits.size(), vkStruct<VkSemaphoreSubmitInfo>(VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO));
+  commandInfos_.assign(submits.size(), vkStruct<VkCommandBufferSubmitInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO));
+  submitInfos_.clear();
+
+  std::vector<bool> firstOnQueue(logicalQueues_, true);
+  const auto addWait = [&](VkSemaphore semaphore, uint64_t value, VkPipelineStageFlags2 stages) {
+    auto info = vkStruct<VkSemaphoreSubmitInfo>(VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO);
+    info.semaphore = semaphore;
+    info.value = value;
+    info.stageMask = stages;
+    waitInfos_.push_back(info);
+  };
+  for (const uint32_t s : submitOrder_) {
+    const graph::Submit& submit = submits[s];
+    const size_t firstWait = waitInfos_.size();
+    for (const auto& wait : submit.waits) {
+      addWait(timelines_[wait.queue].get(), base + wait.value, waitStages(wait.stages));
+    }
+    if (firstOnQueue[submit.queue]) {
+      firstOnQueue[submit.queue] = false;
+      // Transient memory and imported resources are reused by the next execution: it starts only
+      // after the previous one finished on every queue. Sequential runs also wait for the previous
+      // sequential run (of any graph).
+      if (execution > 0) {
+        for (uint32_t q = 0; q < logicalQueues_; ++q) {
+          if (compiled_.submitsPerQueue[q] == 0) continue;
+          addWait(timelines_[q].get(), timelineBase(execution - 1) + compiled_.submitsPerQueue[q],
+                  VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+        }
+      }
+      if (mode == rhi::RunMode::Sequential) {
+        for (const auto& point : tail) addWait(point.semaphore, point.value, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+      }
+    }
+    VkSemaphoreSubmitInfo& signal = signalInfos_[s];
+    signal.semaphore = timelines_[submit.queue].get();
+    signal.value = base + submit.signalValue;
+    signal.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    commandInfos_[s].commandBuffer = slot.commandBuffers[s];
+
+    auto info = vkStruct<VkSubmitInfo2>(VK_STRUCTURE_TYPE_SUBMIT_INFO_2);
+    info.waitSemaphoreInfoCount = static_cast<uint32_t>(waitInfos_.size() - firstWait);
+    info.pWaitSemaphoreInfos = info.waitSemaphoreInfoCount ? &waitInfos_[firstWait] : nullptr;
+    info.commandBufferInfoCount = 1;
+    info.pCommandBufferInfos = &commandInfos_[s];
+    info.signalSemaphoreInfoCount = 1;
+    info.pSignalSemaphoreInfos = &signal;
+    submitInfos_.push_back(info);
+  }
+
+  // One vkQueueSubmit2 per run of consecutive batches for the same device queue.
+  size_t first = 0;
+  while (first < submitInfos_.size()) {
+    const uint32_t queue = deviceQueueOf_[submits[submitOrder_[first]].queue];
+    size_t end = first + 1;
+    while (end < submitInfos_.size() && deviceQueueOf_[submits[submitOrder_[end]].queue] == queue) ++end;
+    check(vkQueueSubmit2(device_.queues()[queue].queue, static_cast<uint32_t>(end - first), &submitInfos_[first],
+                         VK_NULL_HANDLE),
+          "vkQueueSubmit2 (graph '" + options_.name + "')");
+    first = end;
+  }
+
+  lastPoints_.clear();
+  for (uint32_t q = 0; q < logicalQueues_; ++q) {
+    if (compiled_.submitsPerQueue[q] > 0) lastPoints_.push_back({timelines_[q].get(), base + compiled_.submitsPerQueue[q]});
+  }
+  if (mode == rhi::RunMode::Sequential) tail = lastPoints_;
+}
+
+bool VulkanGraph::isComplete(uint64_t execution) const {
+  if (execution >= executions_) return false;
+  const uint64_t base = timelineBase(execution);
+  for (uint32_t q = 0; q < logicalQueues_; ++q) {
+    if (compiled_.submitsPerQueue[q] == 0) continue;
+    uint64_t value = 0;
+    check(vkGetSemaphoreCounterValue(device_.device(), timelines_[q].get(), &value), "vkGetSemaphoreCounterValue");
+    if (value < base + compiled_.submitsPerQueue[q]) return false;
+  }
+  return true;
+}
+
+void VulkanGraph::waitFor(uint64_t execution) const {
+  if (execution >= executions_) return;  // never submitted: nothing to wait for
+  std::vector<VkSemaphore> semaphores;
+  std::vector<uint64_t> values;
+  for (uint32_t q = 0; q < logicalQueues_; ++q) {
+    if (compiled_.submitsPerQueue[q] == 0) continue;
+    semaphores.push_back(timelines_[q].get());
+    values.push_back(timelineBase(execution) + compiled_.submitsPerQueue[q]);
+  }
+  if (semaphores.empty()) return;
+  auto info = vkStruct<VkSemaphoreWaitInfo>(VK_STRUCTURE_TYPE_SEMAPHORE_WAIT_INFO);
+  info.semaphoreCount = static_cast<uint32_t>(semaphores.size());
+  info.pSemaphores = semaphores.data();
+  info.pValues = values.data();
+  check(vkWaitSemaphores(device_.device(), &info, UINT64_MAX), "vkWaitSemaphores (graph '" + options_.name + "')");
+}
+
+void VulkanGraph::waitForAll() const {
+  if (executions_ > 0) waitFor(executions_ - 1);
+}
+
+// --- VulkanDevice: graph execution entry points ---
+
+std::unique_ptr<rhi::ExecutableGraph> VulkanDevice::compile(graph::FrameGraph&& graph, const rhi::GraphOptions& options) {
+  return std::make_unique<VulkanGraph>(*this, std::move(graph), options);
+}
+
+rhi::RunTicket VulkanDevice::execute(rhi::ExecutableGraph& graph, rhi::RunMode mode, std::function<void()> onComplete) {
+  auto& vulkanGraph = dynamic_cast<VulkanGraph&>(graph);
+  invokeFinishedCallbacks();
+  const uint64_t execution = vulkanGraph.submit(mode);
+  submittedWork_ = true;
+  const rhi::RunTicket ticket{vulkanGraph.id(), execution};
+  if (onComplete) callbacks_.push_back({ticket, std::move(onComplete)});
+  return ticket;
+}
+
+bool VulkanDevice::isComplete(const rhi::RunTicket& ticket) const {
+  if (ticket.graph >= graphs_.size() || graphs_[ticket.graph] == nullptr) return true;  // graph gone: it waited
+  return graphs_[ticket.graph]->isComplete(ticket.execution);
+}
+
+void VulkanDevice::wait(const rhi::RunTicket& ticket) {
+  if (ticket.graph < graphs_.size() && graphs_[ticket.graph] != nullptr) graphs_[ticket.graph]->waitFor(ticket.execution);
+  invokeFinishedCallbacks();
+}
+
+void VulkanDevice::poll() { invokeFinishedCallbacks(); }
+
+void VulkanDevice::waitIdle() {
+  check(vkDeviceWaitIdle(device_), "vkDeviceWaitIdle");
+  invokeFinishedCallbacks();
+}
+
+void VulkanDevice::invokeFinishedCallbacks() {
+  // Callbacks may be long; take the finished ones out first so they can run more graphs.
+  std::vector<std::function<void()>> finished;
+  for (auto it = callbacks_.begin(); it != callbacks_.end();) {
+    if (isComplete(it->ticket)) {
+      finished.push_back(std::move(it->function));
+      it = callbacks_.erase(it);
+    } else {
+      ++it;
+    }
+  }
+  for (auto& callback : finished) callback();
+}
+
+uint32_t VulkanDevice::registerGraph(VulkanGraph* graph) {
+  graphs_.push_back(graph);
+  return static_cast<uint32_t>(graphs_.size() - 1);
+}
+
+void VulkanDevice::unregisterGraph(uint32_t id) {
+  VulkanGraph* graph = graphs_.at(id);
+  graphs_[id] = nullptr;
+  if (graph == nullptr) return;
+  // The graph waited for its work; its semaphores must not be waited for by later runs.
+  auto& tail = sequentialTail_;
+  tail.erase(std::remove_if(tail.begin(), tail.end(),
+                            [&](const TimelinePoint& p) {
+                              return std::any_of(graph->lastPoints().begin(), graph->lastPoints().end(),
+                                                 [&](const TimelinePoint& own) { return own.semaphore == p.semaphore; });
+                            }),
+             tail.end());
+}
+
+}  // namespace fgb::vulkan

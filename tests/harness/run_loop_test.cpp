@@ -1,0 +1,95 @@
+#include <fgb/core/error.hpp>
+#include <fgb/harness/run_loop.hpp>
+
+#include "fake_workload.hpp"
+
+#include <gtest/gtest.h>
+
+namespace fgb::harness {
+namespace {
+
+TEST(RunLoop, DropsWarmupAndKeepsMeasuredFramesInOrder) {
+  testing::FakeWorkload workload;
+  RunOptions options;
+  options.warmup = 3;
+  options.frames = 5;
+  const RunResult run = runBenchmark(workload, options);
+  EXPECT_EQ(workload.rendered(), 8u);
+  ASSERT_EQ(run.frameGpuMs.size(), 5u);
+  ASSERT_EQ(run.passes.size(), 3u);
+  EXPECT_EQ(run.passes[0].name, "Cull");
+  EXPECT_EQ(run.passes[0].queue, "compute");
+  // Frame numbers 3..7 were kept: Cull took 0.1 + f ms.
+  EXPECT_DOUBLE_EQ(run.passes[0].samplesMs.front(), 3.1);
+  EXPECT_DOUBLE_EQ(run.passes[0].samplesMs.back(), 7.1);
+  EXPECT_DOUBLE_EQ(run.passes[0].gpu.median, 5.1);
+  EXPECT_EQ(run.passes[0].gpu.n, 5u);
+  EXPECT_DOUBLE_EQ(run.frameCpu.min, 5.0);
+  EXPECT_EQ(run.passes[1].startMs.size(), 5u);  // start offsets reported for "Draw"
+  EXPECT_TRUE(run.passes[0].startMs.size() == 5u);
+}
+
+TEST(RunLoop, CulledPassesHaveNoSamples) {
+  testing::FakeWorkload workload;
+  const RunResult run = runBenchmark(workload, RunOptions{1, 4, kDefaultUnstableSpread, {}});
+  const PassRecord* debug = run.findPass("Debug");
+  ASSERT_NE(debug, nullptr);
+  EXPECT_TRUE(debug->culled);
+  EXPECT_TRUE(debug->samplesMs.empty());
+  EXPECT_EQ(run.medians().passMs.count("Debug"), 0u);
+  EXPECT_EQ(run.medians().passMs.count("Cull"), 1u);
+}
+
+TEST(RunLoop, LateTimingsAreCollectedFromFinish) {
+  testing::FakeWorkload workload(/*latency=*/2);
+  RunOptions options;
+  options.warmup = 2;
+  options.frames = 4;
+  const RunResult run = runBenchmark(workload, options);
+  ASSERT_EQ(run.frameGpuMs.size(), 4u);
+  EXPECT_DOUBLE_EQ(run.passes[0].samplesMs.front(), 2.1);  // frame 2 is the first measured one
+  EXPECT_DOUBLE_EQ(run.passes[0].samplesMs.back(), 5.1);
+}
+
+TEST(RunLoop, MissingTimingsAreADeviceError) {
+  testing::FakeWorkload workload(/*latency=*/1);
+  workload.dropOneTimingOnFinish();
+  EXPECT_THROW(runBenchmark(workload, RunOptions{1, 3, kDefaultUnstableSpread, {}}), DeviceError);
+}
+
+TEST(RunLoop, ReportsProgressForEveryFrameAndMeasuresOverhead) {
+  testing::FakeWorkload workload;
+  std::vector<uint32_t> seen;
+  RunOptions options{2, 6, kDefaultUnstableSpread, [&](uint32_t done, uint32_t total) {
+                       EXPECT_EQ(total, 8u);
+                       seen.push_back(done);
+                     }};
+  const RunResult run = runBenchmark(workload, options);
+  ASSERT_EQ(seen.size(), 8u);
+  EXPECT_EQ(seen.back(), 8u);
+  EXPECT_GE(run.overhead.loopWallMs, run.overhead.workloadCallsMs);
+  EXPECT_GE(run.overhead.harnessMs, 0.0);
+}
+
+TEST(RunLoop, SpreadingSamplesAreFlaggedUnstable) {
+  testing::FakeWorkload workload;  // pass times grow by 1 ms per frame: a huge spread for "Cull"
+  const RunResult run = runBenchmark(workload, RunOptions{0, 10, kDefaultUnstableSpread, {}});
+  EXPECT_TRUE(run.findPass("Cull")->unstable);
+}
+
+}  // namespace
+}  // namespace fgb::harness
+
+namespace fgb::harness {
+namespace {
+
+TEST(Knobs, ParsesAssignmentsAndRejectsMalformedOnes) {
+  const auto knobs = parseKnobs({"bloom=off", "exposure=0.6", "path=a=b"});
+  EXPECT_EQ(knobs.at("bloom"), "off");
+  EXPECT_EQ(knobs.at("path"), "a=b");
+  EXPECT_THROW(parseKnobs({"novalue"}), InputError);
+  EXPECT_THROW(parseKnobs({"=x"}), InputError);
+}
+
+}  // namespace
+}  // namespace fgb::harness

@@ -1,0 +1,78 @@
+// Draw groups decide what each indirect command draws: opaque/masked instances of one mesh share
+// a command, transparent instances get one each, sorted back to front.
+#include "scene_workload/gpu_upload.hpp"
+
+#include <gtest/gtest.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace fgb::render {
+namespace {
+
+using features::DrawClass;
+
+scene::Scene makeScene() {
+  scene::Scene s;
+  s.meshes.resize(2);
+  s.materials.resize(3);
+  s.materials[1].alphaMode = scene::AlphaMode::Mask;
+  s.materials[2].alphaMode = scene::AlphaMode::Blend;
+  auto add = [&](uint32_t mesh, uint32_t material, float z) {
+    scene::Instance instance;
+    instance.mesh = mesh;
+    instance.material = material;
+    instance.worldBounds = {{-1.0f, -1.0f, z - 1.0f}, {1.0f, 1.0f, z + 1.0f}};
+    s.instances.push_back(instance);
+  };
+  add(0, 0, 0.0f);    // 0 opaque mesh 0
+  add(1, 2, -5.0f);   // 1 transparent, near
+  add(0, 0, -3.0f);   // 2 opaque mesh 0
+  add(1, 2, -50.0f);  // 3 transparent, far
+  add(1, 1, 0.0f);    // 4 masked mesh 1
+  return s;
+}
+
+TEST(DrawGroups, GroupsSharedMeshesAndSortsTransparentBackToFront) {
+  const auto s = makeScene();
+  features::GpuScene gpu;
+  buildDrawGroups(s, glm::vec3(0.0f, 0.0f, 10.0f), gpu);
+  ASSERT_EQ(gpu.groups.size(), 4u);  // opaque mesh 0, masked mesh 1, two transparent
+  EXPECT_EQ(gpu.groups[0].drawClass, DrawClass::Opaque);
+  EXPECT_EQ(gpu.groups[0].capacity, 2u);
+  EXPECT_EQ(gpu.groups[1].drawClass, DrawClass::Masked);
+  EXPECT_EQ(gpu.groups[2].drawClass, DrawClass::Transparent);
+  // Farther transparent instance (3) first.
+  EXPECT_EQ(gpu.instanceOrder[gpu.groups[2].firstSlot], 3u);
+  EXPECT_EQ(gpu.instanceOrder[gpu.groups[3].firstSlot], 1u);
+  // Slots are contiguous and cover every instance once.
+  uint32_t expectedSlot = 0;
+  for (const auto& group : gpu.groups) {
+    EXPECT_EQ(group.firstSlot, expectedSlot);
+    expectedSlot += group.capacity;
+  }
+  EXPECT_EQ(expectedSlot, s.instances.size());
+  EXPECT_EQ(gpu.groupRange(DrawClass::Transparent), std::make_pair(2u, 2u));
+  EXPECT_EQ(gpu.groupRange(DrawClass::Masked), std::make_pair(1u, 1u));
+}
+
+TEST(FrameConstants, ClusterGridCoversTheImageAndSlicesSpanNearToFar) {
+  scene::Scene s;
+  s.camera.nearPlane = 0.1f;
+  s.camera.farPlane = 100.0f;
+  features::RenderSettings settings;
+  settings.width = 330;
+  settings.height = 170;
+  settings.clusterSlices = 24;
+  const auto c = makeFrameConstants(s, settings);
+  EXPECT_EQ(c.clusterGrid.x, 21u);  // ceil(330 / 16)
+  EXPECT_EQ(c.clusterGrid.y, 11u);
+  // slice(z) = log(z) * scale + bias: 0 at near, slices at far.
+  EXPECT_NEAR(std::log(0.1f) * c.depthRange.z + c.depthRange.w, 0.0f, 1e-4f);
+  EXPECT_NEAR(std::log(100.0f) * c.depthRange.z + c.depthRange.w, 24.0f, 1e-3f);
+  // Y is flipped so that +Y world maps to the top of the image (negative clip Y).
+  const glm::vec4 up = c.viewProj * glm::vec4(s.camera.target + glm::vec3(0, 1, 0), 1.0f);
+  EXPECT_LT(up.y, 0.0f);
+}
+
+}  // namespace
+}  // namespace fgb::render

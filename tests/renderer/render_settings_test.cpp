@@ -1,0 +1,46 @@
+#include "features/context/render_settings.hpp"
+
+#include <fgb/core/error.hpp>
+
+#include <gtest/gtest.h>
+
+namespace fgb::features {
+namespace {
+
+TEST(RenderSettings, AppliesRendererKnobsAndIgnoresOthers) {
+  RenderSettings settings;
+  applyRendererKnobs(settings, {{"debug.view", "light-complexity"},
+                                {"render.depth_prepass", "1"},
+                                {"lighting.slices", "16"},
+                                {"post.exposure", "2"}});
+  EXPECT_EQ(settings.debugView, DebugView::LightComplexity);
+  EXPECT_TRUE(settings.depthPrepass);
+  EXPECT_EQ(settings.clusterSlices, 16u);
+}
+
+TEST(RenderSettings, RejectsMalformedValuesNamingTheKey) {
+  RenderSettings settings;
+  try {
+    applyRendererKnobs(settings, {{"debug.view", "heat"}});
+    FAIL() << "expected InputError";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("debug.view=heat"), std::string::npos) << error.what();
+  }
+  EXPECT_THROW(applyRendererKnobs(settings, {{"lighting.slices", "0"}}), InputError);
+  EXPECT_THROW(applyRendererKnobs(settings, {{"lighting.slices", "12x"}}), InputError);
+}
+
+TEST(RenderSettings, RejectsUnknownKeysUnderItsPrefixes) {
+  RenderSettings settings;
+  EXPECT_THROW(applyRendererKnobs(settings, {{"debug.veiw", "none"}}), InputError);
+  EXPECT_THROW(applyRendererKnobs(settings, {{"bloom.mip", "3"}}), InputError);
+  EXPECT_NO_THROW(applyRendererKnobs(settings, {{"atrium.scale", "0.5"}, {"harness.x", "1"}}));
+}
+
+TEST(RenderSettings, KnowsItsKeys) {
+  EXPECT_TRUE(isRendererKnob("debug.view"));
+  EXPECT_FALSE(isRendererKnob("post.exposure"));
+}
+
+}  // namespace
+}  // namespace fgb::features

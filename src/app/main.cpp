@@ -4,6 +4,9 @@
 
 #include <fgb/core/error.hpp>
 #include <fgb/graph/frame_graph.hpp>
+#ifdef FGBENCH_WITH_IMPORT
+#include <fgb/import/model_importer.hpp>
+#endif
 
 #include <algorithm>
 #include <cstdio>
@@ -44,6 +47,11 @@ int main(int argc, char** argv) {
                "Renders scenes offscreen through a Vulkan frame graph, times every pass on the GPU,\n"
                "and compares frames and timings against goldens and budgets.\n"};
   app.require_subcommand(1);
+#ifdef FGBENCH_WITH_IMPORT
+  // Model files are imported (Assimp + OpenImageIO) on a cooked-cache miss. fgbench-gpu, the small
+  // binary carried to GPU machines, lacks this and loads only cooked scenes and generators.
+  import::enableModelImport();
+#endif
   app.set_version_flag("--version", std::string(FGBENCH_VERSION));
 
   auto& registry = app::verbRegistry();

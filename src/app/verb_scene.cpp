@@ -4,7 +4,6 @@
 #include "verb.hpp"
 
 #include <fgb/core/error.hpp>
-#include <fgb/import/model_importer.hpp>
 #include <fgb/scene/load.hpp>
 #include <fgb/scene/stats.hpp>
 
@@ -46,7 +45,6 @@ nlohmann::json describe(const scene::LoadedScene& loaded, float aspect) {
 }
 
 int runScene(const SceneVerbOptions& options) {
-  import::enableModelImport();
   scene::LoadOptions load;
   if (!options.cache.empty()) load.cacheDir = options.cache;
   load.useCache = !options.noCache;

@@ -43,6 +43,8 @@ class BarrierPlanner {
 
   void run() {
     collectUsesByResource();
+    // Most uses get one barrier (transfers two, final states one more): size it once, not by doubling.
+    pending_.reserve(uses_.size() + uses_.size() / 2);
     const auto& decls = state_.graph.resources();
     for (uint32_t r = 0; r < decls.size(); ++r) {
       if (state_.out.resourceAlive[r]) planResource(r);

@@ -105,9 +105,24 @@ class BarrierPlanner {
     return s;
   }
 
+  // An imported resource whose first use in the graph overwrites it without reading needs no
+  // ownership transfer in or out: Vulkan only asks for one when contents must survive the change
+  // of queue family. Skipping both halves keeps repeated executions consistent (a release at the
+  // end with no acquire, or an acquire with no release, is an error on the next execution).
+  [[nodiscard]] bool discardsOnEntry(uint32_t resource) const {
+    if (!state_.graph.resources()[resource].imported || start_[resource] == end_[resource]) return false;
+    const MergedUse& first = uses_[start_[resource]];
+    return first.writes && !first.reads;
+  }
+
   void planResource(uint32_t resource) {
     const bool texture = state_.graph.resources()[resource].kind == ResourceKind::Texture;
     TrackedState s = initialState(resource);
+    const bool discards = discardsOnEntry(resource);
+    if (discards) {
+      s.queue = state_.queueOf[uses_[start_[resource]].node];
+      s.layout = Layout::Undefined;
+    }
     for (uint32_t i = start_[resource]; i < end_[resource]; ++i) {
       const MergedUse& use = uses_[i];
       const uint32_t queue = state_.queueOf[use.node];
@@ -124,7 +139,7 @@ class BarrierPlanner {
       }
       advance(s, use, queue, step, layout, transitioned);
     }
-    finalState(resource, texture, s);
+    finalState(resource, texture, s, discards);
   }
 
   void firstUse(uint32_t resource, bool texture, const MergedUse& use, uint32_t queue, uint32_t step) {
@@ -221,11 +236,12 @@ class BarrierPlanner {
     s.lastStep = step;
   }
 
-  void finalState(uint32_t resource, bool texture, const TrackedState& s) {
+  void finalState(uint32_t resource, bool texture, const TrackedState& s, bool discardsOnEntry) {
     const ResourceDecl& decl = state_.graph.resources()[resource];
     if (!decl.imported || s.lastStep == kInvalidIndex) return;
     const ImportState& final = decl.finalState;
-    const uint32_t finalQueue = state_.options.queueOfClass[static_cast<size_t>(final.queue)];
+    const uint32_t finalQueue =
+        discardsOnEntry ? s.queue : state_.options.queueOfClass[static_cast<size_t>(final.queue)];
     const Layout finalLayout = (!texture || final.layout == Layout::Undefined) ? s.layout : final.layout;
     const bool queueChange = familyOf(finalQueue) != familyOf(s.queue);
     if (!queueChange && finalLayout == s.layout && final.stages == kStageNone) return;

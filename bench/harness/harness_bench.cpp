@@ -12,6 +12,9 @@
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
 
+#include <sys/resource.h>
+#include <sys/wait.h>
+
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -104,6 +107,15 @@ void BM_CompareInProcess(benchmark::State& state) {
 }
 BENCHMARK(BM_CompareInProcess)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// CPU seconds (user + system) used by finished child processes so far: on a shared machine the
+// fairer comparison between two commands than wall time alone.
+double childCpuSeconds() {
+  rusage usage{};
+  getrusage(RUSAGE_CHILDREN, &usage);
+  auto seconds = [](const timeval& t) { return static_cast<double>(t.tv_sec) + static_cast<double>(t.tv_usec) * 1e-6; };
+  return seconds(usage.ru_utime) + seconds(usage.ru_stime);
+}
+
 int runCommand(benchmark::State& state, const std::string& command) {
   const int status = std::system((command + " > /dev/null 2>&1").c_str());
   const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -116,9 +128,11 @@ void BM_FgbenchCompareCli(benchmark::State& state) {
 #ifdef FGBENCH_BINARY
   const ExrPair& p = pair();
   const std::string command = fmt::format("'{}' compare '{}' '{}'", FGBENCH_BINARY, p.reference.string(), p.test.string());
+  const double cpuBefore = childCpuSeconds();
   for (auto _ : state) {
     if (runCommand(state, command) > 1) break;  // 0 ok, 1 "check failed" are both complete runs
   }
+  state.counters["child_cpu_s"] = (childCpuSeconds() - cpuBefore) / static_cast<double>(state.iterations());
   setCounters(state);
 #else
   state.SkipWithError("fgbench was not built in this configuration");
@@ -131,9 +145,11 @@ void BM_OiiotoolDiff(benchmark::State& state) {
 #ifdef OIIOTOOL_BINARY
   const ExrPair& p = pair();
   const std::string command = fmt::format("'{}' --diff '{}' '{}'", OIIOTOOL_BINARY, p.reference.string(), p.test.string());
+  const double cpuBefore = childCpuSeconds();
   for (auto _ : state) {
     if (runCommand(state, command) > 2) break;
   }
+  state.counters["child_cpu_s"] = (childCpuSeconds() - cpuBefore) / static_cast<double>(state.iterations());
   setCounters(state);
 #else
   state.SkipWithError("oiiotool not found");

@@ -122,3 +122,25 @@ TEST(Budget, BadFilesAreOneLineInputErrors) {
 
 }  // namespace
 }  // namespace fgb::harness
+
+namespace fgb::harness {
+namespace {
+
+TEST(Budget, APassSplitIntoPartsIsCheckedAgainstTheirSum) {
+  MeasuredMedians m = thesisNumbers();
+  m.passMs.erase("Bloom");
+  m.passMs["Bloom Downsample 1"] = 0.2;
+  m.passMs["Bloom Upsample 1"] = 0.3;  // 0.5 in total against 0.4 (+10%: 0.44)
+  m.passMs["Bloomish"] = 5.0;          // not part of the group: no space after the name
+  const BudgetResult r = checkBudget(loadBudget(kThesisBudget), m);
+  ASSERT_EQ(r.failing().size(), 1u);
+  const BudgetLine& line = *r.failing()[0];
+  EXPECT_EQ(line.pass, "Bloom");
+  EXPECT_EQ(line.summedPasses, 2u);
+  EXPECT_NEAR(*line.measuredMs, 0.5, 1e-12);
+  m.passMs["Bloom Upsample 1"] = 0.2;
+  EXPECT_EQ(checkBudget(loadBudget(kThesisBudget), m).verdict, "pass");
+}
+
+}  // namespace
+}  // namespace fgb::harness

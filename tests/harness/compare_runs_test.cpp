@@ -66,6 +66,7 @@ TEST(CompareRuns, SignificantButTinyChangeIsBelowTheEffectThreshold) {
   EXPECT_EQ(row(c, "Bloom").verdict, "same");
   CompareRunsOptions strict;
   strict.minEffect = 0.01;
+  strict.minAbsMs = 0.0;
   EXPECT_EQ(row(compareRuns(timings({{"Bloom", 0.4}}, 0.0), timings({{"Bloom", 0.408}}, 0.0), strict), "Bloom").verdict, "slower");
 }
 

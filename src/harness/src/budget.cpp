@@ -27,6 +27,22 @@ BudgetLine judge(std::string pass, double budgetMs, double tolerance, std::optio
   return line;
 }
 
+// The measured median for a budget entry: the pass of that name, else the sum over passes named
+// "<name> <anything>" (a feature split into several passes).
+std::pair<std::optional<double>, std::size_t> measuredFor(const std::string& name, const std::map<std::string, double>& passes) {
+  if (const auto it = passes.find(name); it != passes.end()) return {it->second, 0};
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (const auto& [pass, ms] : passes) {
+    if (pass.size() > name.size() + 1 && pass.starts_with(name) && pass[name.size()] == ' ') {
+      sum += ms;
+      ++count;
+    }
+  }
+  if (count == 0) return {std::nullopt, 0};
+  return {sum, count};
+}
+
 }  // namespace
 
 Budget loadBudget(const std::filesystem::path& path) {
@@ -72,9 +88,9 @@ BudgetResult checkBudget(const Budget& budget, const MeasuredMedians& measured, 
   result.file = budget.file;
   result.tolerance = tolerance >= 0.0 ? tolerance : budget.tolerance;
   for (const auto& [pass, ms] : budget.passesMs) {
-    const auto it = measured.passMs.find(pass);
-    result.lines.push_back(judge(pass, ms, result.tolerance,
-                                 it == measured.passMs.end() ? std::nullopt : std::optional<double>(it->second)));
+    const auto [median, summed] = measuredFor(pass, measured.passMs);
+    result.lines.push_back(judge(pass, ms, result.tolerance, median));
+    result.lines.back().summedPasses = summed;
   }
   if (budget.frameMs) result.lines.push_back(judge("(frame)", *budget.frameMs, result.tolerance, measured.frameMs));
 
@@ -97,6 +113,7 @@ nlohmann::json toJson(const BudgetResult& result) {
     nlohmann::json entry{{"pass", line.pass}, {"budget_ms", line.budgetMs}, {"limit_ms", line.limitMs},
                          {"measured_ms", line.measuredMs ? nlohmann::json(*line.measuredMs) : nlohmann::json(nullptr)},
                          {"status", line.status}};
+    if (line.summedPasses > 0) entry["summed_passes"] = line.summedPasses;
     if (line.measuredMs) {
       entry["over_ms"] = line.overMs();
       entry["over_percent"] = line.overPercent();

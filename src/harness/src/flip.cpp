@@ -311,9 +311,17 @@ void combineRow(const RowResult& ref, const RowResult& test, uint32_t width, flo
   errorRow(ref, test, s, width, cmax, out);
 }
 
-FlipMap flipFromSources(const LinearSource& reference, const LinearSource& test, uint32_t width, uint32_t height, double ppd) {
+// Planes reused across HDR-FLIP's exposures: allocating 14 fresh full-size planes per exposure
+// cost more in page faults than some of the filters.
+struct FlipWorkspace {
+  FilteredPlanes reference, test;
+};
+
+FlipMap flipFromSources(const LinearSource& reference, const LinearSource& test, uint32_t width, uint32_t height, double ppd,
+                        FlipWorkspace& workspace) {
   const Kernels kernels = makeKernels(ppd);
-  FilteredPlanes ref, tst;
+  FilteredPlanes& ref = workspace.reference;
+  FilteredPlanes& tst = workspace.test;
   horizontalPasses(reference, width, height, kernels, ref);
   horizontalPasses(test, width, height, kernels, tst);
   FlipMap map{width, height, std::vector<float>(static_cast<std::size_t>(width) * height)};
@@ -414,7 +422,9 @@ double defaultPixelsPerDegree() { return 0.7 * 3840.0 / 0.7 * kPi / 180.0; }
 
 FlipMap ldrFlip(const Image& reference, const Image& test, double pixelsPerDegree) {
   requireSameSize(reference, test);
-  return flipFromSources(displaySource(reference), displaySource(test), reference.width, reference.height, pixelsPerDegree);
+  FlipWorkspace workspace;
+  return flipFromSources(displaySource(reference), displaySource(test), reference.width, reference.height, pixelsPerDegree,
+                         workspace);
 }
 
 float acesToneMap(float value, double exposure) {
@@ -454,6 +464,7 @@ HdrFlipResult hdrFlip(const Image& reference, const Image& test, double pixelsPe
   result.stopExposure = range.stop;
   result.exposures = range.count;
   const double step = (range.stop - range.start) / std::max(range.count - 1, 1);
+  FlipWorkspace workspace;
   for (int i = 0; i < range.count; ++i) {
     const double exposure = range.start + i * step;
     const double scaleFactor = std::exp2(exposure);
@@ -470,7 +481,8 @@ HdrFlipResult hdrFlip(const Image& reference, const Image& test, double pixelsPe
         }
       };
     };
-    FlipMap map = flipFromSources(toneMapped(reference), toneMapped(test), reference.width, reference.height, pixelsPerDegree);
+    FlipMap map = flipFromSources(toneMapped(reference), toneMapped(test), reference.width, reference.height, pixelsPerDegree,
+                                  workspace);
     if (i == 0) {
       result.map = std::move(map);
     } else {

@@ -10,6 +10,8 @@ namespace {
 
 // out[x] = sum over taps of w * rows[tap][x], folding mirrored taps for (anti)symmetric kernels.
 // rows[i] points at the input row for tap i (horizontal: shifted views of one padded row).
+// Tap-outer, pixel-inner: every inner loop is a contiguous multiply-add that vectorises; the output
+// row (<= one image row) stays in L1. (A register-blocked variant measured slower with GCC 12.)
 FGB_VECTOR_CLONES
 void accumulate(const float* const* rows, const float* taps, int radius, int symmetry, uint32_t width, float* out) {
   const auto n = static_cast<std::size_t>(width);

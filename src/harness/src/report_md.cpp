@@ -13,6 +13,7 @@ std::string budgetCell(const RunResult& run, const std::string& pass) {
     if (line.pass != pass) continue;
     if (line.status == "missing") return fmt::format("{:.3f} (not measured)", line.budgetMs);
     if (line.status == "over") return fmt::format("{:.3f} **over by {:+.3f} ms ({:+.0f}%)**", line.budgetMs, line.overMs(), line.overPercent());
+    if (line.summedPasses > 0) return fmt::format("{:.3f} ok (sum of {} passes)", line.budgetMs, line.summedPasses);
     return fmt::format("{:.3f} ok", line.budgetMs);
   }
   return "–";
@@ -46,8 +47,9 @@ std::string budgetSection(const RunResult& run) {
     if (line->status == "missing") {
       out += fmt::format("- {}: budget {:.3f} ms, not measured (pass absent or culled)\n", line->pass, line->budgetMs);
     } else {
-      out += fmt::format("- {}: {:.4f} ms against {:.3f} ms, over by {:.4f} ms ({:+.1f}%)\n", line->pass, *line->measuredMs,
-                         line->budgetMs, line->overMs(), line->overPercent());
+      out += fmt::format("- {}: {:.4f} ms against {:.3f} ms, over by {:.4f} ms ({:+.1f}%){}\n", line->pass, *line->measuredMs,
+                         line->budgetMs, line->overMs(), line->overPercent(),
+                         line->summedPasses ? fmt::format(" (sum of {} passes)", line->summedPasses) : "");
     }
   }
   for (const auto& w : b.warnings) out += "- note: " + w + "\n";

@@ -31,6 +31,7 @@ struct BudgetLine {
   double limitMs = 0.0;  // budget * (1 + tolerance)
   std::optional<double> measuredMs;  // median; empty when the pass was not measured (absent or culled)
   std::string status;  // "ok" | "over" | "missing"
+  std::size_t summedPasses = 0;  // > 0: no pass has the budget's name; the sum of "<name> ..." passes
   double overMs() const { return measuredMs ? *measuredMs - budgetMs : 0.0; }
   double overPercent() const { return measuredMs && budgetMs > 0 ? (*measuredMs / budgetMs - 1.0) * 100.0 : 0.0; }
 };
@@ -51,8 +52,10 @@ struct MeasuredMedians {
   uint32_t width = 0, height = 0, msaa = 0;
 };
 
-// tolerance < 0 keeps the budget file's tolerance. A pass fails when its median exceeds the limit
-// or when it was not measured; the verdict is "fail" if any line fails.
+// tolerance < 0 keeps the budget file's tolerance. A budget names a pass, or a group of passes the
+// renderer splits it into ("Bloom" = "Bloom Downsample 1" + ... when no pass is called "Bloom"):
+// then the sum of their medians is checked. A line fails when over the limit or not measured; the
+// verdict is "fail" if any line fails.
 BudgetResult checkBudget(const Budget& budget, const MeasuredMedians& measured, double tolerance = -1.0);
 
 // The contract's timings.json "budget" object.

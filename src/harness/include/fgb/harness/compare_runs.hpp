@@ -17,7 +17,7 @@ namespace fgb::harness {
 struct CompareRunsOptions {
   double alpha = 0.01;       // one-sided significance level
   double minEffect = 0.05;   // relative change of the median that matters (5%)
-  double minAbsMs = 0.001;   // and in absolute terms (below timer resolution nothing matters)
+  double minAbsMs = 0.01;    // and in absolute terms: smaller shifts are timer and scheduling noise
 };
 
 struct PassComparison {

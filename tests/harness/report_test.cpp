@@ -89,6 +89,26 @@ TEST(Report, TimelineUsesReportedStartTimes) {
   EXPECT_THAT(queueTimelineSvg(run), HasSubstr("back to back"));
 }
 
+TEST(Report, TimelineNamesBoxesTooNarrowForTheirLabelBesideThem) {
+  RunResult run = fakeRun();
+  run.passes[0].gpu.median = 0.001;  // Cull: a sliver in its lane
+  EXPECT_THAT(queueTimelineSvg(run), HasSubstr(R"(fill="#222" font-size="10" text-anchor="start">Cull</text>)"));
+}
+
+TEST(Report, HtmlLinksTheHeatMapOfEachFailingGoldenImage) {
+  RunResult run = fakeRun();
+  GoldenResult golden;
+  golden.file = "golden/x/lavapipe/default.json";
+  golden.verdict = "fail";
+  golden.images.push_back({"display", {}, {}});
+  golden.images.push_back({"hdr", {}, {"rmse 0.5 > 0.02"}});
+  run.golden = golden;
+  const std::string html = htmlReport(run);
+  EXPECT_THAT(html, HasSubstr(R"(<a href="golden-diff-hdr.png">)"));
+  EXPECT_THAT(html, Not(HasSubstr(R"(<a href="golden-diff.png">)")));  // the display image passed
+  EXPECT_THAT(html, HasSubstr(R"(<a href="frame.png">)"));
+}
+
 TEST(Report, DartMeasurementsForCdash) {
   const std::string dart = dartMeasurements(fakeRun());
   EXPECT_THAT(dart, HasSubstr(R"(<DartMeasurement name="gpu_ms Cull" type="numeric/double">)"));

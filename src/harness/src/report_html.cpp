@@ -1,4 +1,5 @@
 #include <fgb/harness/report.hpp>
+#include <fgb/harness/stats.hpp>
 
 #include <fmt/format.h>
 
@@ -50,17 +51,20 @@ std::string budgetHtml(const RunResult& run) {
 std::string goldenHtml(const RunResult& run) {
   if (!run.golden) return "<p class=\"note\">No golden compared.</p>\n";
   std::string out = fmt::format("<p>{}: {}</p>\n<table><tr><th>image</th><th>max abs</th><th>RMSE</th><th>PSNR dB</th>"
-                                "<th>share over</th><th>FLIP mean</th><th>FLIP p99</th><th>NaN/Inf</th><th>failures</th></tr>\n",
+                                "<th>share over</th><th>FLIP mean</th><th>FLIP p99</th><th>NaN/Inf</th><th>failures</th><th>heat map</th></tr>\n",
                                 escapeXml(run.golden->file), verdictSpan(run.golden->verdict));
   for (const auto& image : run.golden->images) {
     const auto& m = image.metrics;
     std::string failures;
     for (const auto& f : image.failures) failures += (failures.empty() ? "" : "; ") + f;
-    out += fmt::format("<tr><td>{}</td><td>{:.5f}</td><td>{:.5f}</td><td>{}</td><td>{:.4f}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
+    // checkGolden writes the heat map of each failing image next to this report (run_outputs.cpp).
+    const char* heatMap = image.kind == "hdr" ? "golden-diff-hdr.png" : "golden-diff.png";
+    const std::string heatMapCell = image.failures.empty() ? "–" : fmt::format(R"(<a href="{0}">{0}</a>)", heatMap);
+    out += fmt::format("<tr><td>{}</td><td>{:.5f}</td><td>{:.5f}</td><td>{}</td><td>{:.4f}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
                        image.kind, m.maxAbsError, m.rmse, std::isfinite(m.psnr) ? fmt::format("{:.2f}", m.psnr) : "∞",
                        m.shareOverThreshold, m.flip ? fmt::format("{:.5f}", m.flip->mean) : "–",
                        m.flip ? fmt::format("{:.5f}", m.flip->p99) : "–", m.nonFiniteReference + m.nonFiniteTest,
-                       escapeXml(failures.empty() ? "none" : failures));
+                       escapeXml(failures.empty() ? "none" : failures), heatMapCell);
   }
   return out + "</table>\n";
 }
@@ -71,16 +75,20 @@ std::string htmlReport(const RunResult& run) {
   std::string html = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n";
   html += fmt::format("<title>fgbench report: {}</title>\n<style>{}</style></head><body>\n", escapeXml(run.scene), kStyle);
   html += fmt::format("<h1>fgbench report: {}</h1>\n", escapeXml(run.scene));
-  html += fmt::format("<p>{} ({}), driver {}, Vulkan {}<br>{}x{}, MSAA {}, {} measured frames after {} warm-up; tool {}</p>\n",
+  html += fmt::format("<p>{} ({}), driver {}, Vulkan {}<br>{}×{}, MSAA: {}, {} measured frames after {} warm-up; tool {}</p>\n",
                       escapeXml(run.device.name), escapeXml(run.device.type), escapeXml(run.device.driver),
                       escapeXml(run.device.apiVersion), run.config.width, run.config.height, msaaLabel(run.config.msaa),
                       run.config.frames, run.config.warmup, escapeXml(run.toolVersion));
   html += "<p class=\"note\">" + escapeXml(timestampSourceNote(run.device)) + "</p>\n";
+  html += "<p>Last frame: <a href=\"frame.png\">frame.png</a> (tone-mapped) · <a href=\"frame.exr\">frame.exr</a> (linear HDR) · "
+          "frame graph <a href=\"graph.dot\">graph.dot</a>, <a href=\"graph-full.dot\">graph-full.dot</a></p>\n";
   html += "<h2>Passes against budget</h2>\n" + passBarsSvg(run);
   html += "<h2>Frame time series</h2>\n" + frameSeriesSvg(run);
   html += "<h2>Queue timeline</h2>\n" + queueTimelineSvg(run);
   html += "<h2>Timings (ms)</h2>\n<table><tr><th>pass</th><th>queue</th><th>median</th><th>p5</th><th>p95</th><th>mean</th>"
-          "<th>min</th><th>max</th><th>n</th><th></th></tr>\n" + passRows(run) + "</table>\n";
+          "<th>min</th><th>max</th><th>n</th><th>spread</th></tr>\n" + passRows(run) + "</table>\n";
+  html += fmt::format("<p class=\"note\">unstable: (p95 − p5) / median above {:g}; read such medians with care.</p>\n",
+                      kDefaultUnstableSpread);
   html += fmt::format("<p class=\"note\">Harness overhead around rendering: {:.3f} ms ({:.1f} µs per frame), apart from {:.3f} ms "
                       "inside the workload.</p>\n",
                       run.overhead.harnessMs, run.overhead.perFrameUs, run.overhead.workloadCallsMs);

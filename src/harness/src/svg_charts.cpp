@@ -5,8 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <optional>
 #include <map>
+#include <optional>
+#include <utility>
+#include <vector>
 
 namespace fgb::harness {
 namespace {
@@ -53,6 +55,22 @@ std::string axisTicks(double maxMs, double x0, double width, int top, int bottom
     out += fmt::format(R"(<line x1="{0:.1f}" y1="{1}" x2="{0:.1f}" y2="{2}" stroke="#ddd"/><text x="{0:.1f}" y="{3}" text-anchor="middle" fill="#555">{4:g}</text>)"
                        "\n",
                        x, top, bottom, bottom + 14, v);
+  }
+  return out;
+}
+
+// "ms …" caption followed by a colour key for the queues that appear in the run.
+std::string queueLegend(const RunResult& run, int x, int y, const std::string& caption) {
+  std::vector<std::string> queues;
+  for (const auto& p : run.passes) {
+    if (std::find(queues.begin(), queues.end(), p.queue) == queues.end()) queues.push_back(p.queue);
+  }
+  std::string out = fmt::format(R"(<text x="{}" y="{}" fill="#555">{}</text>)" "\n", x, y, escapeXml(caption));
+  double at = x + 6.2 * static_cast<double>(caption.size()) + 16;  // about 6 px per character at 12 px
+  for (const auto& q : queues) {
+    out += fmt::format(R"(<rect x="{0:.1f}" y="{1}" width="10" height="10" fill="{2}"/><text x="{3:.1f}" y="{4}" fill="#555">{5}</text>)" "\n",
+                       at, y - 9, queueColor(q), at + 13, y, escapeXml(q));
+    at += 13 + 7.0 * static_cast<double>(q.size()) + 12;
   }
   return out;
 }
@@ -105,13 +123,14 @@ std::string passBarsSvg(const RunResult& run) {
                          xOf(*budget), y - 2, y + 16, *budget);
     }
   }
-  svg += fmt::format(R"(<text x="{}" y="{}" fill="#555">ms (dashed: budget; red: over budget)</text>)" "\n", kLabelWidth,
-                     height - 2);
+  svg += queueLegend(run, 10, height - 2,
+                     run.budget ? "ms · bar: median, line: p5–p95 · dashed: budget, red: over budget"
+                                : "ms · bar: median, line: p5–p95");
   return svg + "</svg>\n";
 }
 
 std::string frameSeriesSvg(const RunResult& run) {
-  constexpr int kHeight = 220, kLeft = 50, kTop = 10, kBottom = 190;
+  constexpr int kHeight = 236, kLeft = 50, kTop = 22, kBottom = 198;
   const std::size_t n = std::max(run.frameGpuMs.size(), run.frameCpuMs.size());
   double maxMs = 0.0;
   for (double v : run.frameGpuMs) maxMs = std::max(maxMs, v);
@@ -125,11 +144,22 @@ std::string frameSeriesSvg(const RunResult& run) {
     svg += fmt::format(R"(<line x1="{0}" y1="{1:.1f}" x2="{2}" y2="{1:.1f}" stroke="#ddd"/><text x="{3}" y="{4:.1f}" text-anchor="end" fill="#555">{5:g}</text>)" "\n",
                        kLeft, y, kChartWidth - 20, kLeft - 4, y + 4, v);
   }
+  auto xOfFrame = [&](std::size_t i) {
+    return kLeft + (n > 1 ? static_cast<double>(i) / static_cast<double>(n - 1) : 0.5) * plotWidth;
+  };
+  if (n > 0) {  // frame numbers (1-based) under the plot
+    const auto frameStep = static_cast<std::size_t>(std::max(1.0, niceStep(static_cast<double>(n))));
+    for (std::size_t frame = 1; frame <= n; frame = frame == 1 && frameStep > 1 ? frameStep : frame + frameStep) {
+      svg += fmt::format(R"(<line x1="{0:.1f}" y1="{1}" x2="{0:.1f}" y2="{2}" stroke="#999"/><text x="{0:.1f}" y="{3}" text-anchor="middle" fill="#555">{4}</text>)" "\n",
+                         xOfFrame(frame - 1), kBottom, kBottom + 4, kBottom + 15, frame);
+    }
+  }
+  svg += fmt::format(R"(<text x="{}" y="{}" text-anchor="end" fill="#555">ms</text>)" "\n", kLeft - 4, kTop - 10);
   auto polyline = [&](const std::vector<double>& series, const char* color, const char* name) {
     if (series.empty()) return std::string();
     std::string points;
     for (std::size_t i = 0; i < series.size(); ++i) {
-      const double x = kLeft + (n > 1 ? static_cast<double>(i) / static_cast<double>(n - 1) : 0.5) * plotWidth;
+      const double x = xOfFrame(i);
       const double y = kBottom - series[i] / maxMs * (kBottom - kTop);
       points += fmt::format("{:.1f},{:.1f} ", x, y);
     }
@@ -138,8 +168,8 @@ std::string frameSeriesSvg(const RunResult& run) {
   };
   svg += polyline(run.frameGpuMs, "#3f6fb5", "GPU frame time");
   svg += polyline(run.frameCpuMs, "#e08a2e", "CPU frame time");
-  svg += fmt::format(R"(<text x="{}" y="{}" fill="#3f6fb5">GPU</text><text x="{}" y="{}" fill="#e08a2e">CPU</text><text x="{}" y="{}" fill="#555">frame 1 … {}</text>)" "\n",
-                     kLeft, kHeight - 8, kLeft + 40, kHeight - 8, kLeft + 90, kHeight - 8, n);
+  svg += fmt::format(R"(<text x="{}" y="{}" fill="#3f6fb5">— GPU frame</text><text x="{}" y="{}" fill="#e08a2e">— CPU frame (record + submit + wait)</text><text x="{}" y="{}" fill="#555">measured frame 1 … {}</text>)" "\n",
+                     kLeft, kHeight - 2, kLeft + 90, kHeight - 2, kLeft + 330, kHeight - 2, n);
   return svg + "</svg>\n";
 }
 
@@ -175,6 +205,7 @@ std::string queueTimelineSvg(const RunResult& run) {
     svg += fmt::format(R"(<text x="{}" y="{}" text-anchor="end">{}</text>)" "\n", kLeft - 6, 10 + q * kLane + 18,
                        escapeXml(queues[q]));
   }
+  std::map<std::string, std::vector<std::pair<double, double>>> labelled;  // x extents of outside labels, per lane
   for (const auto& b : boxes) {
     const auto lane = static_cast<std::size_t>(std::find(queues.begin(), queues.end(), b.queue) - queues.begin());
     const double x = kLeft + b.start / end * plotWidth;
@@ -184,6 +215,31 @@ std::string queueTimelineSvg(const RunResult& run) {
     if (w > 40) {
       svg += fmt::format(R"(<text x="{:.1f}" y="{}" fill="#fff" font-size="10">{}</text>)" "\n", x + 3, 10 + lane * kLane + 17,
                          escapeXml(b.name.substr(0, static_cast<std::size_t>(w / 6))));
+    } else {
+      // Too narrow for its name: write it in dark text after the box, or before it, on whichever
+      // side has room up to the neighbouring box in the lane (and inside the chart).
+      double after = kChartWidth - 4 - (x + w), before = x - kLeft;
+      for (const auto& other : boxes) {
+        if (other.queue != b.queue || &other == &b) continue;
+        const double otherX = kLeft + other.start / end * plotWidth;
+        const double otherEnd = otherX + std::max(1.0, other.duration / end * plotWidth);
+        if (other.start > b.start) after = std::min(after, otherX - (x + w));
+        else before = std::min(before, x - otherEnd);
+      }
+      constexpr double kCharWidth = 5.6;  // at font-size 10
+      const auto fits = [&](double room) { return static_cast<std::size_t>(std::max(0.0, (room - 6) / kCharWidth)); };
+      const bool right = fits(after) >= b.name.size() || fits(after) >= fits(before);
+      const std::size_t chars = right ? fits(after) : fits(before);
+      const std::string label = b.name.size() <= chars ? b.name : b.name.substr(0, chars > 0 ? chars - 1 : 0) + "…";
+      const double width = kCharWidth * static_cast<double>(std::min(chars, b.name.size()));
+      const double from = right ? x + w + 3 : x - 3 - width, to = from + width;
+      auto& used = labelled[b.queue];  // one label may not cover another in the same lane
+      const bool clear = std::none_of(used.begin(), used.end(), [&](const auto& r) { return from < r.second && r.first < to; });
+      if (chars >= 4 && clear) {
+        used.emplace_back(from, to);
+        svg += fmt::format(R"(<text x="{:.1f}" y="{}" fill="#222" font-size="10" text-anchor="{}">{}</text>)" "\n",
+                           right ? x + w + 3 : x - 3, 10 + lane * kLane + 17, right ? "start" : "end", escapeXml(label));
+      }
     }
   }
   svg += fmt::format(R"(<text x="{}" y="{}" fill="#555">ms{}</text>)" "\n", kLeft, height - 2,

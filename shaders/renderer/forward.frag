@@ -43,10 +43,10 @@ vec3 pointLights(FrameConstants frame, Surface s, out uint considered) {
   }
   float viewDepth = -(frame.view * vec4(inWorldPosition, 1.0)).z;
   uint cluster = clusterIndex(frame, gl_FragCoord.xy, viewDepth);
-  considered = min(fgbUints[pc.clusterCounts].values[cluster], frame.counts.z);
+  considered = min(fgbUintsRead[pc.clusterCounts].values[cluster], frame.counts.z);
   uint base = cluster * frame.counts.z;
   for (uint i = 0; i < considered; ++i) {
-    uint lightIndex = fgbUints[pc.clusterIndices].values[base + i];
+    uint lightIndex = fgbUintsRead[pc.clusterIndices].values[base + i];
     sum += pointLight(s, fgbLights[pc.lights].lights[lightIndex]);
   }
   return sum;

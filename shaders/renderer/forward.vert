@@ -19,7 +19,7 @@ layout(location = 4) flat out uint outMaterial;
 invariant gl_Position;
 
 void main() {
-  uint instanceId = fgbUints[pc.visible].values[gl_InstanceIndex];
+  uint instanceId = fgbUintsRead[pc.visible].values[gl_InstanceIndex];
   Instance inst = fgbInstances[pc.instances].instances[instanceId];
   vec4 world = inst.model * vec4(inPosition, 1.0);
   outWorldPosition = world.xyz;

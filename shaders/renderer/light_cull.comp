@@ -34,8 +34,8 @@ void main() {
   if (gl_LocalInvocationIndex == 0u) sharedCount = 0u;
   barrier();  // workgroup-local: orders the reset before every append of this workgroup
 
-  vec3 boxMin = fgbVec4s[pc.bounds].values[2u * cluster].xyz;
-  vec3 boxMax = fgbVec4s[pc.bounds].values[2u * cluster + 1u].xyz;
+  vec3 boxMin = fgbVec4sRead[pc.bounds].values[2u * cluster].xyz;
+  vec3 boxMax = fgbVec4sRead[pc.bounds].values[2u * cluster + 1u].xyz;
   for (uint i = gl_LocalInvocationIndex; i < frame.counts.x; i += GROUP_SIZE) {
     PointLight light = fgbLights[pc.lights].lights[i];
     vec3 center = (frame.view * vec4(light.positionRadius.xyz, 1.0)).xyz;

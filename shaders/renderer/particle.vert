@@ -16,7 +16,7 @@ layout(location = 1) out vec2 outCorner;
 
 void main() {
   FrameConstants frame = fgbFrames[pc.frame].frame;
-  Particle p = fgbParticles[pc.particles].particles[fgbUints[pc.aliveList].values[gl_InstanceIndex]];
+  Particle p = fgbParticlesRead[pc.particles].particles[fgbUintsRead[pc.aliveList].values[gl_InstanceIndex]];
   Emitter e = fgbEmitters[pc.emitters].emitters[p.emitter];
   float t = clamp(p.positionAge.w / max(p.velocityLifetime.w, 1e-4), 0.0, 1.0);
   float size = mix(e.speedSize.z, e.speedSize.w, t);

@@ -39,6 +39,19 @@ void addCommonOptions(CLI::App& command, CommonOptions& options) {
                    "Enable Vulkan validation (+ synchronization validation); any message fails with exit 3");
 }
 
+render::WorkloadConfig workloadConfig(const std::string& scene, const CommonOptions& common,
+                                      const std::map<std::string, std::string>& knobs) {
+  render::WorkloadConfig config;
+  config.scenePath = scene;
+  config.device = common.device;
+  config.width = common.width;
+  config.height = common.height;
+  config.msaa = common.msaa;
+  config.validation = common.validation;
+  config.knobs = knobs;
+  return config;
+}
+
 }  // namespace fgb::app
 
 int main(int argc, char** argv) {

@@ -5,8 +5,10 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <fgb/renderer/workload.hpp>
 
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -30,6 +32,10 @@ struct CommonOptions {
 
 // Adds the common rendering options to a subcommand, bound to `options`.
 void addCommonOptions(CLI::App& command, CommonOptions& options);
+
+// The workload a rendering verb opens: SCENE plus the common options and the given knobs.
+render::WorkloadConfig workloadConfig(const std::string& scene, const CommonOptions& common,
+                                      const std::map<std::string, std::string>& knobs);
 
 using VerbAction = std::function<int()>;
 

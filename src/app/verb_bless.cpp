@@ -118,14 +118,7 @@ int blessVerb(const CLI::App& command, BlessOptions o) {
   if (!command.count("--height")) o.common.height = kBlessHeight;
   if (!command.count("--frames")) o.common.frames = kBlessFrames;
   if (!command.count("--warmup")) o.common.warmup = kBlessWarmup;
-  render::WorkloadConfig config;
-  config.scenePath = o.scene;
-  config.device = o.common.device;
-  config.width = o.common.width;
-  config.height = o.common.height;
-  config.msaa = o.common.msaa;
-  config.validation = o.common.validation;
-  config.knobs = harness::parseKnobs(o.common.sets);
+  const render::WorkloadConfig config = workloadConfig(o.scene, o.common, harness::parseKnobs(o.common.sets));
 
   std::vector<Render> renders;
   for (uint32_t i = 0; i < o.renders; ++i) renders.push_back(renderOnce(config, o, i));

@@ -3,6 +3,7 @@
 
 #include <fgb/core/atomic_file.hpp>
 #include <fgb/core/error.hpp>
+#include <fgb/harness/run_loop.hpp>
 #include <fgb/renderer/workload.hpp>
 
 #include <iostream>
@@ -18,26 +19,8 @@ struct DotOptions {
   CommonOptions common;
 };
 
-std::map<std::string, std::string> parseKnobs(const std::vector<std::string>& sets) {
-  std::map<std::string, std::string> knobs;
-  for (const auto& set : sets) {
-    const auto equals = set.find('=');
-    if (equals == std::string::npos || equals == 0) throw InputError("--set " + set + ": expected key=value");
-    knobs[set.substr(0, equals)] = set.substr(equals + 1);
-  }
-  return knobs;
-}
-
 int dotVerb(const DotOptions& o) {
-  render::WorkloadConfig config;
-  config.scenePath = o.scene;
-  config.device = o.common.device;
-  config.width = o.common.width;
-  config.height = o.common.height;
-  config.msaa = o.common.msaa;
-  config.validation = o.common.validation;
-  config.knobs = parseKnobs(o.common.sets);
-  const auto workload = render::openWorkload(config);
+  const auto workload = render::openWorkload(workloadConfig(o.scene, o.common, harness::parseKnobs(o.common.sets)));
   const std::string dot =
       workload->graphviz(o.detail == "full" ? render::GraphDetail::Full : render::GraphDetail::Brief);
   if (o.output.empty() || o.output == "-") {

@@ -44,19 +44,6 @@ void adoptGoldenConfig(const harness::Golden& golden, const CLI::App& command, C
   for (const auto& [key, value] : golden.config.knobs) knobs.try_emplace(key, value);  // --set wins
 }
 
-render::WorkloadConfig workloadConfig(const std::string& scene, const CommonOptions& common,
-                                      const std::map<std::string, std::string>& knobs) {
-  render::WorkloadConfig config;
-  config.scenePath = scene;
-  config.device = common.device;
-  config.width = common.width;
-  config.height = common.height;
-  config.msaa = common.msaa;
-  config.validation = common.validation;
-  config.knobs = knobs;
-  return config;
-}
-
 harness::RunArtifacts render(render::Workload& workload, const RunVerbOptions& o,
                              const std::map<std::string, std::string>& knobs) {
   harness::ProgressBar bar(std::cerr, "rendering", !o.common.quiet && harness::ProgressBar::stderrIsTerminal());

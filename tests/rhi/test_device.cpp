@@ -19,6 +19,9 @@ TEST(Device, CreatesWithValidationAndDescribesItself) {
   EXPECT_FALSE(adapter.queueFamilies.empty());
   EXPECT_GT(adapter.timestampPeriodNs, 0.0);
   EXPECT_GE(device->maxSamples(), 1u);
+  EXPECT_TRUE(device->sampleCounts() & 1u);
+  EXPECT_TRUE(device->sampleCounts() & device->maxSamples());
+  EXPECT_EQ(device->sampleCounts() & ~0xfu, 0u);
   if (adapter.type == "cpu") {
     EXPECT_TRUE(adapter.hostTimestamps);
   }

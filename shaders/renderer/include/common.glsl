@@ -62,13 +62,16 @@ struct DrawCommand {
   uint firstInstance;
 };
 
-FGB_STORAGE_BUFFER(FrameBlock, fgbFrames, readonly) { FrameConstants frame; } fgbFrames[FGB_MAX_STORAGE_BUFFERS];
-FGB_STORAGE_BUFFER(InstanceBlock, fgbInstances, readonly) { Instance instances[]; } fgbInstances[FGB_MAX_STORAGE_BUFFERS];
-FGB_STORAGE_BUFFER(MaterialBlock, fgbMaterials, readonly) { Material materials[]; } fgbMaterials[FGB_MAX_STORAGE_BUFFERS];
-FGB_STORAGE_BUFFER(LightBlock, fgbLights, readonly) { PointLight lights[]; } fgbLights[FGB_MAX_STORAGE_BUFFERS];
+FGB_READONLY_STORAGE_BUFFER(FrameBlock, fgbFrames) { FrameConstants frame; } fgbFrames[FGB_MAX_STORAGE_BUFFERS];
+FGB_READONLY_STORAGE_BUFFER(InstanceBlock, fgbInstances) { Instance instances[]; } fgbInstances[FGB_MAX_STORAGE_BUFFERS];
+FGB_READONLY_STORAGE_BUFFER(MaterialBlock, fgbMaterials) { Material materials[]; } fgbMaterials[FGB_MAX_STORAGE_BUFFERS];
+FGB_READONLY_STORAGE_BUFFER(LightBlock, fgbLights) { PointLight lights[]; } fgbLights[FGB_MAX_STORAGE_BUFFERS];
 FGB_STORAGE_BUFFER(CommandBlock, fgbCommands, ) { DrawCommand commands[]; } fgbCommands[FGB_MAX_STORAGE_BUFFERS];
 FGB_STORAGE_BUFFER(UintBlock, fgbUints, ) { uint values[]; } fgbUints[FGB_MAX_STORAGE_BUFFERS];
 FGB_STORAGE_BUFFER(Vec4Block, fgbVec4s, ) { vec4 values[]; } fgbVec4s[FGB_MAX_STORAGE_BUFFERS];
+// Read-only views of the same buffers, for shaders that do not write them (see bindless.glsl).
+FGB_READONLY_STORAGE_BUFFER(UintReadBlock, fgbUintsRead) { uint values[]; } fgbUintsRead[FGB_MAX_STORAGE_BUFFERS];
+FGB_READONLY_STORAGE_BUFFER(Vec4ReadBlock, fgbVec4sRead) { vec4 values[]; } fgbVec4sRead[FGB_MAX_STORAGE_BUFFERS];
 
 // Texture lookups whose index may differ between invocations of one draw (per-instance materials).
 vec4 sampleMaterialTexture(int textureIndex, uint samplerIndex, vec2 uv) {

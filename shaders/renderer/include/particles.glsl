@@ -24,7 +24,8 @@ struct Emitter {
 };
 
 FGB_STORAGE_BUFFER(ParticleBlock, fgbParticles, ) { Particle particles[]; } fgbParticles[FGB_MAX_STORAGE_BUFFERS];
-FGB_STORAGE_BUFFER(EmitterBlock, fgbEmitters, readonly) { Emitter emitters[]; } fgbEmitters[FGB_MAX_STORAGE_BUFFERS];
+FGB_READONLY_STORAGE_BUFFER(ParticleReadBlock, fgbParticlesRead) { Particle particles[]; } fgbParticlesRead[FGB_MAX_STORAGE_BUFFERS];
+FGB_READONLY_STORAGE_BUFFER(EmitterBlock, fgbEmitters) { Emitter emitters[]; } fgbEmitters[FGB_MAX_STORAGE_BUFFERS];
 
 // PCG hash: deterministic per (seed, frame, index).
 uint pcgHash(uint v) {

@@ -49,7 +49,7 @@ constexpr graph::ImportState kHostReadState{graph::kStageHost, graph::kAccessHos
 
 }  // namespace
 
-ProofSettings proofSettings(const WorkloadConfig& config, uint32_t deviceMaxSamples) {
+ProofSettings proofSettings(const WorkloadConfig& config, uint32_t deviceSampleCounts) {
   ProofSettings s;
   if (config.width) s.width = config.width;
   if (config.height) s.height = config.height;
@@ -57,9 +57,10 @@ ProofSettings proofSettings(const WorkloadConfig& config, uint32_t deviceMaxSamp
   if (s.msaa != 1 && s.msaa != 2 && s.msaa != 4 && s.msaa != 8) {
     throw InputError("--msaa " + std::to_string(s.msaa) + ": expected 1, 2, 4 or 8");
   }
-  if (s.msaa > deviceMaxSamples) {
-    std::fprintf(stderr, "fgbench: warning: --msaa %u not supported by the device; using %u\n", s.msaa, deviceMaxSamples);
-    s.msaa = deviceMaxSamples;
+  // Clamped to the nearest supported count not above the request (lavapipe: {1, 4}).
+  if (const uint32_t supported = rhi::clampSampleCount(s.msaa, deviceSampleCounts); supported != s.msaa) {
+    std::fprintf(stderr, "fgbench: warning: --msaa %u not supported by the device; using %u\n", s.msaa, supported);
+    s.msaa = supported;
   }
   for (const auto& [key, value] : config.knobs) {
     if (key == "exposure") s.exposure = parseKnob<float>(key, value);

@@ -20,7 +20,7 @@ class ProofWorkload final : public Workload {
   explicit ProofWorkload(const WorkloadConfig& config) {
     device_ = vulkan::createDevice({.selector = config.device, .validation = config.validation});
     description_ = describeDevice(device_->adapter());
-    settings_ = proofSettings(config, device_->maxSamples());
+    settings_ = proofSettings(config, device_->sampleCounts());
     resources_ = createProofResources(*device_, settings_);
     graph_ = device_->compile(buildProofGraph(settings_, resources_), {.name = "builtin:proof", .queues = settings_.queues});
   }

@@ -33,7 +33,7 @@ struct ProofResources {
   rhi::BufferId hdrReadback, displayReadback;
 };
 
-ProofSettings proofSettings(const WorkloadConfig& config, uint32_t deviceMaxSamples);
+ProofSettings proofSettings(const WorkloadConfig& config, uint32_t deviceSampleCounts);  // rhi::Device::sampleCounts()
 ProofResources createProofResources(rhi::Device& device, const ProofSettings& settings);
 graph::FrameGraph buildProofGraph(const ProofSettings& settings, const ProofResources& resources);
 

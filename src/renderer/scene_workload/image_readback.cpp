@@ -38,7 +38,9 @@ ImageReadback::ImageReadback(rhi::Device& device, rhi::TextureId texture, graph:
   auto source = graph.importTexture("frame image", {format, extent, 1, 1, 1, {}, 0}, rhi::external(texture),
                                     finalState, finalState);
   auto target = graph.importBuffer("image readback", {size, {}}, rhi::external(buffer_), hostState, hostState);
-  auto node = graph.addNode("Image Readback", graph::NodeType::Transfer);
+  // On the graphics queue, where the frame graph leaves the image: a transfer-queue copy would
+  // acquire it from graphics with no matching release (the frame graph keeps it on graphics).
+  auto node = graph.addNode("Image Readback", graph::NodeType::Transfer, graph::QueueClass::Graphics);
   node.read(source, graph::Access::TransferSrc);
   target = node.write(target, graph::Access::TransferDst);
   node.sideEffect();

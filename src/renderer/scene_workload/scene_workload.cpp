@@ -44,7 +44,7 @@ uint32_t jsonCount(const nlohmann::json& section, const char* key, uint32_t fall
 }
 
 features::RenderSettings makeSettings(const WorkloadConfig& config, const scene::SceneDescription& description,
-                                      uint32_t maxSamples) {
+                                      uint32_t sampleCounts) {
   const nlohmann::json render = description.renderer.is_object() && description.renderer.contains("render")
                                     ? description.renderer["render"]
                                     : nlohmann::json();
@@ -54,9 +54,10 @@ features::RenderSettings makeSettings(const WorkloadConfig& config, const scene:
   uint32_t msaa = config.msaa ? config.msaa : jsonCount(render, "msaa", 1);
   if (msaa != 1 && msaa != 2 && msaa != 4 && msaa != 8)
     throw InputError("--msaa " + std::to_string(msaa) + ": expected 1|2|4|8");
-  if (msaa > maxSamples) {
-    std::cerr << "warning: --msaa " << msaa << " clamped to " << maxSamples << " (device limit)\n";
-    msaa = maxSamples;
+  // Clamped to the nearest supported count not above the request (lavapipe: {1, 4}).
+  if (const uint32_t supported = rhi::clampSampleCount(msaa, sampleCounts); supported != msaa) {
+    std::cerr << "warning: --msaa " << msaa << " clamped to " << supported << " (not supported by the device)\n";
+    msaa = supported;
   }
   settings.msaa = msaa;
   features::applyRendererKnobs(settings, config.knobs);
@@ -82,7 +83,7 @@ class SceneWorkload final : public Workload {
     deviceOptions.validation = config.validation;
     device_ = vulkan::createDevice(deviceOptions);
     description_ = describe(device_->adapter());
-    settings_ = makeSettings(config, loaded_.description, device_->maxSamples());
+    settings_ = makeSettings(config, loaded_.description, device_->sampleCounts());
 
     gpu_ = uploadScene(*device_, loaded_.scene, settings_);
     createFeatures();
@@ -131,6 +132,8 @@ class SceneWorkload final : public Workload {
   }
 
   uint64_t validationMessages() const override { return device_->validationMessages(); }
+
+  [[nodiscard]] const graph::FrameGraph& declaration() const { return graph_->declaration(); }
 
  private:
   void createFeatures() {
@@ -222,6 +225,11 @@ class SceneWorkload final : public Workload {
 
 std::unique_ptr<Workload> openSceneWorkload(const WorkloadConfig& config) {
   return std::make_unique<SceneWorkload>(config);
+}
+
+const graph::FrameGraph* frameGraphOf(const Workload& workload) {
+  const auto* scene = dynamic_cast<const SceneWorkload*>(&workload);
+  return scene ? &scene->declaration() : nullptr;
 }
 
 }  // namespace fgb::render

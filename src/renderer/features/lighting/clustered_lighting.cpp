@@ -28,10 +28,11 @@ struct CullPush {
 
 constexpr uint32_t kMaxCapacity = 1024;  // MAX_LIGHTS_PER_CLUSTER in light_cull.comp
 
-// The bounds buffer is written by compute and read by compute, frame after frame.
+// The bounds buffer is written by compute and read by compute, frame after frame: it stays on the
+// compute queue (no ownership transfer in or out of the graph).
 constexpr graph::ImportState kBoundsState{graph::kStageComputeShader,
                                           graph::kAccessShaderStorageRead | graph::kAccessShaderStorageWrite,
-                                          graph::Layout::Undefined, graph::QueueClass::Graphics};
+                                          graph::Layout::Undefined, graph::QueueClass::Compute};
 
 }  // namespace
 

@@ -169,7 +169,11 @@ void MeshFeature::declareDraw(graph::FrameGraph& graph, Blackboard& board, DrawC
 
   auto node = addForwardPass(graph, board.get<FrameTargets>(), nodeName, !transparent);
   node.read(commands, Access::Indirect);
-  node.read(visible, Access::StorageRead, kStageVertexShader);
+  // Storage buffers are visible per descriptor binding, not per stage: both forward shaders read
+  // through the read-only binding, so every buffer this node reads is declared for both stages
+  // (synchronization validation checks each read against the stages the barriers cover).
+  constexpr graph::StageMask kForwardStages = kStageVertexShader | kStageFragmentShader;
+  node.read(visible, Access::StorageRead, kForwardStages);
   ForwardPush push{};
   push.frame = device_->storageBufferIndex(scene.frameConstants);
   push.instances = device_->storageBufferIndex(scene.instances);
@@ -181,8 +185,8 @@ void MeshFeature::declareDraw(graph::FrameGraph& graph, Blackboard& board, DrawC
   ClusteredLights clusters;
   if (const auto* published = board.find<ClusteredLights>()) {
     clusters = *published;
-    node.read(clusters.counts, Access::StorageRead, kStageFragmentShader);
-    node.read(clusters.indices, Access::StorageRead, kStageFragmentShader);
+    node.read(clusters.counts, Access::StorageRead, kForwardStages);
+    node.read(clusters.indices, Access::StorageRead, kForwardStages);
   }
   const rhi::PipelineId pipeline = transparent ? pipelines_.transparent : pipelines_.opaque;
   node.setJob([push, pipeline, clusters, commands, visible, firstGroup, groupCount, &scene](graph::JobContext& context) mutable {

@@ -49,10 +49,21 @@ struct RenderPush {
 
 constexpr uint64_t kArgsBytes = sizeof(DrawIndexedCommand);
 
-// Pool state persists across frames: written and read by compute, frame after frame.
-constexpr graph::ImportState kPoolState{graph::kStageComputeShader,
+// Particle state persists across frames. Import states name the queue class of the use that
+// comes before (initial) and after (final) the graph, so that repeated executions hand ownership
+// over consistently where compute has its own queue family:
+// - the free list is used by compute only: it stays on compute (uploaded there);
+// - the pool is updated by compute, then read by the graphics draw: each execution acquires it
+//   from graphics at its first compute use and releases it back to compute after the draw
+//   (releaseBuffer() at creation supplies the release the first execution acquires).
+constexpr graph::ImportState kFreeListState{graph::kStageComputeShader,
+                                            graph::kAccessShaderStorageRead | graph::kAccessShaderStorageWrite,
+                                            graph::Layout::Undefined, graph::QueueClass::Compute};
+constexpr graph::ImportState kPoolInitial{graph::kStageVertexShader, graph::kAccessShaderStorageRead,
+                                          graph::Layout::Undefined, graph::QueueClass::Graphics};
+constexpr graph::ImportState kPoolFinal{graph::kStageComputeShader,
                                         graph::kAccessShaderStorageRead | graph::kAccessShaderStorageWrite,
-                                        graph::Layout::Undefined, graph::QueueClass::Graphics};
+                                        graph::Layout::Undefined, graph::QueueClass::Compute};
 
 EmitterGpu toGpu(const scene::Emitter& e, uint32_t seedOffset) {
   EmitterGpu out{};
@@ -95,7 +106,8 @@ void ParticleFeature::createState(rhi::Device& device, const scene::Scene& scene
   std::vector<EmitterGpu> emitters;
   for (const auto& emitter : scene.emitters) emitters.push_back(toGpu(emitter, seedOffset));
   rhi::uploadBuffer(device, pool_, bytesOf(std::vector<ParticleGpu>(poolSize_)));
-  rhi::uploadBuffer(device, freeList_, bytesOf(freeList));
+  rhi::releaseBuffer(device, pool_, sizeof(ParticleGpu) * poolSize_, graph::QueueClass::Graphics, graph::QueueClass::Compute);
+  rhi::uploadBuffer(device, freeList_, bytesOf(freeList), graph::QueueClass::Compute);
   rhi::uploadBuffer(device, emitters_, bytesOf(emitters));
   rhi::uploadBuffer(device, quadIndices_, bytesOf(std::vector<uint32_t>{0, 1, 2, 2, 1, 3}));
   rhi::uploadBuffer(device, argsTemplate_, bytesOf(std::vector<DrawIndexedCommand>{{6, 0, 0, 0, 0}}));
@@ -125,9 +137,10 @@ void ParticleFeature::initialize(FeatureInit& init) {
 
 void ParticleFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
   if (!enabled()) return;
-  auto pool = graph.importBuffer("particle pool", {sizeof(ParticleGpu) * poolSize_, {}}, rhi::external(pool_), kPoolState, kPoolState);
+  auto pool = graph.importBuffer("particle pool", {sizeof(ParticleGpu) * poolSize_, {}}, rhi::external(pool_), kPoolInitial,
+                                 kPoolFinal);
   auto freeList = graph.importBuffer("particle free list", {uint64_t{4} * (poolSize_ + 1), {}}, rhi::external(freeList_),
-                                     kPoolState, kPoolState);
+                                     kFreeListState, kFreeListState);
   auto args = graph.createBuffer("particle draw args", {kArgsBytes, {}});
   auto alive = graph.createBuffer("alive particles", {uint64_t{4} * poolSize_, {}});
 

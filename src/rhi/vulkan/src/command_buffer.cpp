@@ -19,18 +19,18 @@ VkBufferImageCopy wholeLevel(const TextureRecord& texture, uint64_t bufferOffset
 }  // namespace
 
 void VulkanCommandBuffer::begin(VkCommandBuffer cmd) {
-  if (cmd != cmd_) graphicsSetBound_ = computeSetBound_ = false;
+  if (cmd != cmd_) graphicsSetBound_ = computeSetBound_ = VK_NULL_HANDLE;
   cmd_ = cmd;
 }
 
 void VulkanCommandBuffer::bindPipeline(rhi::PipelineId id) {
   const PipelineRecord& record = device_->pipeline(id);
   vkCmdBindPipeline(cmd_, record.bindPoint, record.pipeline.get());
-  bool& bound = record.bindPoint == VK_PIPELINE_BIND_POINT_GRAPHICS ? graphicsSetBound_ : computeSetBound_;
-  if (bound) return;
-  const VkDescriptorSet set = device_->descriptors().set();
+  VkDescriptorSet& bound = record.bindPoint == VK_PIPELINE_BIND_POINT_GRAPHICS ? graphicsSetBound_ : computeSetBound_;
+  const VkDescriptorSet set = set_ != VK_NULL_HANDLE ? set_ : device_->descriptors().set();
+  if (bound == set) return;
   vkCmdBindDescriptorSets(cmd_, record.bindPoint, device_->descriptors().pipelineLayout(), 0, 1, &set, 0, nullptr);
-  bound = true;
+  bound = set;
 }
 
 void VulkanCommandBuffer::pushConstants(const void* data, uint32_t size, uint32_t offset) {

@@ -1,5 +1,5 @@
 // The CommandBuffer a job records into: a VkCommandBuffer owned by the executor, plus the device
-// tables to resolve RHI ids. Binds the shared descriptor set lazily per bind point.
+// tables to resolve RHI ids. Binds the node's descriptor set lazily per bind point.
 #pragma once
 
 #include "device.hpp"
@@ -15,6 +15,8 @@ class VulkanCommandBuffer final : public rhi::CommandBuffer {
   // Starts recording a new node into `cmd` (set bound state is kept within one VkCommandBuffer).
   void begin(VkCommandBuffer cmd);
   [[nodiscard]] VkCommandBuffer get() const { return cmd_; }
+  // The descriptor set the next pipelines see (a node's scoped set); null: the shared set.
+  void useSet(VkDescriptorSet set) { set_ = set; }
 
   void bindPipeline(rhi::PipelineId pipeline) override;
   void pushConstants(const void* data, uint32_t size, uint32_t offset) override;
@@ -41,8 +43,9 @@ class VulkanCommandBuffer final : public rhi::CommandBuffer {
 
   const VulkanDevice* device_;
   VkCommandBuffer cmd_ = VK_NULL_HANDLE;
-  bool graphicsSetBound_ = false;
-  bool computeSetBound_ = false;
+  VkDescriptorSet set_ = VK_NULL_HANDLE;
+  VkDescriptorSet graphicsSetBound_ = VK_NULL_HANDLE;  // set bound at each bind point
+  VkDescriptorSet computeSetBound_ = VK_NULL_HANDLE;
 };
 
 }  // namespace fgb::vulkan

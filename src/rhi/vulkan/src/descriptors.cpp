@@ -9,9 +9,11 @@
 namespace fgb::vulkan {
 namespace {
 
-constexpr std::array<VkDescriptorType, 4> kTypes = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE,
-                                                    VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_SAMPLER};
-constexpr std::array<uint32_t, 4> kCapacities = {kMaxStorageBuffers, kMaxSampledTextures, kMaxStorageTextures, kMaxSamplers};
+constexpr std::array<VkDescriptorType, kBindingCount> kTypes = {
+    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+    VK_DESCRIPTOR_TYPE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+constexpr std::array<uint32_t, kBindingCount> kCapacities = {kMaxStorageBuffers, kMaxSampledTextures, kMaxStorageTextures,
+                                                             kMaxSamplers, kMaxStorageBuffers};
 constexpr std::array<const char*, 4> kNames = {"storage buffers", "sampled textures", "storage textures", "samplers"};
 
 uint32_t index(Binding binding) { return static_cast<uint32_t>(binding); }
@@ -31,14 +33,17 @@ bool supportsBindless(VkPhysicalDevice physical) {
 Descriptors::Descriptors(VkDevice device, bool bindless, std::function<void()> beforeWrite)
     : device_(device), bindless_(bindless), beforeWrite_(std::move(beforeWrite)) {
   for (uint32_t i = 0; i < 4; ++i) slots_[i].capacity = kCapacities[i];
+  bufferEntries_.assign(kMaxStorageBuffers, VkDescriptorBufferInfo{});
+  for (uint32_t i = 1; i < 4; ++i) imageEntries_[i].assign(kCapacities[i], VkDescriptorImageInfo{});
+  for (uint32_t i = 0; i < 4; ++i) private_[i].assign(kCapacities[i], false);
   createLayout();
   createPool();
 }
 
 void Descriptors::createLayout() {
-  std::array<VkDescriptorSetLayoutBinding, 4> bindings{};
-  std::array<VkDescriptorBindingFlags, 4> flags{};
-  for (uint32_t i = 0; i < 4; ++i) {
+  std::array<VkDescriptorSetLayoutBinding, kBindingCount> bindings{};
+  std::array<VkDescriptorBindingFlags, kBindingCount> flags{};
+  for (uint32_t i = 0; i < kBindingCount; ++i) {
     bindings[i] = {i, kTypes[i], kCapacities[i], VK_SHADER_STAGE_ALL, nullptr};
     // Bindless: slots may be empty and may be written while command buffers using the set are pending.
     flags[i] = bindless_ ? VK_DESCRIPTOR_BINDING_PARTIALLY_BOUND_BIT | VK_DESCRIPTOR_BINDING_UPDATE_AFTER_BIND_BIT |
@@ -46,12 +51,12 @@ void Descriptors::createLayout() {
                          : 0;
   }
   auto flagInfo = vkStruct<VkDescriptorSetLayoutBindingFlagsCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_BINDING_FLAGS_CREATE_INFO);
-  flagInfo.bindingCount = 4;
+  flagInfo.bindingCount = kBindingCount;
   flagInfo.pBindingFlags = flags.data();
   auto info = vkStruct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
   info.pNext = &flagInfo;
   info.flags = bindless_ ? VK_DESCRIPTOR_SET_LAYOUT_CREATE_UPDATE_AFTER_BIND_POOL_BIT : 0;
-  info.bindingCount = 4;
+  info.bindingCount = kBindingCount;
   info.pBindings = bindings.data();
   VkDescriptorSetLayout layout = VK_NULL_HANDLE;
   check(vkCreateDescriptorSetLayout(device_, &info, nullptr, &layout), "vkCreateDescriptorSetLayout (bindless set)");
@@ -69,12 +74,12 @@ void Descriptors::createLayout() {
 }
 
 void Descriptors::createPool() {
-  std::array<VkDescriptorPoolSize, 4> sizes{};
-  for (uint32_t i = 0; i < 4; ++i) sizes[i] = {kTypes[i], kCapacities[i]};
+  std::array<VkDescriptorPoolSize, kBindingCount> sizes{};
+  for (uint32_t i = 0; i < kBindingCount; ++i) sizes[i] = {kTypes[i], kCapacities[i]};
   auto info = vkStruct<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
   info.flags = bindless_ ? VK_DESCRIPTOR_POOL_CREATE_UPDATE_AFTER_BIND_BIT : 0;
   info.maxSets = 1;
-  info.poolSizeCount = 4;
+  info.poolSizeCount = kBindingCount;
   info.pPoolSizes = sizes.data();
   VkDescriptorPool pool = VK_NULL_HANDLE;
   check(vkCreateDescriptorPool(device_, &info, nullptr, &pool), "vkCreateDescriptorPool (bindless set)");
@@ -120,6 +125,8 @@ uint32_t Descriptors::addStorageBuffer(VkBuffer buffer) {
   const uint32_t slot = take(Binding::StorageBuffers);
   const VkDescriptorBufferInfo info{buffer, 0, VK_WHOLE_SIZE};
   write(Binding::StorageBuffers, slot, &info, nullptr);
+  write(Binding::WritableStorageBuffers, slot, &info, nullptr);
+  added(Binding::StorageBuffers, slot, &info, nullptr);
   return slot;
 }
 
@@ -127,6 +134,7 @@ uint32_t Descriptors::addSampledTexture(VkImageView view) {
   const uint32_t slot = take(Binding::SampledTextures);
   const VkDescriptorImageInfo info{VK_NULL_HANDLE, view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   write(Binding::SampledTextures, slot, nullptr, &info);
+  added(Binding::SampledTextures, slot, nullptr, &info);
   return slot;
 }
 
@@ -134,6 +142,7 @@ uint32_t Descriptors::addStorageTexture(VkImageView view) {
   const uint32_t slot = take(Binding::StorageTextures);
   const VkDescriptorImageInfo info{VK_NULL_HANDLE, view, VK_IMAGE_LAYOUT_GENERAL};
   write(Binding::StorageTextures, slot, nullptr, &info);
+  added(Binding::StorageTextures, slot, nullptr, &info);
   return slot;
 }
 
@@ -141,6 +150,7 @@ uint32_t Descriptors::addSampler(VkSampler sampler) {
   const uint32_t slot = take(Binding::Samplers);
   const VkDescriptorImageInfo info{sampler, VK_NULL_HANDLE, VK_IMAGE_LAYOUT_UNDEFINED};
   write(Binding::Samplers, slot, nullptr, &info);
+  added(Binding::Samplers, slot, nullptr, &info);
   return slot;
 }
 
@@ -149,6 +159,19 @@ void Descriptors::remove(Binding binding, uint32_t slot) {
   // Bindless slots may stay stale (partially bound, never accessed); fallback ones keep their
   // last (valid) resource until reused, which is fine because the resource outlives its use.
   slots_[index(binding)].freed.push_back(slot);
+  if (!bindless_) return;
+  if (binding == Binding::StorageBuffers) bufferEntries_[slot] = {};
+  else imageEntries_[index(binding)][slot] = {};
+}
+
+void Descriptors::added(Binding binding, uint32_t slot, const VkDescriptorBufferInfo* buffer,
+                        const VkDescriptorImageInfo* image) {
+  if (!bindless_) return;
+  if (buffer) bufferEntries_[slot] = *buffer;
+  else imageEntries_[index(binding)][slot] = *image;
+  private_[index(binding)][slot] = creatingPrivate_;
+  if (creatingPrivate_) return;
+  for (ScopedSets* scoped : scoped_) scoped->added(binding, slot);
 }
 
 void Descriptors::fillWithDummies(VkBuffer buffer, VkImageView sampledView, VkImageView storageView, VkSampler sampler) {
@@ -160,8 +183,8 @@ void Descriptors::fillWithDummies(VkBuffer buffer, VkImageView sampledView, VkIm
   std::vector<VkDescriptorImageInfo> sampled(kMaxSampledTextures, sampledInfo);
   std::vector<VkDescriptorImageInfo> storage(kMaxStorageTextures, storageInfo);
   std::vector<VkDescriptorImageInfo> samplers(kMaxSamplers, samplerInfo);
-  std::array<VkWriteDescriptorSet, 4> writes{};
-  for (uint32_t i = 0; i < 4; ++i) {
+  std::array<VkWriteDescriptorSet, kBindingCount> writes{};
+  for (uint32_t i = 0; i < kBindingCount; ++i) {
     writes[i] = vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
     writes[i].dstSet = set_;
     writes[i].dstBinding = i;
@@ -172,7 +195,8 @@ void Descriptors::fillWithDummies(VkBuffer buffer, VkImageView sampledView, VkIm
   writes[1].pImageInfo = sampled.data();
   writes[2].pImageInfo = storage.data();
   writes[3].pImageInfo = samplers.data();
-  vkUpdateDescriptorSets(device_, 4, writes.data(), 0, nullptr);
+  writes[4].pBufferInfo = buffers.data();
+  vkUpdateDescriptorSets(device_, kBindingCount, writes.data(), 0, nullptr);
 }
 
 }  // namespace fgb::vulkan

@@ -1,7 +1,15 @@
-// The one descriptor set every pipeline shares (set 0, see shaders/include/bindless.glsl) and the
-// one pipeline layout (set 0 + push constants). Bindless where the device allows it (update-after-
-// bind, partially bound): slots are written whenever a resource is created. Fallback otherwise:
-// every slot is pre-filled with a dummy resource and writes wait until the GPU is idle.
+// The one descriptor set layout every pipeline shares (set 0, see shaders/include/bindless.glsl)
+// and the one pipeline layout (set 0 + push constants). Bindless where the device allows it
+// (update-after-bind, partially bound): slots are written whenever a resource is created. Fallback
+// otherwise: every slot is pre-filled with a dummy resource and writes wait until the GPU is idle.
+//
+// Storage buffers appear twice, at the same slot: binding 0 for blocks the shader only reads
+// (`readonly`), binding 4 for blocks it may write. Bindless devices also get *scoped* sets
+// (ScopedSets, one per graph node): same layout and slot numbers, but exposing only the resources
+// outside the graph (read-only) plus those the node declared, with write access only where it
+// declared a write. Validation (synchronization validation in particular) treats every valid
+// descriptor of a statically used binding as accessed, so the shared set would make every node
+// look like it touches every resource.
 #pragma once
 
 #include "vk.hpp"
@@ -13,12 +21,34 @@
 namespace fgb::vulkan {
 
 // Capacities; must match the FGB_MAX_* macros in shaders/include/bindless.glsl.
-inline constexpr uint32_t kMaxStorageBuffers = 65536;
+inline constexpr uint32_t kMaxStorageBuffers = 8192;  // per storage-buffer binding (0 and 4)
 inline constexpr uint32_t kMaxSampledTextures = 4096;
 inline constexpr uint32_t kMaxStorageTextures = 1024;
 inline constexpr uint32_t kMaxSamplers = 64;
 
-enum class Binding : uint32_t { StorageBuffers = 0, SampledTextures = 1, StorageTextures = 2, Samplers = 3 };
+enum class Binding : uint32_t {
+  StorageBuffers = 0,  // read-only blocks
+  SampledTextures = 1,
+  StorageTextures = 2,
+  Samplers = 3,
+  WritableStorageBuffers = 4,  // blocks the shader may write; same slots as StorageBuffers
+};
+inline constexpr uint32_t kBindingCount = 5;
+
+class ScopedSets;
+
+// What one scoped set exposes, as slots of the shared set.
+struct DescriptorScope {
+  // Slots of every resource the graph uses (hidden unless listed below). Storage textures are
+  // exposed only where declared, so they need no such list.
+  const std::vector<bool>* graphBuffers = nullptr;
+  const std::vector<bool>* graphSampled = nullptr;
+  // Slots the node declared.
+  std::vector<uint32_t> readBuffers;
+  std::vector<uint32_t> writtenBuffers;
+  std::vector<uint32_t> sampled;
+  std::vector<uint32_t> storageTextures;
+};
 
 // Can this device run the bindless path?
 bool supportsBindless(VkPhysicalDevice physical);
@@ -38,10 +68,15 @@ class Descriptors {
   uint32_t addSampler(VkSampler sampler);
   void remove(Binding binding, uint32_t index);
 
+  // While a graph creates its transient resources: they are private to it (exposed only to the
+  // nodes that declare them, never to other graphs' scoped sets).
+  void setCreatingPrivate(bool on) { creatingPrivate_ = on; }
+
   // Fallback mode: points every slot at the dummies (views in GENERAL layout).
   void fillWithDummies(VkBuffer buffer, VkImageView sampledView, VkImageView storageView, VkSampler sampler);
 
  private:
+  friend class ScopedSets;
   struct Slots {
     uint32_t capacity = 0;
     uint32_t next = 0;
@@ -49,6 +84,7 @@ class Descriptors {
   };
   uint32_t take(Binding binding);
   void write(Binding binding, uint32_t index, const VkDescriptorBufferInfo* buffer, const VkDescriptorImageInfo* image);
+  void added(Binding binding, uint32_t slot, const VkDescriptorBufferInfo* buffer, const VkDescriptorImageInfo* image);
   void createLayout();
   void createPool();
 
@@ -60,6 +96,34 @@ class Descriptors {
   Owned<VkPipelineLayout> pipelineLayout_;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
   Slots slots_[4];
+  // Bindless: what each slot holds (null handle: free), to fill scoped sets.
+  std::vector<VkDescriptorBufferInfo> bufferEntries_;
+  std::vector<VkDescriptorImageInfo> imageEntries_[4];  // by Binding (1..3 used)
+  std::vector<bool> private_[4];     // by Binding (0..3): slot holds a graph's transient
+  bool creatingPrivate_ = false;
+  std::vector<ScopedSets*> scoped_;  // live scoped sets: new resources are added to them too
+};
+
+// Descriptor sets of the shared layout exposing only part of the shared set (bindless only; see
+// the top of this file). Owned by a compiled graph; new device resources (outside every graph
+// that already exists) are added to them as they are created.
+class ScopedSets {
+ public:
+  ScopedSets(Descriptors& owner, uint32_t count);
+  ~ScopedSets();
+  ScopedSets(const ScopedSets&) = delete;
+  ScopedSets& operator=(const ScopedSets&) = delete;
+
+  [[nodiscard]] VkDescriptorSet set(uint32_t index) const { return sets_.at(index); }
+  void fill(uint32_t index, const DescriptorScope& scope);
+
+ private:
+  friend class Descriptors;
+  void added(Binding binding, uint32_t slot);
+
+  Descriptors& owner_;
+  Owned<VkDescriptorPool> pool_;
+  std::vector<VkDescriptorSet> sets_;
 };
 
 }  // namespace fgb::vulkan

@@ -41,12 +41,6 @@ FamilyChoice chooseFamilies(VkPhysicalDevice physical) {
   return choice;
 }
 
-uint32_t highestSampleCount(VkSampleCountFlags counts) {
-  for (uint32_t samples : {8u, 4u, 2u}) {
-    if (counts & samples) return samples;
-  }
-  return 1;
-}
 
 }  // namespace
 
@@ -61,8 +55,10 @@ VulkanDevice::VulkanDevice(const rhi::DeviceOptions& options) : framesInFlight_(
 
   VkPhysicalDeviceProperties properties{};
   vkGetPhysicalDeviceProperties(physical_, &properties);
-  maxSamples_ = highestSampleCount(properties.limits.framebufferColorSampleCounts &
-                                   properties.limits.framebufferDepthSampleCounts);
+  // Counts up to 8 (the harness's range); 1 is always supported.
+  sampleCounts_ = (properties.limits.framebufferColorSampleCounts & properties.limits.framebufferDepthSampleCounts &
+                   (VK_SAMPLE_COUNT_2_BIT | VK_SAMPLE_COUNT_4_BIT | VK_SAMPLE_COUNT_8_BIT)) |
+                  VK_SAMPLE_COUNT_1_BIT;
   debugLabels_ = options.debugLabels && instance_->debugUtils();
 
   createLogicalDevice();

@@ -70,7 +70,8 @@ class VulkanDevice final : public rhi::Device {
 
   // rhi::Device
   const rhi::AdapterInfo& adapter() const override { return adapter_; }
-  uint32_t maxSamples() const override { return maxSamples_; }
+  uint32_t maxSamples() const override { return rhi::clampSampleCount(64, sampleCounts_); }
+  uint32_t sampleCounts() const override { return sampleCounts_; }
   bool bindless() const override { return descriptors_->bindless(); }
   rhi::BufferId createBuffer(const rhi::BufferDesc& desc) override;
   rhi::TextureId createTexture(const rhi::TextureDesc& desc) override;
@@ -99,6 +100,7 @@ class VulkanDevice final : public rhi::Device {
   const std::array<uint32_t, 3>& queueOfClass() const { return queueOfClass_; }
   MemoryAllocator& memory() { return *memory_; }
   const Descriptors& descriptors() const { return *descriptors_; }
+  Descriptors& descriptors() { return *descriptors_; }
   bool debugLabels() const { return debugLabels_; }
   void setName(VkObjectType type, uint64_t handle, const std::string& name) const;
 
@@ -133,7 +135,7 @@ class VulkanDevice final : public rhi::Device {
   VkDevice device_ = VK_NULL_HANDLE;
   std::vector<DeviceQueue> queues_;
   std::array<uint32_t, 3> queueOfClass_{0, 0, 0};
-  uint32_t maxSamples_ = 1;
+  uint32_t sampleCounts_ = 1;  // rhi::Device::sampleCounts()
   bool debugLabels_ = false;
   uint32_t framesInFlight_ = 2;
 

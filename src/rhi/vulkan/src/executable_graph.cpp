@@ -39,6 +39,7 @@ VulkanGraph::VulkanGraph(VulkanDevice& device, graph::FrameGraph&& graph, const 
     translateRendering();
     orderSubmits();
     createSyncAndSlots();
+    createScopedSets();
   } catch (...) {
     device_.unregisterGraph(id_);
     for (uint32_t r = 0; r < ownsResource_.size(); ++r) {
@@ -153,6 +154,14 @@ void VulkanGraph::createResources() {
   buffers_.assign(decls.size(), {});
   textures_.assign(decls.size(), {});
   ownsResource_.assign(decls.size(), false);
+  // Transients are private to this graph: only nodes that declare them see their descriptors.
+  struct PrivateCreation {
+    Descriptors& descriptors;
+    explicit PrivateCreation(Descriptors& d) : descriptors(d) { descriptors.setCreatingPrivate(true); }
+    ~PrivateCreation() { descriptors.setCreatingPrivate(false); }
+    PrivateCreation(const PrivateCreation&) = delete;
+    PrivateCreation& operator=(const PrivateCreation&) = delete;
+  } privateCreation(device_.descriptors());
   for (uint32_t r = 0; r < decls.size(); ++r) {
     const auto& decl = decls[r];
     const bool texture = decl.kind == graph::ResourceKind::Texture;
@@ -434,6 +443,46 @@ rhi::BufferId VulkanGraph::bufferOf(graph::BufferHandle handle) const {
 
 rhi::TextureId VulkanGraph::textureOf(graph::TextureHandle handle) const {
   return textures_.at(declaration_.resourceOf(handle));
+}
+
+// One scoped descriptor set per step (see descriptors.hpp): resources outside the graph stay
+// visible read-only; of the graph's own resources, a node sees only those it declared, writable
+// only where it declared a write.
+void VulkanGraph::createScopedSets() {
+  if (!device_.descriptors().bindless() || steps_.empty()) return;
+  const auto& decls = declaration_.resources();
+  std::vector<bool> graphBuffers(kMaxStorageBuffers, false);
+  std::vector<bool> graphSampled(kMaxSampledTextures, false);
+  const auto mark = [](std::vector<bool>& slots, uint32_t slot) {
+    if (slot != rhi::kInvalidId) slots[slot] = true;
+  };
+  for (uint32_t r = 0; r < decls.size(); ++r) {
+    if (buffers_[r].valid()) mark(graphBuffers, device_.buffer(buffers_[r]).storageIndex);
+    if (textures_[r].valid()) mark(graphSampled, device_.texture(textures_[r]).sampledIndex);
+  }
+  scopedSets_ = std::make_unique<ScopedSets>(device_.descriptors(), static_cast<uint32_t>(steps_.size()));
+  for (uint32_t s = 0; s < steps_.size(); ++s) {
+    DescriptorScope scope;
+    scope.graphBuffers = &graphBuffers;
+    scope.graphSampled = &graphSampled;
+    const auto add = [](std::vector<uint32_t>& list, uint32_t slot) {
+      if (slot != rhi::kInvalidId) list.push_back(slot);
+    };
+    for (const graph::Use& use : declaration_.uses(steps_[s].node)) {
+      const bool writes = graph::isWriteAccess(use.access);
+      if (buffers_[use.resource].valid()) {
+        add(writes ? scope.writtenBuffers : scope.readBuffers, device_.buffer(buffers_[use.resource]).storageIndex);
+      } else if (textures_[use.resource].valid()) {
+        const TextureRecord& record = device_.texture(textures_[use.resource]);
+        if (use.access == graph::Access::Sampled) add(scope.sampled, record.sampledIndex);
+        if (use.access == graph::Access::StorageRead || use.access == graph::Access::StorageWrite ||
+            use.access == graph::Access::StorageReadWrite) {
+          add(scope.storageTextures, record.storageIndex);
+        }
+      }
+    }
+    scopedSets_->fill(s, scope);
+  }
 }
 
 }  // namespace fgb::vulkan

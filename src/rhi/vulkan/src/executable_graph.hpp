@@ -12,6 +12,7 @@
 #include <fgb/rhi/device.hpp>
 
 #include <deque>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -71,6 +72,7 @@ class VulkanGraph final : public rhi::ExecutableGraph {
   void translateRendering();
   void orderSubmits();
   void createSyncAndSlots();
+  void createScopedSets();
   // executor.cpp
   void recordSubmit(Slot& slot, uint32_t submitIndex, uint64_t execution);
   void recordStep(VkCommandBuffer cmd, uint32_t stepIndex, uint64_t execution, VkQueryPool queries);
@@ -94,6 +96,7 @@ class VulkanGraph final : public rhi::ExecutableGraph {
   std::vector<rhi::TextureId> textures_;    // per resource
   std::vector<bool> ownsResource_;          // transient: created (and destroyed) by this graph
   std::vector<Allocation> heaps_;
+  std::unique_ptr<ScopedSets> scopedSets_;  // per step (bindless devices); else the shared set
 
   std::vector<Step> steps_;
   std::vector<VkImageMemoryBarrier2> imageBarriers_;

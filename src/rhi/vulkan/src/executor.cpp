@@ -117,6 +117,7 @@ void VulkanGraph::recordStep(VkCommandBuffer cmd, uint32_t stepIndex, uint64_t e
     vkCmdSetScissor(cmd, 0, 1, &scissor);
   }
   if (job) {
+    commandBuffer_.useSet(scopedSets_ ? scopedSets_->set(stepIndex) : VK_NULL_HANDLE);
     VulkanJobContext context(*this, device_, commandBuffer_, execution);
     if (step.rendering) context.setExtent(step.extent);
     job(context);

@@ -84,12 +84,24 @@ class ExecutableGraph {
   [[nodiscard]] virtual TextureId texture(uint32_t resource) const = 0;
 };
 
+// The highest sample count in `supported` (a sampleCounts() mask) not above `requested`; 1 if none.
+constexpr uint32_t clampSampleCount(uint32_t requested, uint32_t supported) {
+  for (uint32_t samples = 64; samples > 1; samples /= 2) {
+    if (samples <= requested && (supported & samples) != 0) return samples;
+  }
+  return 1;
+}
+
 class Device {
  public:
   virtual ~Device() = default;
   [[nodiscard]] virtual const AdapterInfo& adapter() const = 0;
   // Highest sample count (1, 2, 4, 8) usable for colour and depth attachments on this device.
   [[nodiscard]] virtual uint32_t maxSamples() const = 0;
+  // Every sample count usable for colour and depth attachments: bit value N set = N samples
+  // supported (VkSampleCountFlags semantics; 1 is always set). Not necessarily contiguous:
+  // lavapipe supports {1, 4}.
+  [[nodiscard]] virtual uint32_t sampleCounts() const = 0;
   [[nodiscard]] virtual bool bindless() const = 0;
 
   virtual BufferId createBuffer(const BufferDesc& desc) = 0;

@@ -6,12 +6,20 @@
 #include <fgb/rhi/device.hpp>
 
 #include <cstddef>
+#include <cstdint>
 #include <span>
 
 namespace fgb::rhi {
 
-// `dst` receives `bytes` at offset 0 and is left readable by any later stage (graphics queue).
-void uploadBuffer(Device& device, BufferId dst, std::span<const std::byte> bytes);
+// `dst` receives `bytes` at offset 0 and is left readable by any later stage. The copy runs on
+// (and `dst` ends up owned by the family of) the queue class `owner`.
+void uploadBuffer(Device& device, BufferId dst, std::span<const std::byte> bytes,
+                  graph::QueueClass owner = graph::QueueClass::Graphics);
+// Queue-family ownership release of `buffer` from queue class `from` to `to` (nothing where they
+// share a family). For a buffer a frame graph imports with initial queue `from` and first uses on
+// `to`: that graph acquires it on every execution, and each execution releases it back at its end
+// (final queue `to`); this supplies the release the first execution's acquire pairs with.
+void releaseBuffer(Device& device, BufferId buffer, uint64_t size, graph::QueueClass from, graph::QueueClass to);
 // Mip level 0 of `dst` (tightly packed texels) is filled and left shader-readable.
 void uploadTexture(Device& device, TextureId dst, const TextureDesc& desc, std::span<const std::byte> texels);
 

@@ -16,6 +16,7 @@ void FrameGraph::reserve(size_t nodes, size_t resources) {
   resources_.reserve(resources);
   versions_.reserve(resources + nodes);
   allUses_.reserve(nodes * 3);
+  useStart_.reserve(nodes + 1);
 }
 
 const VersionDecl& FrameGraph::versionAt(uint32_t version, std::string_view what) const {
@@ -117,40 +118,61 @@ NodeBuilder FrameGraph::addNode(std::string_view name, NodeType type, QueueClass
   decl.type = type;
   decl.queue = queue;
   decl.firstUse = static_cast<uint32_t>(allUses_.size());
+  useStart_.push_back(decl.firstUse);  // the new node's end, moved on by each of its uses
   return NodeBuilder(*this, node);
 }
 
+namespace {
+
+// Declaration errors, kept out of line: building their messages in addUse itself would make every
+// use pay for the stack frame of those strings.
+[[noreturn, gnu::cold, gnu::noinline]] void throwUseError(const NodeDecl& node, std::string_view what) {
+  throw GraphError("node " + quoted(node.name) + std::string(what));
+}
+
+[[noreturn, gnu::cold, gnu::noinline]] void throwUnknownVersion(const NodeDecl& node, ResourceKind kind,
+                                                                uint32_t version) {
+  throwUseError(node, " uses an unknown " + std::string(kind == ResourceKind::Texture ? "texture" : "buffer") +
+                          " version " +
+                          (version == kInvalidIndex ? std::string("(invalid handle)") : std::to_string(version)));
+}
+
+[[noreturn, gnu::cold, gnu::noinline]] void throwWrongKind(const NodeDecl& node, const ResourceDecl& res,
+                                                           ResourceKind kind) {
+  throwUseError(node, " uses " + quoted(res.name) + " as a " +
+                          std::string(kind == ResourceKind::Texture ? "texture" : "buffer"));
+}
+
+[[noreturn, gnu::cold, gnu::noinline]] void throwUnwrittenRead(const NodeDecl& node, const ResourceDecl& res,
+                                                               uint32_t version) {
+  throwUseError(node, " reads " + quoted(res.name) + " version " + std::to_string(version) + ", which nobody wrote");
+}
+
+[[noreturn, gnu::cold, gnu::noinline]] void throwStaleWrite(const NodeDecl& node, const ResourceDecl& res,
+                                                            uint32_t version) {
+  throwUseError(node, " writes a stale version " + std::to_string(version) + " of " + quoted(res.name) +
+                          " (latest is " + std::to_string(res.latestVersion) + ")");
+}
+
+}  // namespace
+
 uint32_t FrameGraph::addUse(uint32_t node, uint32_t version, ResourceKind kind, Access access, StageMask stages) {
   NodeDecl& decl = nodes_[node];
-  if (node + 1 != nodes_.size()) {
-    throw GraphError("node " + quoted(decl.name) + ": its NodeBuilder was used after the next node was added");
-  }
-  const std::string_view kindName = kind == ResourceKind::Texture ? "texture" : "buffer";
-  if (version >= versions_.size()) {
-    throw GraphError("node " + quoted(decl.name) + " uses an unknown " + std::string(kindName) + " version " +
-                     (version == kInvalidIndex ? std::string("(invalid handle)") : std::to_string(version)));
-  }
+  if (node + 1 != nodes_.size()) throwUseError(decl, ": its NodeBuilder was used after the next node was added");
+  if (version >= versions_.size()) throwUnknownVersion(decl, kind, version);
   const uint32_t resource = versions_[version].resource;
   ResourceDecl& res = resources_[resource];
-  if (res.kind != kind) {
-    throw GraphError("node " + quoted(decl.name) + " uses " + quoted(res.name) + " as a " + std::string(kindName));
-  }
+  if (res.kind != kind) throwWrongKind(decl, res, kind);
   const AccessInfo info = accessInfo(access, decl.type, stages);
   Use use{.resource = resource, .access = access, .shaderStages = stages, .stages = info.stages,
           .accessMask = info.access, .layout = info.layout};
   if (info.reads) {
     const bool written = versions_[version].producer != kInvalidIndex || res.imported;
-    if (!written) {
-      throw GraphError("node " + quoted(decl.name) + " reads " + quoted(res.name) + " version " +
-                       std::to_string(version) + ", which nobody wrote");
-    }
+    if (!written) throwUnwrittenRead(decl, res, version);
     use.readVersion = version;
   }
   if (info.writes) {
-    if (version != res.latestVersion) {
-      throw GraphError("node " + quoted(decl.name) + " writes a stale version " + std::to_string(version) + " of " +
-                       quoted(res.name) + " (latest is " + std::to_string(res.latestVersion) + ")");
-    }
+    if (version != res.latestVersion) throwStaleWrite(decl, res, version);
     const auto next = static_cast<uint32_t>(versions_.size());
     versions_.push_back({resource, node, version});
     res.latestVersion = next;
@@ -158,6 +180,7 @@ uint32_t FrameGraph::addUse(uint32_t node, uint32_t version, ResourceKind kind, 
   }
   allUses_.push_back(use);
   ++decl.useCount;
+  ++useStart_.back();
   return info.writes ? use.writeVersion : version;
 }
 

@@ -21,7 +21,7 @@ struct FreeRange {
 };
 
 struct HeapState {
-  std::vector<FreeRange> free;
+  ScratchVector<FreeRange> free;
 };
 
 uint64_t alignUp(uint64_t value, uint64_t alignment) {
@@ -40,7 +40,7 @@ class Placer {
     const auto positions = static_cast<uint32_t>(state_.out.order.size());
     plan_.placements.assign(decls.size(), {});
     // Bucket transients by the position where they start and end.
-    std::vector<uint32_t> startsAt(positions + 1, 0), endsAt(positions + 1, 0);
+    ScratchVector<uint32_t> startsAt(positions + 1, 0), endsAt(positions + 1, 0);
     for (size_t r = 0; r < decls.size(); ++r) {
       if (!isPlaced(r)) continue;
       ++startsAt[lifetimes[r].first + 1];
@@ -50,9 +50,9 @@ class Placer {
       startsAt[p] += startsAt[p - 1];
       endsAt[p] += endsAt[p - 1];
     }
-    std::vector<uint32_t> starting(startsAt.back()), ending(endsAt.back());
+    ScratchVector<uint32_t> starting(startsAt.back(), 0), ending(endsAt.back(), 0);
     {
-      std::vector<uint32_t> s(startsAt.begin(), startsAt.end() - 1), e(endsAt.begin(), endsAt.end() - 1);
+      ScratchVector<uint32_t> s(startsAt.begin(), startsAt.end() - 1), e(endsAt.begin(), endsAt.end() - 1);
       for (uint32_t r = 0; r < decls.size(); ++r) {
         if (!isPlaced(r)) continue;
         starting[s[lifetimes[r].first]++] = r;
@@ -112,9 +112,12 @@ class Placer {
     size_t best = free.size();
     for (size_t i = 0; i < free.size(); ++i) {
       const FreeRange& range = free[i];
+      // Cheap rejections first: too small even unaligned, or no smaller than the best so far.
+      if (range.size < req.size || (best != free.size() && range.size >= free[best].size)) continue;
       const uint64_t offset = alignUp(range.offset, req.alignment);
       if (offset + req.size > range.offset + range.size || !orderedAfter(range, user)) continue;
-      if (best == free.size() || range.size < free[best].size) best = i;
+      best = i;  // smallest range that fits (first of equals)...
+      if (range.size == req.size) break;  // ...and none can be smaller than an exact fit
     }
     if (best == free.size()) return false;
     const FreeRange taken = free[best];

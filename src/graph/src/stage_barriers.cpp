@@ -10,15 +10,6 @@
 namespace fgb::graph::detail {
 namespace {
 
-struct MergedUse {
-  uint32_t node = kInvalidIndex;
-  StageMask stages = kStageNone;
-  AccessMask access = kAccessNone;
-  Layout layout = Layout::Undefined;
-  bool reads = false;
-  bool writes = false;
-};
-
 struct TrackedState {
   bool owned = false;  // false: transient before its first use (contents undefined)
   uint32_t queue = 0;
@@ -39,10 +30,10 @@ struct PendingBarrier {
 
 class BarrierPlanner {
  public:
-  explicit BarrierPlanner(CompileState& state) : state_(state) {}
+  explicit BarrierPlanner(CompileState& state)
+      : state_(state), start_(state.resourceUses.start), end_(state.resourceUses.end), uses_(state.resourceUses.uses) {}
 
   void run() {
-    collectUsesByResource();
     // Most uses get one barrier (transfers two, final states one more): size it once, not by doubling.
     pending_.reserve(uses_.size() + uses_.size() / 2);
     const auto& decls = state_.graph.resources();
@@ -54,39 +45,6 @@ class BarrierPlanner {
 
  private:
   [[nodiscard]] uint32_t familyOf(uint32_t queue) const { return state_.options.familyOfQueue[queue]; }
-
-  // Uses of each resource by alive nodes, in execution order, one entry per (node, resource).
-  void collectUsesByResource() {
-    const auto& graph = state_.graph;
-    const auto resourceCount = static_cast<uint32_t>(graph.resources().size());
-    start_.assign(resourceCount + 1, 0);
-    for (const uint32_t n : state_.out.order) {
-      for (const Use& use : graph.uses(n)) ++start_[use.resource + 1];
-    }
-    for (uint32_t r = 1; r <= resourceCount; ++r) start_[r] += start_[r - 1];
-    uses_.assign(start_.back(), {});
-    std::vector<uint32_t> cursor(start_.begin(), start_.end() - 1);
-    std::vector<uint32_t> lastEntry(resourceCount, kInvalidIndex);
-    for (const uint32_t n : state_.out.order) {
-      for (const Use& use : graph.uses(n)) {
-        const bool reads = use.readVersion != kInvalidIndex;
-        const bool writes = use.writeVersion != kInvalidIndex;
-        uint32_t& last = lastEntry[use.resource];
-        if (last != kInvalidIndex && uses_[last].node == n) {
-          MergedUse& merged = uses_[last];  // a node using one resource twice: one combined use
-          merged.stages |= use.stages;
-          merged.access |= use.accessMask;
-          merged.reads |= reads;
-          merged.writes |= writes;
-          if (merged.layout != use.layout) merged.layout = Layout::General;
-          continue;
-        }
-        last = cursor[use.resource]++;
-        uses_[last] = {n, use.stages, use.accessMask, use.layout, reads, writes};
-      }
-    }
-    end_.assign(cursor.begin(), cursor.end());
-  }
 
   void push(uint32_t step, bool after, const Barrier& barrier) {
     pending_.push_back({step * 2 + (after ? 1u : 0u), barrier});
@@ -263,12 +221,12 @@ class BarrierPlanner {
   void emitIntoSteps() {
     auto& steps = state_.out.steps;
     const auto slots = static_cast<uint32_t>(steps.size() * 2);
-    std::vector<uint32_t> slotStart(slots + 1, 0);
+    ScratchVector<uint32_t> slotStart(slots + 1, 0);
     for (const PendingBarrier& p : pending_) ++slotStart[p.slot + 1];
     for (uint32_t i = 1; i <= slots; ++i) slotStart[i] += slotStart[i - 1];
     auto& barriers = state_.out.barriers;
     barriers.resize(pending_.size());
-    std::vector<uint32_t> cursor(slotStart.begin(), slotStart.end() - 1);
+    ScratchVector<uint32_t> cursor(slotStart.begin(), slotStart.end() - 1);
     for (const PendingBarrier& p : pending_) barriers[cursor[p.slot]++] = p.barrier;
     for (uint32_t s = 0; s < steps.size(); ++s) {
       steps[s].before = {slotStart[2 * s], slotStart[2 * s + 1] - slotStart[2 * s]};
@@ -277,10 +235,10 @@ class BarrierPlanner {
   }
 
   CompileState& state_;
-  std::vector<uint32_t> start_;
-  std::vector<uint32_t> end_;
-  std::vector<MergedUse> uses_;
-  std::vector<PendingBarrier> pending_;
+  const ScratchVector<uint32_t>& start_;  // state.resourceUses (built by computeLifetimes)
+  const ScratchVector<uint32_t>& end_;
+  const ScratchVector<MergedUse>& uses_;
+  ScratchVector<PendingBarrier> pending_;
 };
 
 }  // namespace

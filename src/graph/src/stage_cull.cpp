@@ -16,26 +16,41 @@ bool writesImported(const FrameGraph& graph, uint32_t node) {
   return false;
 }
 
+// Appends "'name'" without temporaries: a large graph may cull thousands of nodes.
+void appendQuoted(std::string& out, const std::string& name) {
+  out += '\'';
+  out += name;
+  out += '\'';
+}
+
 std::string cullDiagnostic(const CompileState& state, uint32_t node, const Adjacency& allReaders) {
   const FrameGraph& graph = state.graph;
-  std::string written;
+  std::string why;
+  why.reserve(96);  // one allocation for the usual "writes 'x' vN, none imported; nothing reads them"
   std::string culledReaders;
   std::vector<uint32_t> named;  // readers already listed (a node may read several outputs)
   for (const Use& use : graph.uses(node)) {
     if (use.writeVersion == kInvalidIndex) continue;
-    if (!written.empty()) written += ", ";
-    written += "'" + graph.resources()[use.resource].name + "' v" + std::to_string(use.writeVersion);
+    why += why.empty() ? "writes " : ", ";
+    appendQuoted(why, graph.resources()[use.resource].name);
+    why += " v";
+    why += std::to_string(use.writeVersion);
     for (uint32_t i = allReaders.begin(use.writeVersion); i < allReaders.end(use.writeVersion); ++i) {
       const uint32_t reader = allReaders.items[i];
       if (reader == node || std::find(named.begin(), named.end(), reader) != named.end()) continue;
       named.push_back(reader);
       if (!culledReaders.empty()) culledReaders += ", ";
-      culledReaders += "'" + graph.nodes()[reader].name + "'";
+      appendQuoted(culledReaders, graph.nodes()[reader].name);
     }
   }
-  if (written.empty()) return "declares no writes and no side effect";
-  std::string why = "writes " + written + ", none imported; ";
-  why += culledReaders.empty() ? "nothing reads them" : "read only by culled nodes " + culledReaders;
+  if (why.empty()) return "declares no writes and no side effect";
+  why += ", none imported; ";
+  if (culledReaders.empty()) {
+    why += "nothing reads them";
+  } else {
+    why += "read only by culled nodes ";
+    why += culledReaders;
+  }
   return why;
 }
 
@@ -46,7 +61,7 @@ void cullNodes(CompileState& state) {
   const uint32_t count = state.nodeCount;
   state.alive.assign(count, state.options.cull ? 0 : 1);
   if (state.options.cull) {
-    std::vector<uint32_t> stack;
+    ScratchVector<uint32_t> stack;
     for (uint32_t n = 0; n < count; ++n) {
       if (graph.nodes()[n].sideEffect || writesImported(graph, n)) {
         state.alive[n] = 1;
@@ -71,7 +86,7 @@ void cullNodes(CompileState& state) {
   if (!state.anyCulled) return;
   // A version written by a culled node has only culled readers (an alive reader would have kept
   // its producer), so the diagnostics need the readers among culled nodes only.
-  std::vector<uint8_t> culled(count);
+  ScratchVector<uint8_t> culled(count, 0);
   for (uint32_t n = 0; n < count; ++n) culled[n] = !state.alive[n];
   const Adjacency culledReaders = collectVersionReaders(graph, culled);
   for (uint32_t n = 0; n < count; ++n) {

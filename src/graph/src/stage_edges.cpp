@@ -19,7 +19,7 @@ Adjacency collectVersionReaders(const FrameGraph& graph, const std::vector<uint8
   }
   for (size_t v = 1; v < readers.start.size(); ++v) readers.start[v] += readers.start[v - 1];
   readers.items.resize(readers.start.back());
-  std::vector<uint32_t> cursor(readers.start.begin(), readers.start.end() - 1);
+  ScratchVector<uint32_t> cursor(readers.start.begin(), readers.start.end() - 1);
   for (uint32_t n = 0; n < nodeCount; ++n) {
     if (!alive[n]) continue;
     for (const Use& use : graph.uses(n)) {
@@ -48,11 +48,11 @@ Adjacency predecessorsFromEdges(uint32_t nodeCount, const std::vector<Edge>& edg
   for (const Edge& e : edges) ++preds.start[e.to + 1];
   for (uint32_t n = 1; n <= nodeCount; ++n) preds.start[n] += preds.start[n - 1];
   preds.items.resize(edges.size());
-  std::vector<uint32_t> cursor(preds.start.begin(), preds.start.end() - 1);
+  ScratchVector<uint32_t> cursor(preds.start.begin(), preds.start.end() - 1);
   for (const Edge& e : edges) preds.items[cursor[e.to]++] = e.from;
 
   // Deduplicate each node's list in place with a "last seen for" stamp per source node.
-  std::vector<uint32_t> seenFor(nodeCount, kInvalidIndex);
+  ScratchVector<uint32_t> seenFor(nodeCount, kInvalidIndex);
   uint32_t write = 0;
   uint32_t begin = 0;
   for (uint32_t n = 0; n < nodeCount; ++n) {
@@ -72,18 +72,18 @@ Adjacency predecessorsFromEdges(uint32_t nodeCount, const std::vector<Edge>& edg
   return preds;
 }
 
-std::vector<Edge> versionEdges(const FrameGraph& graph, const std::vector<uint8_t>& alive,
+ScratchVector<Edge> versionEdges(const FrameGraph& graph, const std::vector<uint8_t>& alive,
                                const std::vector<uint32_t>& queueOf) {
   const Adjacency readers = collectVersionReaders(graph, alive);
-  std::vector<Edge> edges;
+  ScratchVector<Edge> edges;
   edges.reserve(graph.allUses().size() * 2);
-  forEachVersionEdge(graph, alive, queueOf, readers, [&](uint32_t from, uint32_t to) { edges.push_back({from, to}); });
+  appendVersionEdges(graph, alive, queueOf, readers, edges);
   return edges;
 }
 
 // Kahn's algorithm; returns the nodes left with unprocessed predecessors (empty when acyclic).
 std::vector<uint32_t> nodesOnOrBehindCycles(uint32_t nodeCount, const Adjacency& preds) {
-  std::vector<uint32_t> pending(nodeCount, 0);
+  ScratchVector<uint32_t> pending(nodeCount, 0);
   Adjacency succs;
   succs.start.assign(nodeCount + 1, 0);
   for (uint32_t n = 0; n < nodeCount; ++n) {
@@ -92,11 +92,11 @@ std::vector<uint32_t> nodesOnOrBehindCycles(uint32_t nodeCount, const Adjacency&
   }
   for (uint32_t n = 1; n <= nodeCount; ++n) succs.start[n] += succs.start[n - 1];
   succs.items.resize(preds.items.size());
-  std::vector<uint32_t> cursor(succs.start.begin(), succs.start.end() - 1);
+  ScratchVector<uint32_t> cursor(succs.start.begin(), succs.start.end() - 1);
   for (uint32_t n = 0; n < nodeCount; ++n) {
     for (uint32_t i = preds.begin(n); i < preds.end(n); ++i) succs.items[cursor[preds.items[i]]++] = n;
   }
-  std::vector<uint32_t> ready;
+  ScratchVector<uint32_t> ready;
   for (uint32_t n = 0; n < nodeCount; ++n) {
     if (pending[n] == 0) ready.push_back(n);
   }
@@ -176,7 +176,7 @@ void reportCycle(const CompileState& state, const Adjacency& preds, const std::v
 }
 
 void buildDependencies(CompileState& state) {
-  const std::vector<Edge> edges = versionEdges(state.graph, state.alive, state.queueOf);
+  const ScratchVector<Edge> edges = versionEdges(state.graph, state.alive, state.queueOf);
   state.out.edges.reserve(edges.size());
   state.predecessors = predecessorsFromEdges(state.nodeCount, edges, &state.out.edges);
 }

@@ -51,27 +51,64 @@ void resolveResources(CompileState& state) {
   }
 }
 
+namespace {
+
+// Fills state.resourceUses: the uses of each resource by alive nodes, in execution order, one entry
+// per (node, resource). Lifetimes come from it here and the barrier plan walks it again.
+void collectUsesByResource(CompileState& state) {
+  const FrameGraph& graph = state.graph;
+  const auto resourceCount = static_cast<uint32_t>(graph.resources().size());
+  ResourceUses& lists = state.resourceUses;
+  lists.start.assign(resourceCount + 1, 0);
+  for (const uint32_t n : state.out.order) {
+    for (const Use& use : graph.uses(n)) ++lists.start[use.resource + 1];
+  }
+  for (uint32_t r = 1; r <= resourceCount; ++r) lists.start[r] += lists.start[r - 1];
+  lists.uses.resize(lists.start.back());
+  lists.end.assign(lists.start.begin(), lists.start.end() - 1);  // the cursor, and finally each end
+  for (const uint32_t n : state.out.order) {
+    for (const Use& use : graph.uses(n)) {
+      const bool reads = use.readVersion != kInvalidIndex;
+      const bool writes = use.writeVersion != kInvalidIndex;
+      uint32_t& end = lists.end[use.resource];
+      if (end != lists.start[use.resource] && lists.uses[end - 1].node == n) {
+        MergedUse& merged = lists.uses[end - 1];  // a node using one resource twice: one combined use
+        merged.stages |= use.stages;
+        merged.access |= use.accessMask;
+        merged.reads |= reads;
+        merged.writes |= writes;
+        if (merged.layout != use.layout) merged.layout = Layout::General;
+        continue;
+      }
+      lists.uses[end++] = {n, use.stages, use.accessMask, use.layout, reads, writes};
+    }
+  }
+}
+
+}  // namespace
+
 void computeLifetimes(CompileState& state) {
   const auto& decls = state.graph.resources();
+  collectUsesByResource(state);
+  const ResourceUses& lists = state.resourceUses;
   state.out.lifetimes.assign(decls.size(), {});
   state.out.resourceAlive.assign(decls.size(), false);
   state.lastSigmaOnQueue.assign(decls.size() * kQueueClassCount, 0);
   state.stagesOnQueue.assign(decls.size() * kQueueClassCount, kStageNone);
   state.firstUser.assign(decls.size(), kInvalidIndex);
-  for (const uint32_t n : state.out.order) {
-    const uint32_t position = state.out.nodes[n].orderIndex;
-    const uint32_t queue = state.queueOf[n];
-    for (const Use& use : state.graph.uses(n)) {
-      Lifetime& life = state.out.lifetimes[use.resource];
-      if (!life.used()) {
-        life.first = position;
-        state.firstUser[use.resource] = n;
-      }
-      life.last = position;
-      state.out.resourceAlive[use.resource] = true;
-      const size_t slot = use.resource * kQueueClassCount + queue;
-      state.lastSigmaOnQueue[slot] = std::max(state.lastSigmaOnQueue[slot], state.sigma[n]);
-      state.stagesOnQueue[slot] |= use.stages;
+  for (uint32_t r = 0; r < decls.size(); ++r) {
+    const uint32_t begin = lists.start[r];
+    const uint32_t end = lists.end[r];
+    if (begin == end) continue;
+    state.out.resourceAlive[r] = true;
+    state.firstUser[r] = lists.uses[begin].node;
+    state.out.lifetimes[r] = {state.out.nodes[lists.uses[begin].node].orderIndex,
+                              state.out.nodes[lists.uses[end - 1].node].orderIndex};
+    for (uint32_t i = begin; i < end; ++i) {
+      const uint32_t node = lists.uses[i].node;
+      const size_t slot = r * kQueueClassCount + state.queueOf[node];
+      state.lastSigmaOnQueue[slot] = std::max(state.lastSigmaOnQueue[slot], state.sigma[node]);
+      state.stagesOnQueue[slot] |= lists.uses[i].stages;
     }
   }
   for (size_t r = 0; r < decls.size(); ++r) {

@@ -3,29 +3,70 @@
 // go from a lower to a strictly higher level, so sorting by level keeps the order topological.
 #include "compile_state.hpp"
 
+#include <algorithm>
+
 namespace fgb::graph::detail {
 
-void sortByLevel(CompileState& state) {
+namespace {
+
+// Longest-path levels by a depth-first walk over predecessors, in declaration order. Declaration
+// order is nearly topological (producers come before readers), so the walk rarely goes deep, and
+// it needs no successor lists. Returns false on a cycle, leaving it to levelsByKahn to report.
+bool levelsDepthFirst(const Adjacency& preds, uint32_t count, ScratchVector<uint32_t>& level, uint32_t& maxLevel) {
+  enum : uint8_t { kNew, kOnStack, kDone };
+  ScratchVector<uint8_t> mark(count, kNew);
+  ScratchVector<uint32_t> stack;   // nodes being visited...
+  ScratchVector<uint32_t> cursor;  // ...and the next predecessor each one looks at
+  for (uint32_t root = 0; root < count; ++root) {
+    if (mark[root] == kDone) continue;
+    mark[root] = kOnStack;
+    stack.push_back(root);
+    cursor.push_back(preds.begin(root));
+    while (!stack.empty()) {
+      const uint32_t u = stack.back();
+      uint32_t i = cursor.back();
+      while (i < preds.end(u) && mark[preds.items[i]] == kDone) ++i;
+      if (i < preds.end(u)) {  // a predecessor still to visit first
+        const uint32_t p = preds.items[i];
+        if (mark[p] == kOnStack) return false;
+        cursor.back() = i;
+        mark[p] = kOnStack;
+        stack.push_back(p);
+        cursor.push_back(preds.begin(p));
+        continue;
+      }
+      uint32_t mine = 0;
+      for (uint32_t k = preds.begin(u); k < preds.end(u); ++k) mine = std::max(mine, level[preds.items[k]] + 1);
+      level[u] = mine;
+      maxLevel = std::max(maxLevel, mine);
+      mark[u] = kDone;
+      stack.pop_back();
+      cursor.pop_back();
+    }
+  }
+  return true;
+}
+
+// Kahn's algorithm forwards over successor lists; reports a cycle if some alive node is left.
+void levelsByKahn(const CompileState& state, ScratchVector<uint32_t>& level, uint32_t& maxLevel) {
   const uint32_t count = state.nodeCount;
   const Adjacency& preds = state.predecessors;
-  std::vector<uint32_t> level(count, 0);
-
-  // Successor lists, to run Kahn's algorithm forwards.
+  level.assign(count, 0);
+  maxLevel = 0;
   Adjacency succs;
   succs.start.assign(count + 1, 0);
   for (uint32_t i = 0; i < preds.items.size(); ++i) ++succs.start[preds.items[i] + 1];
   for (uint32_t n = 1; n <= count; ++n) succs.start[n] += succs.start[n - 1];
   succs.items.resize(preds.items.size());
   {
-    std::vector<uint32_t> cursor(succs.start.begin(), succs.start.end() - 1);
+    ScratchVector<uint32_t> cursor(succs.start.begin(), succs.start.end() - 1);
     for (uint32_t n = 0; n < count; ++n) {
       for (uint32_t i = preds.begin(n); i < preds.end(n); ++i) succs.items[cursor[preds.items[i]]++] = n;
     }
   }
 
-  std::vector<uint32_t> pending(count);
-  std::vector<uint32_t> ready;
-  uint32_t maxLevel = 0;
+  ScratchVector<uint32_t> pending(count, 0);
+  ScratchVector<uint32_t> ready;
   for (uint32_t n = 0; n < count; ++n) {
     pending[n] = preds.end(n) - preds.begin(n);
     if (state.alive[n] && pending[n] == 0) ready.push_back(n);
@@ -46,9 +87,20 @@ void sortByLevel(CompileState& state) {
     if (state.alive[n] && pending[n] != 0) left.push_back(n);
   }
   if (!left.empty()) reportCycle(state, preds, left);
+}
+
+}  // namespace
+
+void sortByLevel(CompileState& state) {
+  const uint32_t count = state.nodeCount;
+  ScratchVector<uint32_t> level;
+  level.resize(count);
+  uint32_t maxLevel = 0;
+  // Culled nodes have no edges, so both ways give them level 0; only alive levels are used.
+  if (!levelsDepthFirst(state.predecessors, count, level, maxLevel)) levelsByKahn(state, level, maxLevel);
 
   // Counting sort by level; within a level, declaration order (deterministic, and stable).
-  std::vector<uint32_t> levelStart(maxLevel + 2, 0);
+  ScratchVector<uint32_t> levelStart(maxLevel + 2, 0);
   uint32_t aliveCount = 0;
   for (uint32_t n = 0; n < count; ++n) {
     if (!state.alive[n]) continue;

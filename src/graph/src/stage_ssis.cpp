@@ -42,7 +42,7 @@ void pruneCrossQueueEdges(CompileState& state) {
     state.sigma[node] = position + state.queueOf[node] * orderSize + 1;
   }
 
-  std::vector<uint32_t> previousOnQueue(queues, kInvalidIndex);
+  ScratchVector<uint32_t> previousOnQueue(queues, kInvalidIndex);
   for (const uint32_t u : order) {
     const uint32_t queue = state.queueOf[u];
     QueueArray have{0, 0, 0};

@@ -12,8 +12,8 @@ namespace fgb::graph::detail {
 void placeSubmits(CompileState& state) {
   CompiledGraph& out = state.out;
   const uint32_t queues = state.options.queueCount;
-  std::vector<uint8_t> isSource(state.nodeCount, 0);
-  std::vector<uint8_t> isTarget(state.nodeCount, 0);
+  ScratchVector<uint8_t> isSource(state.nodeCount, 0);
+  ScratchVector<uint8_t> isTarget(state.nodeCount, 0);
   for (const Edge& e : out.syncEdges) {
     isSource[e.from] = 1;
     isTarget[e.to] = 1;
@@ -21,7 +21,7 @@ void placeSubmits(CompileState& state) {
 
   out.submitsPerQueue.assign(queues, 0);
   out.steps.reserve(out.order.size());
-  std::vector<uint32_t> onQueue;
+  ScratchVector<uint32_t> onQueue;
   for (uint32_t queue = 0; queue < queues; ++queue) {
     onQueue.clear();
     for (const uint32_t n : out.order) {

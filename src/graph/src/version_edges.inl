@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <span>
 #include <utility>
 
 namespace fgb::graph::detail {
@@ -25,7 +26,7 @@ template <typename EmitEdge>
 void forEachHazardEdge(const FrameGraph& graph, const std::vector<uint8_t>& alive, const Adjacency& readers,
                        EmitEdge&& emit) {
   const auto& versions = graph.versions();
-  std::vector<uint32_t> lastAliveVersion(graph.resources().size(), kInvalidIndex);
+  ScratchVector<uint32_t> lastAliveVersion(graph.resources().size(), kInvalidIndex);
   for (uint32_t v = 0; v < versions.size(); ++v) {
     const VersionDecl& version = versions[v];
     const uint32_t producer = version.producer;
@@ -47,19 +48,19 @@ void forEachHazardEdge(const FrameGraph& graph, const std::vector<uint8_t>& aliv
 
 // Position of each node in one topological order of `edges` (Kahn); nodes on cycles get the
 // largest ranks (cycle detection reports them from the hazard edges alone).
-inline std::vector<uint32_t> topologicalRank(uint32_t nodeCount, const std::vector<std::pair<uint32_t, uint32_t>>& edges) {
-  std::vector<uint32_t> pending(nodeCount, 0);
-  std::vector<uint32_t> start(nodeCount + 1, 0);
-  for (const auto& [from, to] : edges) {
-    ++pending[to];
-    ++start[from + 1];
+inline ScratchVector<uint32_t> topologicalRank(uint32_t nodeCount, std::span<const Edge> edges) {
+  ScratchVector<uint32_t> pending(nodeCount, 0);
+  ScratchVector<uint32_t> start(nodeCount + 1, 0);
+  for (const Edge& e : edges) {
+    ++pending[e.to];
+    ++start[e.from + 1];
   }
   for (uint32_t n = 1; n <= nodeCount; ++n) start[n] += start[n - 1];
-  std::vector<uint32_t> succ(edges.size());
-  std::vector<uint32_t> cursor(start.begin(), start.end() - 1);
-  for (const auto& [from, to] : edges) succ[cursor[from]++] = to;
-  std::vector<uint32_t> rank(nodeCount, nodeCount);
-  std::vector<uint32_t> ready;
+  ScratchVector<uint32_t> succ(edges.size(), 0);
+  ScratchVector<uint32_t> cursor(start.begin(), start.end() - 1);
+  for (const Edge& e : edges) succ[cursor[e.from]++] = e.to;
+  ScratchVector<uint32_t> rank(nodeCount, nodeCount);
+  ScratchVector<uint32_t> ready;
   for (uint32_t n = 0; n < nodeCount; ++n) {
     if (pending[n] == 0) ready.push_back(n);
   }
@@ -83,18 +84,17 @@ inline std::vector<uint32_t> topologicalRank(uint32_t nodeCount, const std::vect
 // the final order, from handing a resource back and forth without a semaphore. A read-write use
 // is the next version's writer: WAR already orders it after every reader, so it is not chained.
 // (Reader chains rewritten by the graph-tests helper; see its report.)
-template <typename EmitEdge>
-void forEachVersionEdge(const FrameGraph& graph, const std::vector<uint8_t>& alive,
-                        const std::vector<uint32_t>& queueOf, const Adjacency& readers, EmitEdge&& emit) {
-  std::vector<std::pair<uint32_t, uint32_t>> hazards;
-  hazards.reserve(graph.allUses().size() * 2);
-  forEachHazardEdge(graph, alive, readers, [&](uint32_t from, uint32_t to) {
-    hazards.emplace_back(from, to);
-    emit(from, to);
-  });
+// Appends the edges to `edges` (hazard edges first; the rank pass reads them back from there).
+inline void appendVersionEdges(const FrameGraph& graph, const std::vector<uint8_t>& alive,
+                               const std::vector<uint32_t>& queueOf, const Adjacency& readers,
+                               ScratchVector<Edge>& edges) {
+  const size_t firstHazard = edges.size();
+  forEachHazardEdge(graph, alive, readers, [&](uint32_t from, uint32_t to) { edges.push_back({from, to}); });
+  const size_t hazardCount = edges.size() - firstHazard;
+  auto emit = [&](uint32_t from, uint32_t to) { edges.push_back({from, to}); };
   // The rank pass is only needed once some version has readers in two different runs; shapes
   // where every version has one reader, or all readers agree, never pay for it.
-  std::vector<uint32_t> rank;
+  ScratchVector<uint32_t> rank;
   struct Reader {
     uint32_t rank, node, queue;
     Layout layout;
@@ -113,7 +113,10 @@ void forEachVersionEdge(const FrameGraph& graph, const std::vector<uint8_t>& ali
     auto sameRun = [](const Reader& a, const Reader& b) { return a.queue == b.queue && a.layout == b.layout; };
     const bool oneRun = std::all_of(chain.begin(), chain.end(), [&](const Reader& r) { return sameRun(r, chain[0]); });
     if (oneRun) continue;  // a single run has no neighbouring run to order against
-    if (rank.empty()) rank = topologicalRank(static_cast<uint32_t>(graph.nodes().size()), hazards);
+    if (rank.empty()) {
+      rank = topologicalRank(static_cast<uint32_t>(graph.nodes().size()),
+                             std::span<const Edge>(edges.data() + firstHazard, hazardCount));
+    }
     for (Reader& reader : chain) reader.rank = rank[reader.node];
     std::sort(chain.begin(), chain.end(), [](const Reader& a, const Reader& b) { return a.rank < b.rank; });
     // Runs [runStart, runEnd) and [runEnd, nextEnd): all-to-all edges between neighbouring runs.

@@ -210,7 +210,7 @@ class FrameGraph {
   [[nodiscard]] const std::vector<ResourceDecl>& resources() const { return resources_; }
   [[nodiscard]] const std::vector<VersionDecl>& versions() const { return versions_; }
   [[nodiscard]] std::span<const Use> uses(uint32_t node) const {
-    return {allUses_.data() + nodes_[node].firstUse, nodes_[node].useCount};
+    return {allUses_.data() + useStart_[node], useStart_[node + 1] - useStart_[node]};
   }
   [[nodiscard]] const std::vector<Use>& allUses() const { return allUses_; }
   [[nodiscard]] uint32_t resourceOf(TextureHandle h) const { return versionAt(h.version, "texture").resource; }
@@ -228,6 +228,9 @@ class FrameGraph {
   std::vector<ResourceDecl> resources_;
   std::vector<VersionDecl> versions_;
   std::vector<Use> allUses_;
+  // Node n's uses are allUses_[useStart_[n], useStart_[n + 1]) (the same as its firstUse/useCount).
+  // A dense copy: the compiler walks uses node by node many times, and NodeDecl is large.
+  std::vector<uint32_t> useStart_{0};
 };
 
 }  // namespace fgb::graph

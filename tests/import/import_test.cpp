@@ -6,6 +6,8 @@
 #include <fgb/scene/load.hpp>
 #include <fgb/scene/stats.hpp>
 
+#include "test_util.hpp"  // tests/scene: TempDir
+
 #include <glm/geometric.hpp>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -16,35 +18,15 @@
 #include <fstream>
 #include <limits>
 
-#include <unistd.h>
 
 using namespace fgb::scene;
 using fgb::import::importModel;
 using ::testing::HasSubstr;
+using fgb::scene::test::TempDir;
 
 namespace {
 
 const std::filesystem::path kModels = ASSIMP_MODELS;
-
-class TempDir {
- public:
-  TempDir() {
-    static int counter = 0;
-    path_ = std::filesystem::temp_directory_path() /
-            ("fgb-import-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
-    std::filesystem::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    std::filesystem::remove_all(path_, ignored);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  const std::filesystem::path& path() const { return path_; }
-
- private:
-  std::filesystem::path path_;
-};
 
 // Copies the textured box glTF (.gltf + .bin + .png) into `dir`; returns the .gltf path.
 std::filesystem::path copyBoxGltf(const std::filesystem::path& dir) {

@@ -10,7 +10,7 @@
 
 #extension GL_EXT_samplerless_texture_functions : require
 
-#define FGB_MAX_STORAGE_BUFFERS 8192
+#define FGB_MAX_STORAGE_BUFFERS 16384
 #define FGB_MAX_SAMPLED_TEXTURES 4096
 #define FGB_MAX_STORAGE_TEXTURES 1024
 #define FGB_MAX_SAMPLERS 64

@@ -1,5 +1,7 @@
 // The CommandBuffer a job records into: a VkCommandBuffer owned by the executor, plus the device
-// tables to resolve RHI ids. Binds the node's descriptor set lazily per bind point.
+// tables to resolve RHI ids. Binds the node's descriptor set lazily per bind point. The executor's
+// per-node prologue (queued barriers, debug label, begin timestamp) runs lazily too, right before
+// the node's first command: a node whose job records nothing costs no commands at all.
 #pragma once
 
 #include "device.hpp"
@@ -17,6 +19,21 @@ class VulkanCommandBuffer final : public rhi::CommandBuffer {
   [[nodiscard]] VkCommandBuffer get() const { return cmd_; }
   // The descriptor set the next pipelines see (a node's scoped set); null: the shared set.
   void useSet(VkDescriptorSet set) { set_ = set; }
+
+  using Prologue = void (*)(void* context);
+  // A node starts: `prologue(context)` runs before its first command (or at once via start()).
+  void beginNode(Prologue prologue, void* context) {
+    prologue_ = prologue;
+    prologueContext_ = context;
+    started_ = false;
+  }
+  void start() {
+    if (started_) return;
+    started_ = true;
+    prologue_(prologueContext_);
+  }
+  // The node ends; true if it recorded anything (its prologue ran).
+  bool endNode() { return started_; }
 
   void bindPipeline(rhi::PipelineId pipeline) override;
   void pushConstants(const void* data, uint32_t size, uint32_t offset) override;
@@ -40,12 +57,20 @@ class VulkanCommandBuffer final : public rhi::CommandBuffer {
 
  private:
   VkBuffer vkBuffer(rhi::BufferId id) const { return device_->buffer(id).buffer.get(); }
+  // Every recording method begins with this.
+  VkCommandBuffer recording() {
+    if (!started_) [[unlikely]] start();
+    return cmd_;
+  }
 
   const VulkanDevice* device_;
   VkCommandBuffer cmd_ = VK_NULL_HANDLE;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
   VkDescriptorSet graphicsSetBound_ = VK_NULL_HANDLE;  // set bound at each bind point
   VkDescriptorSet computeSetBound_ = VK_NULL_HANDLE;
+  Prologue prologue_ = nullptr;
+  void* prologueContext_ = nullptr;
+  bool started_ = true;
 };
 
 }  // namespace fgb::vulkan

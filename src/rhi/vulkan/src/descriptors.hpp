@@ -9,7 +9,7 @@
 // outside the graph (read-only) plus those the node declared, with write access only where it
 // declared a write. Validation (synchronization validation in particular) treats every valid
 // descriptor of a statically used binding as accessed, so the shared set would make every node
-// look like it touches every resource.
+// look like it touches every resource. Scoped sets are built only when validation is on.
 #pragma once
 
 #include "vk.hpp"
@@ -21,7 +21,7 @@
 namespace fgb::vulkan {
 
 // Capacities; must match the FGB_MAX_* macros in shaders/include/bindless.glsl.
-inline constexpr uint32_t kMaxStorageBuffers = 8192;  // per storage-buffer binding (0 and 4)
+inline constexpr uint32_t kMaxStorageBuffers = 16384;  // per storage-buffer binding (0 and 4)
 inline constexpr uint32_t kMaxSampledTextures = 4096;
 inline constexpr uint32_t kMaxStorageTextures = 1024;
 inline constexpr uint32_t kMaxSamplers = 64;

@@ -102,6 +102,7 @@ class VulkanDevice final : public rhi::Device {
   const Descriptors& descriptors() const { return *descriptors_; }
   Descriptors& descriptors() { return *descriptors_; }
   bool debugLabels() const { return debugLabels_; }
+  bool validationEnabled() const { return instance_->validation(); }
   void setName(VkObjectType type, uint64_t handle, const std::string& name) const;
 
   const BufferRecord& buffer(rhi::BufferId id) const;

@@ -256,34 +256,53 @@ void VulkanGraph::translateBarriers() {
     }
   }
 
-  // Each step's before/after range becomes one VkDependencyInfo; the compiler emits barriers of a
-  // range contiguously, so their translated copies are contiguous too (dropped ones excepted).
-  const auto dependency = [&](graph::BarrierRange range) {
-    auto info = vkStruct<VkDependencyInfo>(VK_STRUCTURE_TYPE_DEPENDENCY_INFO);
-    int32_t firstImage = -1;
-    int32_t firstBuffer = -1;
+  // Each step's before/after range becomes a list of references to the translated barriers.
+  const auto references = [&](graph::BarrierRange range) {
+    const BarrierList list{static_cast<uint32_t>(barrierRefs_.size()), 0};
     for (uint32_t i = range.first; i < range.first + range.count; ++i) {
-      if (imageSlot[i] >= 0) {
-        if (firstImage < 0) firstImage = imageSlot[i];
-        ++info.imageMemoryBarrierCount;
-      }
-      if (bufferSlot[i] >= 0) {
-        if (firstBuffer < 0) firstBuffer = bufferSlot[i];
-        ++info.bufferMemoryBarrierCount;
-      }
+      if (imageSlot[i] < 0 && bufferSlot[i] < 0) continue;
+      const graph::Barrier& b = barriers[i];
+      BarrierRef ref;
+      ref.resource = b.resource;
+      ref.image = imageSlot[i] >= 0;
+      ref.index = static_cast<uint32_t>(ref.image ? imageSlot[i] : bufferSlot[i]);
+      ref.heap = compiled_.aliasing.placements[b.resource].heap;
+      // Only same-queue, same-layout barriers of graph-owned memory may be skipped (see
+      // queueBarriers): layout changes and ownership transfers must happen either way.
+      ref.elidable = ref.heap != graph::kInvalidIndex && b.kind == graph::Barrier::Kind::Transition &&
+                     (!ref.image || b.oldLayout == b.newLayout);
+      barrierRefs_.push_back(ref);
     }
-    info.pImageMemoryBarriers = firstImage >= 0 ? &imageBarriers_[static_cast<size_t>(firstImage)] : nullptr;
-    info.pBufferMemoryBarriers = firstBuffer >= 0 ? &bufferBarriers_[static_cast<size_t>(firstBuffer)] : nullptr;
-    return info;
+    return BarrierList{list.first, static_cast<uint32_t>(barrierRefs_.size()) - list.first};
   };
+  barrierRefs_.clear();
   steps_.resize(compiled_.steps.size());
   for (uint32_t s = 0; s < compiled_.steps.size(); ++s) {
     const graph::Step& step = compiled_.steps[s];
     steps_[s].node = step.node;
     steps_[s].type = declaration_.nodes()[step.node].type;
     steps_[s].logicalQueue = compiled_.nodes[step.node].queue;
-    steps_[s].before = dependency(step.before);
-    steps_[s].after = dependency(step.after);
+    steps_[s].before = references(step.before);
+    steps_[s].after = references(step.after);
+  }
+  listTouchedHeaps();
+  pendingBarriers_.resize(declaration_.resources().size());
+  heapTouched_.assign(compiled_.aliasing.heaps.size(), 0);
+}
+
+// Per step, the heaps holding graph-owned resources the node uses (each once).
+void VulkanGraph::listTouchedHeaps() {
+  stepHeaps_.clear();
+  std::vector<uint32_t> seenInStep(compiled_.aliasing.heaps.size(), graph::kInvalidIndex);
+  for (uint32_t s = 0; s < steps_.size(); ++s) {
+    steps_[s].firstHeap = static_cast<uint32_t>(stepHeaps_.size());
+    for (const graph::Use& use : declaration_.uses(steps_[s].node)) {
+      const uint32_t heap = compiled_.aliasing.placements[use.resource].heap;
+      if (heap == graph::kInvalidIndex || seenInStep[heap] == s) continue;
+      seenInStep[heap] = s;
+      stepHeaps_.push_back(heap);
+    }
+    steps_[s].heapCount = static_cast<uint32_t>(stepHeaps_.size()) - steps_[s].firstHeap;
   }
 }
 
@@ -418,6 +437,7 @@ void VulkanGraph::createSyncAndSlots() {
       slot.pools.emplace_back(device, pool, vkDestroyCommandPool);
     }
     slot.commandBuffers.resize(compiled_.submits.size());
+    slot.recorded.assign(compiled_.submits.size(), 0);
     for (uint32_t s = 0; s < compiled_.submits.size(); ++s) {
       auto info = vkStruct<VkCommandBufferAllocateInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO);
       info.commandPool = slot.pools[compiled_.submits[s].queue].get();
@@ -448,8 +468,11 @@ rhi::TextureId VulkanGraph::textureOf(graph::TextureHandle handle) const {
 // One scoped descriptor set per step (see descriptors.hpp): resources outside the graph stay
 // visible read-only; of the graph's own resources, a node sees only those it declared, writable
 // only where it declared a write.
+// They exist for the validation layer's sake (a GPU runs the same shaders either way), so they are
+// built only when validation is on: without it every node binds the shared set and a graph costs
+// no descriptor memory per node.
 void VulkanGraph::createScopedSets() {
-  if (!device_.descriptors().bindless() || steps_.empty()) return;
+  if (!device_.validationEnabled() || !device_.descriptors().bindless() || steps_.empty()) return;
   const auto& decls = declaration_.resources();
   std::vector<bool> graphBuffers(kMaxStorageBuffers, false);
   std::vector<bool> graphSampled(kMaxSampledTextures, false);

@@ -5,6 +5,7 @@
 // timed by timestamps.cpp.
 #pragma once
 
+#include "barrier_batch.hpp"
 #include "command_buffer.hpp"
 #include "device.hpp"
 
@@ -43,12 +44,26 @@ class VulkanGraph final : public rhi::ExecutableGraph {
   [[nodiscard]] rhi::TextureId textureOf(graph::TextureHandle handle) const;
 
  private:
+  // A translated barrier (in imageBarriers_ or bufferBarriers_) as a step uses it.
+  struct BarrierRef {
+    uint32_t resource = 0;
+    uint32_t index = 0;  // into imageBarriers_ or bufferBarriers_
+    uint32_t heap = graph::kInvalidIndex;  // graph-owned memory it protects; none for imports
+    bool image = false;
+    bool elidable = false;  // may be skipped while no recorded command has touched its heap
+  };
+  struct BarrierList {
+    uint32_t first = 0;  // into barrierRefs_
+    uint32_t count = 0;
+  };
   struct Step {
     uint32_t node = 0;
     graph::NodeType type = graph::NodeType::Graphics;
     uint32_t logicalQueue = 0;
-    VkDependencyInfo before = vkStruct<VkDependencyInfo>(VK_STRUCTURE_TYPE_DEPENDENCY_INFO);
-    VkDependencyInfo after = vkStruct<VkDependencyInfo>(VK_STRUCTURE_TYPE_DEPENDENCY_INFO);
+    BarrierList before;
+    BarrierList after;
+    uint32_t firstHeap = 0;  // into stepHeaps_: heaps of the graph-owned resources the node uses
+    uint32_t heapCount = 0;
     bool rendering = false;
     VkRenderingInfo renderingInfo = vkStruct<VkRenderingInfo>(VK_STRUCTURE_TYPE_RENDERING_INFO);
     graph::Extent extent{};
@@ -56,6 +71,7 @@ class VulkanGraph final : public rhi::ExecutableGraph {
   struct Slot {
     std::vector<Owned<VkCommandPool>> pools;  // per logical queue
     std::vector<VkCommandBuffer> commandBuffers;  // per compiled submit
+    std::vector<uint8_t> recorded;                // per compiled submit: anything recorded (else not begun)
     Owned<VkQueryPool> queries;
     uint64_t execution = 0;
     bool pending = false;
@@ -69,13 +85,18 @@ class VulkanGraph final : public rhi::ExecutableGraph {
   std::vector<rhi::BufferUsage> bufferUsages() const;
   void createResources();
   void translateBarriers();
+  void listTouchedHeaps();
   void translateRendering();
   void orderSubmits();
   void createSyncAndSlots();
   void createScopedSets();
   // executor.cpp
   void recordSubmit(Slot& slot, uint32_t submitIndex, uint64_t execution);
-  void recordStep(VkCommandBuffer cmd, uint32_t stepIndex, uint64_t execution, VkQueryPool queries);
+  void recordStep(uint32_t stepIndex, uint64_t execution);
+  VkCommandBuffer commandBufferForRecording();
+  void beginStep();  // the deferred prologue of the step being recorded
+  void endStep(bool recorded);
+  void queueBarriers(BarrierList list);
   void submitAll(const Slot& slot, uint64_t execution, rhi::RunMode mode);
   uint64_t timelineBase(uint64_t execution) const { return (execution + 1) * valuesPerExecution_; }
   // timestamps.cpp
@@ -101,6 +122,8 @@ class VulkanGraph final : public rhi::ExecutableGraph {
   std::vector<Step> steps_;
   std::vector<VkImageMemoryBarrier2> imageBarriers_;
   std::vector<VkBufferMemoryBarrier2> bufferBarriers_;
+  std::vector<BarrierRef> barrierRefs_;
+  std::vector<uint32_t> stepHeaps_;
   std::vector<VkRenderingAttachmentInfo> attachments_;
   std::vector<uint32_t> submitOrder_;
   std::vector<Owned<VkSemaphore>> timelines_;  // per logical queue
@@ -110,6 +133,17 @@ class VulkanGraph final : public rhi::ExecutableGraph {
   std::vector<TimelinePoint> lastPoints_;  // completion points of the latest execution
   std::deque<rhi::GraphTimings> timings_;
   VulkanCommandBuffer commandBuffer_;
+
+  // Recording state of the current execution (executor.cpp).
+  struct Recording {
+    Slot* slot = nullptr;
+    uint32_t submit = 0;
+    VkCommandBuffer cmd = VK_NULL_HANDLE;  // begun lazily: commandBufferForRecording()
+    VkQueryPool queries = VK_NULL_HANDLE;
+    uint32_t step = 0;
+  } recording_;
+  BarrierBatch pendingBarriers_;
+  std::vector<uint8_t> heapTouched_;  // per heap: a recorded command used it in this execution
 
   // Scratch for submission, reused every execution (no per-frame allocation once warm).
   std::vector<VkSubmitInfo2> submitInfos_;

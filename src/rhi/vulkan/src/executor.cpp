@@ -1,5 +1,6 @@
 // Running compiled graphs: record every step in order (barriers, debug label, timestamps, dynamic
-// rendering, the node's job), submit per the plan with one timeline semaphore per logical queue,
+// rendering, the node's job; all but the job deferred until the job's first command, so nodes
+// that record nothing cost nothing), submit per the plan with one timeline semaphore per logical queue,
 // and chain executions — of the same graph (frames in flight) and of sequential graphs.
 #include "executable_graph.hpp"
 #include "translate.hpp"
@@ -68,6 +69,7 @@ uint64_t VulkanGraph::submit(rhi::RunMode mode) {
   for (const auto& pool : slot.pools) check(vkResetCommandPool(device_.device(), pool.get(), 0), "vkResetCommandPool");
   if (slot.queries) vkResetQueryPool(device_.device(), slot.queries.get(), 0, static_cast<uint32_t>(steps_.size() * 2));
 
+  std::fill(heapTouched_.begin(), heapTouched_.end(), 0);
   for (uint32_t s = 0; s < compiled_.submits.size(); ++s) recordSubmit(slot, s, execution);
   submitAll(slot, execution, mode);
 
@@ -78,37 +80,71 @@ uint64_t VulkanGraph::submit(rhi::RunMode mode) {
   return execution;
 }
 
+// A submit's command buffer is begun only when something is recorded into it: a submit of nodes
+// that record nothing is submitted without one (its semaphore wait and signal still order the
+// queues).
 void VulkanGraph::recordSubmit(Slot& slot, uint32_t submitIndex, uint64_t execution) {
   const graph::Submit& submit = compiled_.submits[submitIndex];
-  const VkCommandBuffer cmd = slot.commandBuffers[submitIndex];
+  recording_.slot = &slot;
+  recording_.submit = submitIndex;
+  recording_.cmd = VK_NULL_HANDLE;
+  recording_.queries = slot.queries.get();
+  for (uint32_t s = submit.firstStep; s < submit.firstStep + submit.stepCount; ++s) recordStep(s, execution);
+  // Releases to other queues and final import states must be recorded before the submit signals.
+  if (!pendingBarriers_.empty()) pendingBarriers_.record(commandBufferForRecording());
+  slot.recorded[submitIndex] = recording_.cmd != VK_NULL_HANDLE;
+  if (recording_.cmd != VK_NULL_HANDLE) check(vkEndCommandBuffer(recording_.cmd), "vkEndCommandBuffer");
+}
+
+VkCommandBuffer VulkanGraph::commandBufferForRecording() {
+  if (recording_.cmd != VK_NULL_HANDLE) return recording_.cmd;
+  const VkCommandBuffer cmd = recording_.slot->commandBuffers[recording_.submit];
   auto begin = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
   begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   check(vkBeginCommandBuffer(cmd, &begin), "vkBeginCommandBuffer");
   commandBuffer_.begin(VK_NULL_HANDLE);  // forget descriptor bindings of the previous buffer
   commandBuffer_.begin(cmd);
-  for (uint32_t s = submit.firstStep; s < submit.firstStep + submit.stepCount; ++s) {
-    recordStep(cmd, s, execution, slot.queries.get());
-  }
-  check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
+  recording_.cmd = cmd;
+  return cmd;
 }
 
-void VulkanGraph::recordStep(VkCommandBuffer cmd, uint32_t stepIndex, uint64_t execution, VkQueryPool queries) {
+// A step: its "before" barriers are queued; its prologue (barriers, label, begin timestamp, and
+// dynamic rendering for graphics nodes with attachments) runs before its first command; its job
+// records; its "after" barriers are queued for the next step that records work.
+void VulkanGraph::recordStep(uint32_t stepIndex, uint64_t execution) {
   const Step& step = steps_[stepIndex];
-  const bool labels = device_.debugLabels();
-  if (labels) {
+  recording_.step = stepIndex;
+  queueBarriers(step.before);
+  commandBuffer_.beginNode([](void* graph) { static_cast<VulkanGraph*>(graph)->beginStep(); }, this);
+  // Attachments are accessed by vkCmdBeginRendering itself (load and store operations): a node
+  // rendering into them does work even if its job draws nothing.
+  if (step.rendering) commandBuffer_.start();
+
+  const graph::Job& job = jobs_[step.node];
+  if (job) {
+    commandBuffer_.useSet(scopedSets_ ? scopedSets_->set(stepIndex) : VK_NULL_HANDLE);
+    VulkanJobContext context(*this, device_, commandBuffer_, execution);
+    if (step.rendering) context.setExtent(step.extent);
+    job(context);
+  }
+  endStep(commandBuffer_.endNode());
+  queueBarriers(step.after);
+}
+
+void VulkanGraph::beginStep() {
+  const Step& step = steps_[recording_.step];
+  const VkCommandBuffer cmd = commandBufferForRecording();
+  if (device_.debugLabels()) {
     auto label = vkStruct<VkDebugUtilsLabelEXT>(VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT);
     label.pLabelName = declaration_.nodes()[step.node].name.c_str();
     std::copy(std::begin(kLabelColors[static_cast<int>(step.type)]), std::end(kLabelColors[static_cast<int>(step.type)]),
               label.color);
     vkCmdBeginDebugUtilsLabelEXT(cmd, &label);
   }
-  if (step.before.imageMemoryBarrierCount + step.before.bufferMemoryBarrierCount > 0) {
-    vkCmdPipelineBarrier2(cmd, &step.before);
+  pendingBarriers_.record(cmd);
+  if (recording_.queries != VK_NULL_HANDLE && timestampMask_[step.logicalQueue] != 0) {
+    vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, recording_.queries, recording_.step * 2);
   }
-  const bool timed = queries != VK_NULL_HANDLE && timestampMask_[step.logicalQueue] != 0;
-  if (timed) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries, stepIndex * 2);
-
-  const graph::Job& job = jobs_[step.node];
   if (step.rendering) {
     vkCmdBeginRendering(cmd, &step.renderingInfo);
     const VkViewport viewport{0, 0, static_cast<float>(step.extent.width), static_cast<float>(step.extent.height), 0, 1};
@@ -116,19 +152,36 @@ void VulkanGraph::recordStep(VkCommandBuffer cmd, uint32_t stepIndex, uint64_t e
     vkCmdSetViewport(cmd, 0, 1, &viewport);
     vkCmdSetScissor(cmd, 0, 1, &scissor);
   }
-  if (job) {
-    commandBuffer_.useSet(scopedSets_ ? scopedSets_->set(stepIndex) : VK_NULL_HANDLE);
-    VulkanJobContext context(*this, device_, commandBuffer_, execution);
-    if (step.rendering) context.setExtent(step.extent);
-    job(context);
-  }
-  if (step.rendering) vkCmdEndRendering(cmd);
+}
 
-  if (timed) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries, stepIndex * 2 + 1);
-  if (step.after.imageMemoryBarrierCount + step.after.bufferMemoryBarrierCount > 0) {
-    vkCmdPipelineBarrier2(cmd, &step.after);
+void VulkanGraph::endStep(bool recorded) {
+  if (!recorded) return;  // no label, no timestamps: the node has no GPU time (it reads as 0 ms)
+  const Step& step = steps_[recording_.step];
+  const VkCommandBuffer cmd = recording_.cmd;
+  if (step.rendering) vkCmdEndRendering(cmd);
+  if (recording_.queries != VK_NULL_HANDLE && timestampMask_[step.logicalQueue] != 0) {
+    vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, recording_.queries, recording_.step * 2 + 1);
   }
-  if (labels) vkCmdEndDebugUtilsLabelEXT(cmd);
+  if (device_.debugLabels()) vkCmdEndDebugUtilsLabelEXT(cmd);
+  for (uint32_t i = step.firstHeap; i < step.firstHeap + step.heapCount; ++i) heapTouched_[stepHeaps_[i]] = 1;
+}
+
+// A same-layout barrier on graph-owned memory that no recorded command has touched yet in this
+// execution orders nothing: the memory's previous accesses belong to earlier executions, which
+// this one waited for on every queue. Such barriers are skipped; the rest are queued (merged per
+// resource) until the next command.
+void VulkanGraph::queueBarriers(BarrierList list) {
+  for (uint32_t i = list.first; i < list.first + list.count; ++i) {
+    const BarrierRef& ref = barrierRefs_[i];
+    if (ref.elidable && heapTouched_[ref.heap] == 0) continue;
+    const auto add = [&] {
+      return ref.image ? pendingBarriers_.add(ref.resource, imageBarriers_[ref.index])
+                       : pendingBarriers_.add(ref.resource, bufferBarriers_[ref.index]);
+    };
+    if (add()) continue;
+    pendingBarriers_.record(commandBufferForRecording());
+    if (!add()) throw DeviceError("internal: a barrier could not be queued after the batch was recorded");
+  }
 }
 
 void VulkanGraph::submitAll(const Slot& slot, uint64_t execution, rhi::RunMode mode) {
@@ -185,7 +238,7 @@ void VulkanGraph::submitAll(const Slot& slot, uint64_t execution, rhi::RunMode m
     auto info = vkStruct<VkSubmitInfo2>(VK_STRUCTURE_TYPE_SUBMIT_INFO_2);
     info.waitSemaphoreInfoCount = static_cast<uint32_t>(waitInfos_.size() - firstWait);
     info.pWaitSemaphoreInfos = info.waitSemaphoreInfoCount ? &waitInfos_[firstWait] : nullptr;
-    info.commandBufferInfoCount = 1;
+    info.commandBufferInfoCount = slot.recorded[s] ? 1 : 0;
     info.pCommandBufferInfos = &commandInfos_[s];
     info.signalSemaphoreInfoCount = 1;
     info.pSignalSemaphoreInfos = &signal;

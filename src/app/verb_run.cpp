@@ -3,6 +3,7 @@
 #include "verb.hpp"
 
 #include <fgb/core/error.hpp>
+#include <fgb/core/stopwatch.hpp>
 #include <fgb/harness/budget.hpp>
 #include <fgb/harness/dart.hpp>
 #include <fgb/harness/golden.hpp>
@@ -54,11 +55,14 @@ harness::RunArtifacts render(render::Workload& workload, const RunVerbOptions& o
   harness::RunArtifacts a;
   a.run = harness::runBenchmark(workload, runOptions);
   bar.finish();
+  a.run.overhead.startup = workload.startup();
   if (workload.validationMessages() > 0) {
     throw DeviceError(fmt::format("{} validation message(s) while rendering {}", workload.validationMessages(), o.scene));
   }
+  Stopwatch readback;
   a.images.hdr = harness::fromRendered(workload.readHdr());
   a.images.display = harness::fromRendered(workload.readDisplay());
+  a.run.overhead.readbackMs = readback.elapsedMs();
   a.graphBrief = workload.graphviz(render::GraphDetail::Brief);
   a.graphFull = workload.graphviz(render::GraphDetail::Full);
 
@@ -124,8 +128,11 @@ int runVerb(const CLI::App& command, RunVerbOptions o) {
   }
   if (o.out.empty()) o.out = "out/" + harness::sceneName(o.scene);
 
+  Stopwatch opening;
   auto workload = render::openWorkload(workloadConfig(o.scene, o.common, knobs));
+  const double openMs = opening.elapsedMs();
   harness::RunArtifacts artifacts = render(*workload, o, knobs);
+  artifacts.run.overhead.openMs = openMs;
   harness::RunResult& run = artifacts.run;
   if (budget) run.budget = harness::checkBudget(*budget, run.medians(), o.tolerance);
   if (golden) run.golden = harness::checkGolden(*golden, artifacts.images, o.out);

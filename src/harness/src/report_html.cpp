@@ -89,9 +89,7 @@ std::string htmlReport(const RunResult& run) {
           "<th>min</th><th>max</th><th>n</th><th>spread</th></tr>\n" + passRows(run) + "</table>\n";
   html += fmt::format("<p class=\"note\">unstable: (p95 − p5) / median above {:g}; read such medians with care.</p>\n",
                       kDefaultUnstableSpread);
-  html += fmt::format("<p class=\"note\">Harness overhead around rendering: {:.3f} ms ({:.1f} µs per frame), apart from {:.3f} ms "
-                      "inside the workload.</p>\n",
-                      run.overhead.harnessMs, run.overhead.perFrameUs, run.overhead.workloadCallsMs);
+  html += "<p class=\"note\">" + escapeXml(hostOverheadNote(run)) + "</p>\n";
   html += "<h2>Budget</h2>\n" + budgetHtml(run);
   html += "<h2>Golden image</h2>\n" + goldenHtml(run);
   return html + "</body></html>\n";

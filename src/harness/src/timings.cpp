@@ -40,6 +40,24 @@ std::vector<double> readSamples(const nlohmann::json& object, const std::string&
   return samples;
 }
 
+nlohmann::json toJson(const HarnessOverhead& o) {
+  const render::StartupTimes& s = o.startup;
+  return {{"open_ms", o.openMs},
+          {"startup", {{"scene_ms", s.sceneMs},
+                       {"device_ms", s.deviceMs},
+                       {"upload_ms", s.uploadMs},
+                       {"graph_ms", s.graphMs},
+                       {"pipelines_ms", s.pipelinesMs},
+                       {"pipelines", s.pipelines},
+                       {"pipeline_cache", s.pipelineCache}}},
+          {"loop_wall_ms", o.loopWallMs},
+          {"workload_calls_ms", o.workloadCallsMs},
+          {"harness_ms", o.harnessMs},
+          {"harness_us_per_frame", o.perFrameUs},
+          {"readback_ms", o.readbackMs},
+          {"encode_ms", o.encodeMs}};
+}
+
 }  // namespace
 
 const PassRecord* RunResult::findPass(const std::string& name) const {
@@ -97,8 +115,7 @@ nlohmann::json toJson(const RunResult& run) {
       {"frame_gpu_ms", toJson(run.frameGpu)},
       {"frame_cpu_ms", toJson(run.frameCpu)},
       {"samples", {{"frame_gpu_ms", run.frameGpuMs}, {"frame_cpu_ms", run.frameCpuMs}}},
-      {"harness", {{"loop_wall_ms", run.overhead.loopWallMs}, {"workload_calls_ms", run.overhead.workloadCallsMs},
-                   {"harness_ms", run.overhead.harnessMs}, {"harness_us_per_frame", run.overhead.perFrameUs}}},
+      {"harness", toJson(run.overhead)},
   };
   j["budget"] = run.budget ? toJson(*run.budget)
                            : nlohmann::json{{"file", ""}, {"verdict", "none"}, {"over", nlohmann::json::array()}};

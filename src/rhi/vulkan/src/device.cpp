@@ -64,6 +64,7 @@ VulkanDevice::VulkanDevice(const rhi::DeviceOptions& options) : framesInFlight_(
   createLogicalDevice();
   memory_ = std::make_unique<MemoryAllocator>(physical_, device_);
   createDescriptors(options.forceDescriptorFallback);
+  pipelineCache_ = std::make_unique<PipelineCache>(device_, properties, options.pipelineCacheDir);
 }
 
 VulkanDevice::~VulkanDevice() {
@@ -71,6 +72,7 @@ VulkanDevice::~VulkanDevice() {
   vkDeviceWaitIdle(device_);
   callbacks_.clear();
   pipelines_.clear();
+  pipelineCache_.reset();  // saved to disk here
   samplers_.clear();
   textures_.clear();
   buffers_.clear();

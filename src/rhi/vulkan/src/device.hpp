@@ -6,6 +6,7 @@
 #include "descriptors.hpp"
 #include "instance.hpp"
 #include "memory.hpp"
+#include "pipeline_cache.hpp"
 #include "vk.hpp"
 
 #include <fgb/rhi/device.hpp>
@@ -78,6 +79,7 @@ class VulkanDevice final : public rhi::Device {
   rhi::SamplerId createSampler(const rhi::SamplerDesc& desc) override;
   rhi::PipelineId createGraphicsPipeline(const rhi::GraphicsPipelineDesc& desc) override;
   rhi::PipelineId createComputePipeline(const rhi::ComputePipelineDesc& desc) override;
+  rhi::PipelineStats pipelineStats() const override;
   std::span<std::byte> mapped(rhi::BufferId buffer) override;
   uint32_t storageBufferIndex(rhi::BufferId buffer) const override;
   uint32_t sampledTextureIndex(rhi::TextureId texture) const override;
@@ -146,6 +148,8 @@ class VulkanDevice final : public rhi::Device {
   std::vector<TextureRecord> textures_;
   std::vector<SamplerRecord> samplers_;
   std::vector<PipelineRecord> pipelines_;
+  std::unique_ptr<PipelineCache> pipelineCache_;
+  double pipelineCreationMs_ = 0.0;
   std::vector<uint32_t> freeBuffers_;
   std::vector<uint32_t> freeTextures_;
   std::unordered_map<std::string, Owned<VkShaderModule>> shaderModules_;

@@ -27,6 +27,7 @@ class VulkanGraph final : public rhi::ExecutableGraph {
   const graph::FrameGraph& declaration() const override { return declaration_; }
   const graph::CompiledGraph& compiled() const override { return compiled_; }
   uint64_t executions() const override { return executions_; }
+  HostTimes lastHostTimes() const override { return hostTimes_; }
   std::vector<rhi::GraphTimings> takeTimings() override;
   rhi::BufferId buffer(uint32_t resource) const override { return buffers_.at(resource); }
   rhi::TextureId texture(uint32_t resource) const override { return textures_.at(resource); }
@@ -130,6 +131,7 @@ class VulkanGraph final : public rhi::ExecutableGraph {
   uint64_t valuesPerExecution_ = 1;
   std::vector<Slot> slots_;
   uint64_t executions_ = 0;
+  HostTimes hostTimes_;
   std::vector<TimelinePoint> lastPoints_;  // completion points of the latest execution
   std::deque<rhi::GraphTimings> timings_;
   VulkanCommandBuffer commandBuffer_;

@@ -9,6 +9,7 @@
 #include <fgb/rhi/job_context.hpp>
 
 #include <algorithm>
+#include <chrono>
 
 namespace fgb::vulkan {
 namespace {
@@ -58,13 +59,16 @@ constexpr float kLabelColors[3][4] = {
 }  // namespace
 
 uint64_t VulkanGraph::submit(rhi::RunMode mode) {
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
   const uint64_t execution = executions_;
   Slot& slot = slots_[execution % slots_.size()];
   if (slot.pending) {
     // Every frame in flight is still in use: wait for the oldest (the only stall, by design).
     waitFor(slot.execution);
-    collectTimings(slot);
   }
+  const auto unblocked = Clock::now();
+  if (slot.pending) collectTimings(slot);
   collectFinishedTimings();  // earlier executions that completed meanwhile: no waiting
   for (const auto& pool : slot.pools) check(vkResetCommandPool(device_.device(), pool.get(), 0), "vkResetCommandPool");
   if (slot.queries) vkResetQueryPool(device_.device(), slot.queries.get(), 0, static_cast<uint32_t>(steps_.size() * 2));
@@ -77,6 +81,8 @@ uint64_t VulkanGraph::submit(rhi::RunMode mode) {
   slot.pending = true;
   slot.timed = static_cast<bool>(slot.queries);
   ++executions_;
+  const auto milliseconds = [](Clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); };
+  hostTimes_ = {milliseconds(unblocked - start), milliseconds(Clock::now() - unblocked)};
   return execution;
 }
 

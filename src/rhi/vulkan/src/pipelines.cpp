@@ -4,6 +4,7 @@
 #include "translate.hpp"
 
 #include <fgb/core/error.hpp>
+#include <fgb/core/stopwatch.hpp>
 #include <fgb/shaders/registry.hpp>
 
 #include <array>
@@ -25,6 +26,19 @@ VkShaderModule VulkanDevice::shaderModule(const std::string& path) {
 }
 
 namespace {
+
+// Adds the scope's wall time to `total` (pipeline creation is host time the harness reports).
+class ScopedMilliseconds {
+ public:
+  explicit ScopedMilliseconds(double& total) : total_(total) {}
+  ~ScopedMilliseconds() { total_ += stopwatch_.elapsedMs(); }
+  ScopedMilliseconds(const ScopedMilliseconds&) = delete;
+  ScopedMilliseconds& operator=(const ScopedMilliseconds&) = delete;
+
+ private:
+  double& total_;
+  Stopwatch stopwatch_;
+};
 
 VkPipelineShaderStageCreateInfo stage(VkShaderStageFlagBits bit, VkShaderModule module) {
   auto info = vkStruct<VkPipelineShaderStageCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO);
@@ -116,8 +130,11 @@ rhi::PipelineId VulkanDevice::createGraphicsPipeline(const rhi::GraphicsPipeline
   info.pDynamicState = &dynamic;
   info.layout = descriptors_->pipelineLayout();
   VkPipeline pipeline = VK_NULL_HANDLE;
-  check(vkCreateGraphicsPipelines(device_, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline),
-        "vkCreateGraphicsPipelines '" + desc.name + "'");
+  {
+    const ScopedMilliseconds timer(pipelineCreationMs_);
+    check(vkCreateGraphicsPipelines(device_, pipelineCache_->get(), 1, &info, nullptr, &pipeline),
+          "vkCreateGraphicsPipelines '" + desc.name + "'");
+  }
   setName(VK_OBJECT_TYPE_PIPELINE, reinterpret_cast<uint64_t>(pipeline), desc.name);
   pipelines_.push_back({Owned<VkPipeline>(device_, pipeline, vkDestroyPipeline), VK_PIPELINE_BIND_POINT_GRAPHICS});
   return rhi::PipelineId{static_cast<uint32_t>(pipelines_.size() - 1)};
@@ -128,11 +145,18 @@ rhi::PipelineId VulkanDevice::createComputePipeline(const rhi::ComputePipelineDe
   info.stage = stage(VK_SHADER_STAGE_COMPUTE_BIT, shaderModule(desc.shader));
   info.layout = descriptors_->pipelineLayout();
   VkPipeline pipeline = VK_NULL_HANDLE;
-  check(vkCreateComputePipelines(device_, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline),
-        "vkCreateComputePipelines '" + desc.name + "'");
+  {
+    const ScopedMilliseconds timer(pipelineCreationMs_);
+    check(vkCreateComputePipelines(device_, pipelineCache_->get(), 1, &info, nullptr, &pipeline),
+          "vkCreateComputePipelines '" + desc.name + "'");
+  }
   setName(VK_OBJECT_TYPE_PIPELINE, reinterpret_cast<uint64_t>(pipeline), desc.name);
   pipelines_.push_back({Owned<VkPipeline>(device_, pipeline, vkDestroyPipeline), VK_PIPELINE_BIND_POINT_COMPUTE});
   return rhi::PipelineId{static_cast<uint32_t>(pipelines_.size() - 1)};
+}
+
+rhi::PipelineStats VulkanDevice::pipelineStats() const {
+  return {static_cast<uint32_t>(pipelines_.size()), pipelineCreationMs_, pipelineCache_->state()};
 }
 
 const PipelineRecord& VulkanDevice::pipeline(rhi::PipelineId id) const {

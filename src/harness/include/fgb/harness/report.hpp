@@ -17,6 +17,9 @@ std::string queueTimelineSvg(const RunResult& run);   // per-queue lanes of pass
 
 // The sentence every report carries when the device's timestamps are the host clock (lavapipe).
 std::string timestampSourceNote(const render::DeviceDescription& device);
+// Host time around rendering (start-up and its phases, loop overhead, readback, encoding), apart
+// from GPU time; the same sentence in both reports.
+std::string hostOverheadNote(const RunResult& run);
 
 std::string escapeXml(const std::string& text);
 std::string msaaLabel(uint32_t msaa);  // "4", or "scene default" for 0

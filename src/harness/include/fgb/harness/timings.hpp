@@ -29,13 +29,18 @@ struct PassRecord {
   bool unstable = false;
 };
 
-// Time spent around rendering: wall time of the measured loop, time inside the workload's calls,
-// and the harness' own share (bookkeeping, progress) — reported apart from GPU time.
+// Host time around rendering, reported apart from GPU time: opening the workload (start-up, with
+// its phases), the measured loop (wall time, time inside the workload's calls, and the harness'
+// own share: bookkeeping, progress), reading the images back and encoding the outputs.
 struct HarnessOverhead {
+  double openMs = 0.0;
+  render::StartupTimes startup;
   double loopWallMs = 0.0;
   double workloadCallsMs = 0.0;
   double harnessMs = 0.0;
   double perFrameUs = 0.0;
+  double readbackMs = 0.0;
+  double encodeMs = 0.0;  // EXR + PNG
 };
 
 struct RunConfig {

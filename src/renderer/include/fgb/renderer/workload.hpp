@@ -44,7 +44,9 @@ struct PassTiming {
 struct FrameTiming {
   std::vector<PassTiming> passes;  // every declared pass, in declaration order
   double gpuFrameMs = 0.0;         // first pass start to last pass end on the GPU
-  double cpuFrameMs = 0.0;         // host time to record + submit + wait for the frame
+  // Host time the frame costs: recording and submitting its work, not the time blocked while the
+  // GPU finishes an earlier frame in flight (that is GPU time showing up on the host).
+  double cpuFrameMs = 0.0;
 };
 
 // Linear RGBA float pixels, row-major, top row first.
@@ -52,6 +54,17 @@ struct ImageRGBA32F {
   uint32_t width = 0;
   uint32_t height = 0;
   std::vector<float> pixels;  // width * height * 4
+};
+
+// Host work before the first frame (opening the workload), reported apart from GPU time.
+struct StartupTimes {
+  double sceneMs = 0.0;        // scene file, generation/import or the cooked cache
+  double deviceMs = 0.0;       // Vulkan instance and device
+  double uploadMs = 0.0;       // scene data to the GPU
+  double pipelinesMs = 0.0;    // inside vkCreate*Pipelines (part of features/graph set-up)
+  uint32_t pipelines = 0;
+  std::string pipelineCache = "off";  // on-disk cache at start: off | cold | warm
+  double graphMs = 0.0;        // features, frame-graph declaration and compilation
 };
 
 enum class GraphDetail { Brief, Full };
@@ -74,6 +87,7 @@ class Workload {
   virtual std::map<std::string, double> stats() const = 0;
   // Validation messages counted so far (0 when validation is off).
   virtual uint64_t validationMessages() const = 0;
+  virtual StartupTimes startup() const { return {}; }
 };
 
 // Opens the workload for a scene. Throws fgb::InputError (bad scene/option), fgb::DeviceError.

@@ -36,6 +36,15 @@ struct DeviceOptions {
   bool forceDescriptorFallback = false;  // use the non-bindless descriptor path even if supported
   bool debugLabels = true;        // per-node debug-utils labels (when the extension is present)
   uint32_t framesInFlight = 2;    // executions of one graph that may be pending on the GPU
+  std::string pipelineCacheDir{};  // on-disk pipeline cache ("" = in memory only)
+};
+
+// Pipeline creation so far: count, host time spent in vkCreate*Pipelines, and the on-disk cache's
+// state at start ("off", "cold": nothing usable on disk, "warm").
+struct PipelineStats {
+  uint32_t created = 0;
+  double creationMs = 0.0;
+  std::string cache = "off";
 };
 
 struct GraphOptions {
@@ -76,6 +85,13 @@ class ExecutableGraph {
   [[nodiscard]] virtual const graph::FrameGraph& declaration() const = 0;
   [[nodiscard]] virtual const graph::CompiledGraph& compiled() const = 0;
   [[nodiscard]] virtual uint64_t executions() const = 0;
+  // Host time of the latest execution's submission: blocked waiting for a frame in flight to
+  // finish (throttling), and recording + submitting its command buffers.
+  struct HostTimes {
+    double throttleMs = 0.0;
+    double recordSubmitMs = 0.0;
+  };
+  [[nodiscard]] virtual HostTimes lastHostTimes() const = 0;
   // Timings of finished executions not taken yet, oldest first. Never waits for the GPU: results
   // of execution N are normally available while execution N+1 is recorded.
   virtual std::vector<GraphTimings> takeTimings() = 0;
@@ -109,6 +125,7 @@ class Device {
   virtual SamplerId createSampler(const SamplerDesc& desc) = 0;
   virtual PipelineId createGraphicsPipeline(const GraphicsPipelineDesc& desc) = 0;
   virtual PipelineId createComputePipeline(const ComputePipelineDesc& desc) = 0;
+  [[nodiscard]] virtual PipelineStats pipelineStats() const = 0;
   // Destroys an object now; the caller guarantees no pending execution still uses it (e.g. after
   // wait() on the run that used it last). Everything else lives as long as the Device.
   virtual void destroyBuffer(BufferId buffer) = 0;

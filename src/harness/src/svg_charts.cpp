@@ -168,7 +168,7 @@ std::string frameSeriesSvg(const RunResult& run) {
   };
   svg += polyline(run.frameGpuMs, "#3f6fb5", "GPU frame time");
   svg += polyline(run.frameCpuMs, "#e08a2e", "CPU frame time");
-  svg += fmt::format(R"(<text x="{}" y="{}" fill="#3f6fb5">— GPU frame</text><text x="{}" y="{}" fill="#e08a2e">— CPU frame (record + submit)</text><text x="{}" y="{}" fill="#555">measured frame 1 … {}</text>)" "\n",
+  svg += fmt::format(R"(<text x="{}" y="{}" fill="#3f6fb5">— GPU frame</text><text x="{}" y="{}" fill="#e08a2e">— CPU frame (recording)</text><text x="{}" y="{}" fill="#555">measured frame 1 … {}</text>)" "\n",
                      kLeft, kHeight - 2, kLeft + 90, kHeight - 2, kLeft + 330, kHeight - 2, n);
   return svg + "</svg>\n";
 }

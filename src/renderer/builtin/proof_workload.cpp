@@ -33,7 +33,7 @@ class ProofWorkload final : public Workload {
 
   FrameTiming renderFrame() override {
     const rhi::RunTicket ticket = device_->execute(*graph_);
-    cpuMs_[ticket.execution] = graph_->lastHostTimes().recordSubmitMs;
+    cpuMs_[ticket.execution] = graph_->lastHostTimes().recordMs;
     collect();
     if (ready_.empty()) return {};
     FrameTiming oldest = std::move(ready_.front());

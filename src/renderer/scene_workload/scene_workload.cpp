@@ -108,7 +108,7 @@ class SceneWorkload final : public Workload {
 
   FrameTiming renderFrame() override {
     device_->execute(*graph_);
-    cpuMs_.push_back(graph_->lastHostTimes().recordSubmitMs);
+    cpuMs_.push_back(graph_->lastHostTimes().recordMs);
     collectTimings();
     if (ready_.empty()) return {};
     FrameTiming timing = std::move(ready_.front());

@@ -66,15 +66,18 @@ uint64_t VulkanGraph::submit(rhi::RunMode mode) {
   if (slot.pending) {
     // Every frame in flight is still in use: wait for the oldest (the only stall, by design).
     waitFor(slot.execution);
+    collectTimings(slot);
   }
-  const auto unblocked = Clock::now();
-  if (slot.pending) collectTimings(slot);
   collectFinishedTimings();  // earlier executions that completed meanwhile: no waiting
+  // Reading query results can still block on lavapipe (it takes the queue's lock while the queue
+  // runs the previous frame), so that counts as throttling, not as the frame's recording.
+  const auto unblocked = Clock::now();
   for (const auto& pool : slot.pools) check(vkResetCommandPool(device_.device(), pool.get(), 0), "vkResetCommandPool");
   if (slot.queries) vkResetQueryPool(device_.device(), slot.queries.get(), 0, static_cast<uint32_t>(steps_.size() * 2));
 
   std::fill(heapTouched_.begin(), heapTouched_.end(), 0);
   for (uint32_t s = 0; s < compiled_.submits.size(); ++s) recordSubmit(slot, s, execution);
+  const auto recorded = Clock::now();
   submitAll(slot, execution, mode);
 
   slot.execution = execution;
@@ -82,7 +85,7 @@ uint64_t VulkanGraph::submit(rhi::RunMode mode) {
   slot.timed = static_cast<bool>(slot.queries);
   ++executions_;
   const auto milliseconds = [](Clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); };
-  hostTimes_ = {milliseconds(unblocked - start), milliseconds(Clock::now() - unblocked)};
+  hostTimes_ = {milliseconds(unblocked - start), milliseconds(recorded - unblocked), milliseconds(Clock::now() - recorded)};
   return execution;
 }
 

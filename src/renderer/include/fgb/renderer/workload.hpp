@@ -44,8 +44,9 @@ struct PassTiming {
 struct FrameTiming {
   std::vector<PassTiming> passes;  // every declared pass, in declaration order
   double gpuFrameMs = 0.0;         // first pass start to last pass end on the GPU
-  // Host time the frame costs: recording and submitting its work, not the time blocked while the
-  // GPU finishes an earlier frame in flight (that is GPU time showing up on the host).
+  // Host time the frame costs: recording its command buffers (the frame graph's executor and the
+  // features' jobs). Not the time blocked while the GPU finishes an earlier frame in flight, nor
+  // vkQueueSubmit, which on lavapipe may execute the frame itself (GPU time showing up on the host).
   double cpuFrameMs = 0.0;
 };
 

@@ -85,11 +85,13 @@ class ExecutableGraph {
   [[nodiscard]] virtual const graph::FrameGraph& declaration() const = 0;
   [[nodiscard]] virtual const graph::CompiledGraph& compiled() const = 0;
   [[nodiscard]] virtual uint64_t executions() const = 0;
-  // Host time of the latest execution's submission: blocked waiting for a frame in flight to
-  // finish (throttling), and recording + submitting its command buffers.
+  // Host time of the latest execution: blocked waiting for a frame in flight to finish
+  // (throttling), recording its command buffers, and vkQueueSubmit (on lavapipe that call may
+  // run the work itself, so it says little about host cost there).
   struct HostTimes {
     double throttleMs = 0.0;
-    double recordSubmitMs = 0.0;
+    double recordMs = 0.0;
+    double submitMs = 0.0;
   };
   [[nodiscard]] virtual HostTimes lastHostTimes() const = 0;
   // Timings of finished executions not taken yet, oldest first. Never waits for the GPU: results

@@ -106,7 +106,8 @@ class SameLayout : public GpuTest, public testing::WithParamInterface<bool> {
     {
       // TransferDst discards the previous contents, so without sideEffect() this node would be
       // culled as overwritten; keeping it makes the second fill a real write-after-write.
-      auto node = g.addNode("Fill 3", graph::NodeType::Transfer);
+      // Compute, not transfer: vkCmdClearColorImage needs a graphics or compute queue.
+      auto node = g.addNode("Fill 3", graph::NodeType::Compute);
       node.sideEffect();
       words = node.write(words, graph::Access::TransferDst);
       image = node.write(image, graph::Access::TransferDst);
@@ -117,7 +118,7 @@ class SameLayout : public GpuTest, public testing::WithParamInterface<bool> {
       });
     }
     {
-      auto node = g.addNode("Fill 9 over the first half (WAW)", graph::NodeType::Transfer);
+      auto node = g.addNode("Fill 9 over the first half (WAW)", graph::NodeType::Compute);
       words = node.write(words, graph::Access::TransferDst);
       image = node.write(image, graph::Access::TransferDst);
       node.setJob([=](graph::JobContext& c) {

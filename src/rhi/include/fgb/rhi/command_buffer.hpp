@@ -55,6 +55,8 @@ class CommandBuffer {
   virtual void copyBufferToTexture(BufferId src, TextureId dst, uint64_t srcOffset = 0, uint32_t mipLevel = 0) = 0;
   virtual void fillBuffer(BufferId buffer, uint64_t offset, uint64_t size, uint32_t value) = 0;
   // Whole texture (every mip and layer) in the transfer-destination layout (Access::TransferDst).
+  // Vulkan clears images only on graphics or compute queues: declare the node graphics or compute
+  // (depth formats: graphics), never transfer.
   virtual void clearTexture(TextureId texture, const std::array<float, 4>& color) = 0;
 };
 

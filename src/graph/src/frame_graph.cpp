@@ -1,5 +1,8 @@
 #include <fgb/graph/frame_graph.hpp>
 
+#include "access_table.hpp"
+#include "vector_pool.hpp"
+
 #include <string>
 
 namespace fgb::graph {
@@ -10,6 +13,23 @@ std::string quoted(std::string_view name) { return "'" + std::string(name) + "'"
 }  // namespace
 
 // ---- FrameGraph -------------------------------------------------------------------------------
+
+FrameGraph::FrameGraph() {
+  detail::VectorPool<NodeDecl>::take(nodes_);
+  detail::VectorPool<ResourceDecl>::take(resources_);
+  detail::VectorPool<VersionDecl>::take(versions_);
+  detail::VectorPool<Use>::take(allUses_);
+  detail::VectorPool<uint32_t>::take(useStart_);
+  useStart_.push_back(0);  // node 0's first use
+}
+
+FrameGraph::~FrameGraph() {
+  detail::VectorPool<NodeDecl>::give(nodes_);
+  detail::VectorPool<ResourceDecl>::give(resources_);
+  detail::VectorPool<VersionDecl>::give(versions_);
+  detail::VectorPool<Use>::give(allUses_);
+  detail::VectorPool<uint32_t>::give(useStart_);
+}
 
 void FrameGraph::reserve(size_t nodes, size_t resources) {
   nodes_.reserve(nodes);
@@ -30,10 +50,12 @@ const VersionDecl& FrameGraph::versionAt(uint32_t version, std::string_view what
 ResourceDecl& FrameGraph::addResource(std::string_view name, ResourceKind kind, bool imported) {
   const auto resource = static_cast<uint32_t>(resources_.size());
   const auto version = static_cast<uint32_t>(versions_.size());
-  versions_.push_back({resource, kInvalidIndex, kInvalidIndex});
-  // Built in place (no temporary ResourceDecl to move); the caller fills in the description.
-  ResourceDecl& decl = resources_.emplace_back();
-  decl.name = name;
+  versions_.emplace_back().resource = resource;  // a first version: no producer, no previous
+  // Copied from a blank one rather than value-initialised in place: the compiler clears a struct
+  // this large with `rep stos`, which costs several times more per declaration than a copy.
+  static const ResourceDecl kBlank{};
+  ResourceDecl& decl = resources_.emplace_back(kBlank);
+  decl.name = name;  // the caller fills in the description
   decl.kind = kind;
   decl.imported = imported;
   decl.firstVersion = version;
@@ -112,13 +134,14 @@ NodeBuilder FrameGraph::addNode(std::string_view name, NodeType type) {
 
 NodeBuilder FrameGraph::addNode(std::string_view name, NodeType type, QueueClass queue) {
   const auto node = static_cast<uint32_t>(nodes_.size());
-  // Built in place: NodeDecl is large (name, attachments, job), so a temporary costs a move of each.
-  NodeDecl& decl = nodes_.emplace_back();
+  // Copied from a blank one, like a resource (see addResource).
+  static const NodeDecl kBlank{};
+  NodeDecl& decl = nodes_.emplace_back(kBlank);
   decl.name = name;
   decl.type = type;
   decl.queue = queue;
-  decl.firstUse = static_cast<uint32_t>(allUses_.size());
-  useStart_.push_back(decl.firstUse);  // the new node's end, moved on by each of its uses
+  if (useStart_.empty()) useStart_.push_back(0);  // a moved-from graph being reused
+  useStart_.push_back(useStart_.back());          // the new node's end, moved on by each of its uses
   return NodeBuilder(*this, node);
 }
 
@@ -156,6 +179,14 @@ namespace {
 
 }  // namespace
 
+// Someone already wrote over `version`. Reading it back in the node that wrote over it (write,
+// then read the old contents) orders nothing backwards; anything else might (conservatively: the
+// compiler then computes a topological order instead of assuming the declaration order).
+void FrameGraph::noteOldVersionRead(uint32_t node, uint32_t version, uint32_t latest) {
+  const VersionDecl& newest = versions_[latest];
+  if (newest.previous != version || newest.producer != node) readsOldVersions_ = true;
+}
+
 uint32_t FrameGraph::addUse(uint32_t node, uint32_t version, ResourceKind kind, Access access, StageMask stages) {
   NodeDecl& decl = nodes_[node];
   if (node + 1 != nodes_.size()) throwUseError(decl, ": its NodeBuilder was used after the next node was added");
@@ -163,25 +194,36 @@ uint32_t FrameGraph::addUse(uint32_t node, uint32_t version, ResourceKind kind, 
   const uint32_t resource = versions_[version].resource;
   ResourceDecl& res = resources_[resource];
   if (res.kind != kind) throwWrongKind(decl, res, kind);
-  const AccessInfo info = accessInfo(access, decl.type, stages);
-  Use use{.resource = resource, .access = access, .shaderStages = stages, .stages = info.stages,
-          .accessMask = info.access, .layout = info.layout};
+  const AccessInfo info = detail::lookupAccessInfo(access, decl.type, stages);
+  uint32_t readVersion = kInvalidIndex;
+  uint32_t writeVersion = kInvalidIndex;
   if (info.reads) {
     const bool written = versions_[version].producer != kInvalidIndex || res.imported;
     if (!written) throwUnwrittenRead(decl, res, version);
-    use.readVersion = version;
+    readVersion = version;
+    if (version != res.latestVersion) noteOldVersionRead(node, version, res.latestVersion);
   }
   if (info.writes) {
     if (version != res.latestVersion) throwStaleWrite(decl, res, version);
-    const auto next = static_cast<uint32_t>(versions_.size());
-    versions_.push_back({resource, node, version});
-    res.latestVersion = next;
-    use.writeVersion = next;
+    writeVersion = static_cast<uint32_t>(versions_.size());
+    VersionDecl& written = versions_.emplace_back();
+    written.resource = resource;
+    written.producer = node;
+    written.previous = version;
+    res.latestVersion = writeVersion;
   }
-  allUses_.push_back(use);
-  ++decl.useCount;
+  // Filled in place: a Use built on the stack and copied in costs a store-forwarding stall.
+  Use& use = allUses_.emplace_back();
+  use.resource = resource;
+  use.readVersion = readVersion;
+  use.writeVersion = writeVersion;
+  use.access = access;
+  use.shaderStages = stages;
+  use.stages = info.stages;
+  use.accessMask = info.access;
+  use.layout = info.layout;
   ++useStart_.back();
-  return info.writes ? use.writeVersion : version;
+  return info.writes ? writeVersion : version;
 }
 
 // ---- NodeBuilder ------------------------------------------------------------------------------

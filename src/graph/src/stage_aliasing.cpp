@@ -1,28 +1,18 @@
-// Stage: transient memory aliasing by placement. A sweep over order positions places each
-// transient when its lifetime starts and returns its range to a free list when it ends. A freed
-// range remembers who used it last (per queue: the largest σ and the stages); a new resource may
-// take it only if its first user is ordered after those users — same queue: by queue order plus the
-// first-use barrier (which waits on the recorded stages); other queues: by a semaphore wait already
-// in G* (the first user's `known` covers them). That is the lifetime "extended across queues until
-// the consuming queue has waited". Buffers and images never share a heap, and resources share a
-// heap only with identical memory-type bits, so placement needs no granularity or type checks.
-#include "compile_state.hpp"
+// Stage: transient memory aliasing by placement. The walk over uses in execution order (in
+// stage_barriers.cpp) places each transient at its first use and returns its range to a free list
+// after its last. A freed range remembers who used it last (per queue: the largest σ and the
+// stages); a new resource may take it only if its first user is ordered after those users — same
+// queue: by queue order plus the first-use barrier (which waits on the recorded stages); other
+// queues: by a semaphore wait already in G* (the first user's `known` covers them). That is the
+// lifetime "extended across queues until the consuming queue has waited". Buffers and images never
+// share a heap, and resources share a heap only with identical memory-type bits, so placement
+// needs no granularity or type checks.
+#include "transient_placer.hpp"
 
 #include <algorithm>
 
 namespace fgb::graph::detail {
 namespace {
-
-struct FreeRange {
-  uint64_t offset = 0;
-  uint64_t size = 0;
-  QueueArray lastSigma{0, 0, 0};
-  std::array<StageMask, kQueueClassCount> stages{kStageNone, kStageNone, kStageNone};
-};
-
-struct HeapState {
-  ScratchVector<FreeRange> free;
-};
 
 uint64_t alignUp(uint64_t value, uint64_t alignment) {
   // Device alignments are powers of two: a mask instead of a 64-bit division on the hot path.
@@ -30,145 +20,128 @@ uint64_t alignUp(uint64_t value, uint64_t alignment) {
   return (value + alignment - 1) / alignment * alignment;
 }
 
-class Placer {
- public:
-  Placer(CompileState& state, bool alias) : state_(state), plan_(state.out.aliasing), alias_(alias) {}
-
-  void run() {
-    const auto& decls = state_.graph.resources();
-    const auto& lifetimes = state_.out.lifetimes;
-    const auto positions = static_cast<uint32_t>(state_.out.order.size());
-    plan_.placements.assign(decls.size(), {});
-    // Bucket transients by the position where they start and end.
-    ScratchVector<uint32_t> startsAt(positions + 1, 0), endsAt(positions + 1, 0);
-    for (size_t r = 0; r < decls.size(); ++r) {
-      if (!isPlaced(r)) continue;
-      ++startsAt[lifetimes[r].first + 1];
-      ++endsAt[lifetimes[r].last + 1];
-    }
-    for (uint32_t p = 1; p <= positions; ++p) {
-      startsAt[p] += startsAt[p - 1];
-      endsAt[p] += endsAt[p - 1];
-    }
-    ScratchVector<uint32_t> starting(startsAt.back(), 0), ending(endsAt.back(), 0);
-    {
-      ScratchVector<uint32_t> s(startsAt.begin(), startsAt.end() - 1), e(endsAt.begin(), endsAt.end() - 1);
-      for (uint32_t r = 0; r < decls.size(); ++r) {
-        if (!isPlaced(r)) continue;
-        starting[s[lifetimes[r].first]++] = r;
-        ending[e[lifetimes[r].last]++] = r;
-      }
-    }
-    for (uint32_t p = 0; p < positions; ++p) {
-      for (uint32_t i = startsAt[p]; i < startsAt[p + 1]; ++i) place(starting[i]);
-      for (uint32_t i = endsAt[p]; i < endsAt[p + 1]; ++i) release(ending[i]);
-    }
-    plan_.peakBytesAliased = 0;
-    for (const Heap& heap : plan_.heaps) plan_.peakBytesAliased += heap.size;
-  }
-
- private:
-  [[nodiscard]] bool isPlaced(size_t r) const {
-    return !state_.graph.resources()[r].imported && state_.out.resourceAlive[r];
-  }
-
-  uint32_t heapFor(uint32_t resource) {
-    const ResourceKind kind = state_.graph.resources()[resource].kind;
-    const MemoryRequirements& req = state_.out.resources[resource].requirements;
-    for (uint32_t h = 0; h < plan_.heaps.size(); ++h) {
-      if (plan_.heaps[h].kind == kind && plan_.heaps[h].memoryTypeBits == req.memoryTypeBits) return h;
-    }
-    plan_.heaps.push_back({kind, req.memoryTypeBits, 0, 1});
-    heaps_.emplace_back();
-    return static_cast<uint32_t>(plan_.heaps.size() - 1);
-  }
-
-  // May `range` be reused by a resource whose first user is `node`?
-  [[nodiscard]] bool orderedAfter(const FreeRange& range, uint32_t node) const {
-    const uint32_t queue = state_.queueOf[node];
-    for (uint32_t q = 0; q < state_.options.queueCount; ++q) {
-      if (q != queue && range.lastSigma[q] > state_.known[node][q]) return false;
-    }
-    return true;
-  }
-
-  void place(uint32_t resource) {
-    const MemoryRequirements& req = state_.out.resources[resource].requirements;
-    const uint32_t heapIndex = heapFor(resource);
-    Heap& heap = plan_.heaps[heapIndex];
-    heap.alignment = std::max(heap.alignment, req.alignment);
-    plan_.peakBytesUnaliased += alignUp(req.size, req.alignment);
-    Placement& placement = plan_.placements[resource];
-    placement.heap = heapIndex;
-    placement.size = req.size;
-    if (alias_ && takeFreeRange(heapIndex, resource, req, placement)) return;
-    placement.offset = alignUp(heap.size, req.alignment);
-    heap.size = placement.offset + req.size;
-  }
-
-  bool takeFreeRange(uint32_t heapIndex, uint32_t resource, const MemoryRequirements& req, Placement& placement) {
-    auto& free = heaps_[heapIndex].free;
-    const uint32_t user = state_.firstUser[resource];
-    size_t best = free.size();
-    for (size_t i = 0; i < free.size(); ++i) {
-      const FreeRange& range = free[i];
-      // Cheap rejections first: too small even unaligned, or no smaller than the best so far.
-      if (range.size < req.size || (best != free.size() && range.size >= free[best].size)) continue;
-      const uint64_t offset = alignUp(range.offset, req.alignment);
-      if (offset + req.size > range.offset + range.size || !orderedAfter(range, user)) continue;
-      best = i;  // smallest range that fits (first of equals)...
-      if (range.size == req.size) break;  // ...and none can be smaller than an exact fit
-    }
-    if (best == free.size()) return false;
-    const FreeRange taken = free[best];
-    free[best] = free.back();
-    free.pop_back();
-    placement.offset = alignUp(taken.offset, req.alignment);
-    placement.aliasedAfterStages = taken.stages[state_.queueOf[user]];
-    // Padding before and the tail after stay free, still tagged with their last users.
-    if (placement.offset > taken.offset) {
-      FreeRange head = taken;
-      head.size = placement.offset - taken.offset;
-      free.push_back(head);
-    }
-    const uint64_t end = placement.offset + req.size;
-    if (end < taken.offset + taken.size) {
-      FreeRange tail = taken;
-      tail.offset = end;
-      tail.size = taken.offset + taken.size - end;
-      free.push_back(tail);
-    }
-    return true;
-  }
-
-  void release(uint32_t resource) {
-    const Placement& placement = plan_.placements[resource];
-    FreeRange range{placement.offset, placement.size, {0, 0, 0}, {kStageNone, kStageNone, kStageNone}};
-    for (uint32_t q = 0; q < kQueueClassCount; ++q) {
-      range.lastSigma[q] = state_.lastSigmaOnQueue[resource * kQueueClassCount + q];
-      range.stages[q] = state_.stagesOnQueue[resource * kQueueClassCount + q];
-    }
-    heaps_[placement.heap].free.push_back(range);
-  }
-
-  CompileState& state_;
-  AliasingPlan& plan_;
-  bool alias_;
-  std::vector<HeapState> heaps_;
-};
-
 }  // namespace
 
-void placeTransients(CompileState& state) {
-  Placer(state, state.options.alias).run();
-  // Fragmentation (mixed alignments, ranges that cannot merge) can make a placement worse than
-  // none; then keep whichever of the two layouts is smaller.
-  AliasingPlan& plan = state.out.aliasing;
-  if (plan.peakBytesAliased > plan.peakBytesUnaliased) {
-    AliasingPlan aliased = std::move(plan);
-    plan = {};
-    Placer(state, false).run();
-    if (plan.peakBytesAliased > aliased.peakBytesAliased) plan = std::move(aliased);
+TransientPlacer::TransientPlacer(CompileState& state, bool alias)
+    : state_(state), plan_(state.out.aliasing), alias_(alias) {
+  plan_.placements.assign(state.resourceCount, {});
+  plan_.heaps.clear();
+  plan_.peakBytesAliased = 0;
+  plan_.peakBytesUnaliased = 0;
+}
+
+void TransientPlacer::finish() {
+  plan_.peakBytesAliased = 0;
+  for (const Heap& heap : plan_.heaps) plan_.peakBytesAliased += heap.size;
+}
+
+uint32_t TransientPlacer::heapFor(uint32_t resource, uint32_t memoryTypeBits) {
+  const ResourceKind kind =
+      (state_.resourceTraits[resource] & kResourceTexture) != 0 ? ResourceKind::Texture : ResourceKind::Buffer;
+  // Neighbours in the walk usually share a heap: try the last one first.
+  if (lastHeap_ < plan_.heaps.size() && plan_.heaps[lastHeap_].kind == kind &&
+      plan_.heaps[lastHeap_].memoryTypeBits == memoryTypeBits) {
+    return lastHeap_;
+  }
+  return findOrAddHeap(kind, memoryTypeBits);
+}
+
+uint32_t TransientPlacer::findOrAddHeap(ResourceKind kind, uint32_t memoryTypeBits) {
+  for (lastHeap_ = 0; lastHeap_ < plan_.heaps.size(); ++lastHeap_) {
+    const Heap& heap = plan_.heaps[lastHeap_];
+    if (heap.kind == kind && heap.memoryTypeBits == memoryTypeBits) return lastHeap_;
+  }
+  plan_.heaps.push_back({kind, memoryTypeBits, 0, 1});
+  free_.emplace_back();
+  return lastHeap_;
+}
+
+// How far each queue is known to have run when `node` starts: a range whose last users on every
+// queue are within that may be reused by a resource `node` uses first. On the node's own queue,
+// queue order (plus the first-use barrier) is enough; other queues need a semaphore wait in G*.
+QueueArray TransientPlacer::reusableUpTo(uint32_t node) const {
+  constexpr uint32_t kAny = ~0u;
+  if (state_.queueCount == 1) return {kAny, kAny, kAny};
+  QueueArray limit = state_.known[node];
+  limit[state_.queueOf[node]] = kAny;
+  for (uint32_t q = state_.queueCount; q < kQueueClassCount; ++q) limit[q] = kAny;
+  return limit;
+}
+
+void TransientPlacer::place(uint32_t resource) {
+  const MemoryRequirements& req = state_.out.resources[resource].requirements;
+  const uint32_t heapIndex = heapFor(resource, req.memoryTypeBits);
+  Heap& heap = plan_.heaps[heapIndex];
+  heap.alignment = std::max(heap.alignment, req.alignment);
+  plan_.peakBytesUnaliased += alignUp(req.size, req.alignment);
+  Placement& placement = plan_.placements[resource];
+  placement.heap = heapIndex;
+  placement.size = req.size;
+  if (alias_ && takeFreeRange(free_[heapIndex], resource, req, placement)) return;
+  placement.offset = alignUp(heap.size, req.alignment);
+  heap.size = placement.offset + req.size;
+}
+
+bool TransientPlacer::takeFreeRange(ScratchVector<FreeRange>& free, uint32_t resource, const MemoryRequirements& req,
+                                    Placement& placement) {
+  const uint32_t user = state_.firstUser[resource];
+  const QueueArray limit = reusableUpTo(user);
+  const uint64_t size = req.size;
+  // The smallest range that fits (the first of equals): none can be smaller than an exact fit.
+  FreeRange* const begin = free.data();
+  FreeRange* const end = begin + free.size();
+  FreeRange* best = nullptr;
+  uint64_t bestSize = ~uint64_t{0};
+  for (FreeRange* range = begin; range != end; ++range) {
+    if (range->size < size || range->size >= bestSize) continue;  // cheap rejections first
+    if (alignUp(range->offset, req.alignment) + size > range->offset + range->size) continue;
+    if (range->lastSigma[0] > limit[0] || range->lastSigma[1] > limit[1] || range->lastSigma[2] > limit[2]) continue;
+    best = range;
+    bestSize = range->size;
+    if (bestSize == size) break;
+  }
+  if (best == nullptr) return false;
+  const uint64_t rangeStart = best->offset;
+  const uint64_t rangeEnd = best->offset + best->size;
+  placement.offset = alignUp(rangeStart, req.alignment);
+  placement.aliasedAfterStages = best->stages[state_.queueOf[user]];
+  // Padding before and the tail after stay free, still tagged with their last users: the chosen
+  // entry becomes one of them (no copies of it on the way: see add() in stage_barriers.cpp).
+  const uint64_t placedEnd = placement.offset + size;
+  const bool head = placement.offset > rangeStart;
+  const bool tail = placedEnd < rangeEnd;
+  if (!head && !tail) {  // used up exactly: the last entry takes its place
+    if (best != end - 1) *best = end[-1];
+    free.pop_back();
+    return true;
+  }
+  if (head) best->size = placement.offset - rangeStart;
+  if (tail) {
+    FreeRange* rest = best;
+    if (head) {
+      const auto index = static_cast<size_t>(best - begin);
+      free.push_back(free[index]);  // (may move the array)
+      rest = &free.back();
+    }
+    rest->offset = placedEnd;
+    rest->size = rangeEnd - placedEnd;
+  }
+  return true;
+}
+
+void TransientPlacer::release(uint32_t resource) {
+  const Placement& placement = plan_.placements[resource];
+  FreeRange& range = free_[placement.heap].emplace_back();  // filled in place
+  range.offset = placement.offset;
+  range.size = placement.size;
+  const size_t slots = size_t{resource} * kQueueClassCount;
+  const StageMask* stages = state_.stagesOnQueue.data() + slots;
+  range.stages = {stages[0], stages[1], stages[2]};
+  if (state_.queueCount > 1) {
+    const uint32_t* sigma = state_.lastSigmaOnQueue.data() + slots;
+    range.lastSigma = {sigma[0], sigma[1], sigma[2]};
+  } else {
+    range.lastSigma = {0, 0, 0};
   }
 }
 

@@ -1,167 +1,195 @@
-// Stage: the barrier plan. Each alive resource's uses are walked in execution order while tracking
-// its state (owning queue, layout, last write, reads since that write, what the write has been made
-// visible to). Every hazard gets a barrier — RAW, WAR, WAW, layout changes — even when the layout
+// Stage: memory placement and the barrier plan, in one walk over the alive uses in execution order
+// (a transient's first barrier waits for the earlier occupants of the memory it was placed in).
+//
+// Barriers: each resource's uses are walked in execution order while tracking its state (owning
+// queue, layout, last write, reads since that write, what the write has been made visible to).
+// Every hazard gets a barrier — RAW, WAR, WAW, layout changes — even when the layout
 // does not change (same-layout WAW/RAW is a hazard too). A change of queue family becomes a
 // release (after the last use on the old queue) plus an acquire (before the first use on the new
 // one); the semaphore between them comes from G*. Transients start from UNDEFINED, waiting for the
 // stages of earlier occupants of their memory on the same queue.
-#include "compile_state.hpp"
+#include "transient_placer.hpp"
+
+#include <span>
 
 namespace fgb::graph::detail {
 namespace {
 
+// A node's use of one resource; a node that uses a resource twice (e.g. read + resolve) gets one
+// combined use.
+struct MergedUse {
+  uint32_t resource;
+  StageMask stages;
+  AccessMask access;
+  Layout layout;
+  bool reads;
+  bool writes;
+};
+
+// Set at the resource's first use (setInitialState) and only read after: constructing it does
+// nothing, so that sizing the per-resource array does not write 40 bytes per resource.
 struct TrackedState {
-  bool owned = false;  // false: transient before its first use (contents undefined)
-  uint32_t queue = 0;
-  Layout layout = Layout::Undefined;
-  StageMask writeStages = kStageNone;
-  AccessMask writeAccess = kAccessNone;
-  StageMask readStages = kStageNone;     // reads since the last write
-  StageMask visibleStages = kStageNone;  // the last write was made visible to these stages...
-  AccessMask visibleAccess = kAccessNone;  // ...and accesses
-  uint32_t lastStep = kInvalidIndex;
+  TrackedState() {}  // NOLINT(modernize-use-equals-default): leaves the fields unset on purpose
+  bool owned;            // false: transient before its first use (contents undefined)
+  bool discardsOnEntry;  // imported, but first overwritten without being read (see below)
+  uint32_t queue;
+  Layout layout;
+  StageMask writeStages;
+  AccessMask writeAccess;
+  StageMask readStages;     // reads since the last write
+  StageMask visibleStages;  // the last write was made visible to these stages...
+  AccessMask visibleAccess;  // ...and accesses
+  uint32_t lastStep;
 };
 
-// A barrier waiting to be put in its slot: slot = step * 2 (+1 for "after the node").
-struct PendingBarrier {
-  uint32_t slot;
-  Barrier barrier;
-};
-
+// Tracks the state of each resource through its uses, in execution order, and records the
+// barriers each use needs. Barriers are kept as they are found, each with its slot (step * 2, +1
+// for "after the node"); with one queue the slots only grow, and only otherwise (steps grouped by
+// queue, ownership releases recorded on an earlier step) do they need sorting into the steps.
 class BarrierPlanner {
  public:
   explicit BarrierPlanner(CompileState& state)
-      : state_(state), start_(state.resourceUses.start), end_(state.resourceUses.end), uses_(state.resourceUses.uses) {}
-
-  void run() {
+      : state_(state), queueOf_(state.queueOf.data()), traits_(state.resourceTraits.data()),
+        familyOfQueue_(state.options.familyOfQueue) {
     // Most uses get one barrier (transfers two, final states one more): size it once, not by doubling.
-    pending_.reserve(uses_.size() + uses_.size() / 2);
-    const auto& decls = state_.graph.resources();
-    for (uint32_t r = 0; r < decls.size(); ++r) {
-      if (state_.out.resourceAlive[r]) planResource(r);
-    }
-    emitIntoSteps();
+    const size_t uses = state.graph.allUses().size();
+    found_.reserve(uses + uses / 4);
+    slots_.reserve(found_.capacity());
+    trackedStates_.resize(state.resourceCount);  // each entry is set at its resource's first use
+    tracked_ = trackedStates_.data();
   }
+
+  // The uses that follow are the node's.
+  void beginNode(uint32_t node) {
+    queue_ = queueOf_[node];
+    step_ = state_.out.nodes[node].step;
+  }
+
+  void planUse(const MergedUse& use, bool firstUse) {
+    const uint32_t resource = use.resource;
+    const bool texture = isTexture(resource);
+    TrackedState& s = tracked_[resource];
+    if (firstUse) setInitialState(s, use);
+    const uint32_t queue = queue_;
+    const uint32_t step = step_;
+    const Layout layout = texture ? use.layout : Layout::Undefined;
+    // An ownership transfer or a layout change is a write in disguise (see advance()).
+    const bool transitioned = s.owned && (familyOf(s.queue) != familyOf(queue) || (texture && layout != s.layout));
+    if (!s.owned) {
+      firstUseBarrier(resource, texture, use, queue, step);
+    } else if (familyOf(s.queue) != familyOf(queue)) {
+      transferOwnership(resource, s, use, queue, step, layout);
+    } else {
+      sameQueueHazard(resource, texture, s, use, queue, step, layout);
+    }
+    advance(s, use, queue, step, layout, transitioned);
+  }
+
+  // After an imported resource's last use: back to the state the declaration asked for.
+  void finalState(uint32_t resource) { finalState(resource, isTexture(resource), tracked_[resource]); }
 
  private:
-  [[nodiscard]] uint32_t familyOf(uint32_t queue) const { return state_.options.familyOfQueue[queue]; }
+  [[nodiscard]] uint32_t familyOf(uint32_t queue) const { return familyOfQueue_[queue]; }
+  [[nodiscard]] bool isImported(uint32_t resource) const { return (traits_[resource] & kResourceImported) != 0; }
+  [[nodiscard]] bool isTexture(uint32_t resource) const { return (traits_[resource] & kResourceTexture) != 0; }
 
-  void push(uint32_t step, bool after, const Barrier& barrier) {
-    pending_.push_back({step * 2 + (after ? 1u : 0u), barrier});
+  // Appends a barrier for the slot and returns it to be filled in. Barriers (and tracked states)
+  // are built in place: copying a struct just written field by field on the stack stalls on
+  // store forwarding, which cost more than all the rest of this planner.
+  Barrier& add(uint32_t step, bool after, Barrier::Kind kind, uint32_t resource) {
+    const uint32_t slot = step * 2 + (after ? 1u : 0u);
+    inSlotOrder_ = inSlotOrder_ && (slots_.empty() || slots_.back() <= slot);
+    slots_.push_back(slot);
+    Barrier& b = found_.emplace_back();
+    b.kind = kind;
+    b.resource = resource;
+    return b;
   }
 
-  TrackedState initialState(uint32_t resource) const {
-    const ResourceDecl& decl = state_.graph.resources()[resource];
-    TrackedState s;
-    if (!decl.imported) return s;
+  void setInitialState(TrackedState& s, const MergedUse& first) const {
+    s.owned = false;
+    s.discardsOnEntry = false;
+    s.queue = 0;
+    s.layout = Layout::Undefined;
+    s.writeStages = kStageNone;
+    s.writeAccess = kAccessNone;
+    s.readStages = kStageNone;
+    s.visibleStages = kStageNone;
+    s.visibleAccess = kAccessNone;
+    s.lastStep = kInvalidIndex;
+    if (!isImported(first.resource)) return;
+    // An imported resource whose first use in the graph overwrites it without reading needs no
+    // ownership transfer in or out: Vulkan only asks for one when contents must survive the change
+    // of queue family. Skipping both halves keeps repeated executions consistent (a release at the
+    // end with no acquire, or an acquire with no release, is an error on the next execution).
+    const ResourceDecl& decl = state_.graph.resources()[first.resource];
     s.owned = true;
-    s.queue = state_.options.queueOfClass[static_cast<size_t>(decl.initialState.queue)];
-    s.layout = decl.initialState.layout;
+    s.discardsOnEntry = first.writes && !first.reads;
+    s.queue = s.discardsOnEntry ? queue_
+                                : state_.options.queueOfClass[static_cast<size_t>(decl.initialState.queue)];
+    s.layout = s.discardsOnEntry ? Layout::Undefined : decl.initialState.layout;
     // What happened before the graph is treated as a write: later uses wait for it.
     s.writeStages = decl.initialState.stages;
     s.writeAccess = decl.initialState.access;
-    return s;
   }
 
-  // An imported resource whose first use in the graph overwrites it without reading needs no
-  // ownership transfer in or out: Vulkan only asks for one when contents must survive the change
-  // of queue family. Skipping both halves keeps repeated executions consistent (a release at the
-  // end with no acquire, or an acquire with no release, is an error on the next execution).
-  [[nodiscard]] bool discardsOnEntry(uint32_t resource) const {
-    if (!state_.graph.resources()[resource].imported || start_[resource] == end_[resource]) return false;
-    const MergedUse& first = uses_[start_[resource]];
-    return first.writes && !first.reads;
-  }
-
-  void planResource(uint32_t resource) {
-    const bool texture = state_.graph.resources()[resource].kind == ResourceKind::Texture;
-    TrackedState s = initialState(resource);
-    const bool discards = discardsOnEntry(resource);
-    if (discards) {
-      s.queue = state_.queueOf[uses_[start_[resource]].node];
-      s.layout = Layout::Undefined;
-    }
-    for (uint32_t i = start_[resource]; i < end_[resource]; ++i) {
-      const MergedUse& use = uses_[i];
-      const uint32_t queue = state_.queueOf[use.node];
-      const uint32_t step = state_.out.nodes[use.node].step;
-      const Layout layout = texture ? use.layout : Layout::Undefined;
-      // An ownership transfer or a layout change is a write in disguise (see advance()).
-      const bool transitioned = s.owned && (familyOf(s.queue) != familyOf(queue) || (texture && layout != s.layout));
-      if (!s.owned) {
-        firstUse(resource, texture, use, queue, step);
-      } else if (familyOf(s.queue) != familyOf(queue)) {
-        transferOwnership(resource, s, use, queue, step, layout);
-      } else {
-        sameQueueHazard(resource, texture, s, use, queue, step, layout);
-      }
-      advance(s, use, queue, step, layout, transitioned);
-    }
-    finalState(resource, texture, s, discards);
-  }
-
-  void firstUse(uint32_t resource, bool texture, const MergedUse& use, uint32_t queue, uint32_t step) {
+  void firstUseBarrier(uint32_t resource, bool texture, const MergedUse& use, uint32_t queue, uint32_t step) {
     const StageMask aliased = state_.out.aliasing.placements.empty()
                                   ? kStageNone
                                   : state_.out.aliasing.placements[resource].aliasedAfterStages;
     if (!texture && aliased == kStageNone) return;  // a fresh buffer needs no barrier
-    Barrier b;
-    b.resource = resource;
+    Barrier& b = add(step, false, Barrier::Kind::Transition, resource);
     b.srcStages = aliased;
     b.dstStages = use.stages;
     b.dstAccess = use.access;
     b.oldLayout = Layout::Undefined;
     b.newLayout = texture ? use.layout : Layout::Undefined;
     b.srcQueue = b.dstQueue = queue;
-    push(step, false, b);
   }
 
   void transferOwnership(uint32_t resource, const TrackedState& s, const MergedUse& use, uint32_t queue,
                          uint32_t step, Layout layout) {
-    Barrier release;
-    release.kind = Barrier::Kind::Release;
-    release.resource = resource;
-    release.srcStages = s.writeStages | s.readStages;
-    release.srcAccess = s.writeAccess;
-    release.oldLayout = s.layout;
-    release.newLayout = layout;
-    release.srcQueue = s.queue;
-    release.dstQueue = queue;
-    Barrier acquire = release;
-    acquire.kind = Barrier::Kind::Acquire;
-    acquire.srcStages = kStageNone;
-    acquire.srcAccess = kAccessNone;
-    acquire.dstStages = use.stages;
-    acquire.dstAccess = use.access;
     // An imported resource owned by another family before the graph was released by its owner;
     // only the acquire is ours then.
-    if (s.lastStep != kInvalidIndex) push(s.lastStep, true, release);
-    push(step, false, acquire);
+    if (s.lastStep != kInvalidIndex) {
+      Barrier& release = add(s.lastStep, true, Barrier::Kind::Release, resource);
+      release.srcStages = s.writeStages | s.readStages;
+      release.srcAccess = s.writeAccess;
+      release.oldLayout = s.layout;
+      release.newLayout = layout;
+      release.srcQueue = s.queue;
+      release.dstQueue = queue;
+    }
+    Barrier& acquire = add(step, false, Barrier::Kind::Acquire, resource);
+    acquire.dstStages = use.stages;
+    acquire.dstAccess = use.access;
+    acquire.oldLayout = s.layout;
+    acquire.newLayout = layout;
+    acquire.srcQueue = s.queue;
+    acquire.dstQueue = queue;
   }
 
   void sameQueueHazard(uint32_t resource, bool texture, const TrackedState& s, const MergedUse& use,
                        uint32_t queue, uint32_t step, Layout layout) {
     const bool layoutChange = texture && layout != s.layout;
-    Barrier b;
-    b.resource = resource;
-    b.oldLayout = texture ? s.layout : Layout::Undefined;
-    b.newLayout = texture ? layout : Layout::Undefined;
-    b.srcQueue = b.dstQueue = queue;
-    b.dstStages = use.stages;
-    b.dstAccess = use.access;
+    StageMask srcStages = s.writeStages;
     if (use.writes || layoutChange) {
       // WAW/RAW(+write) wait for the last write, WAR for every read since it.
-      b.srcStages = s.writeStages | s.readStages;
-      b.srcAccess = s.writeAccess;
-      if (b.srcStages == kStageNone && !layoutChange) return;
+      srcStages |= s.readStages;
+      if (srcStages == kStageNone && !layoutChange) return;
     } else {
       // Read after write: needed unless an earlier barrier already made the write visible here.
       const bool visible = (use.stages & ~s.visibleStages) == 0 && (use.access & ~s.visibleAccess) == 0;
       if (s.writeStages == kStageNone || visible) return;
-      b.srcStages = s.writeStages;
-      b.srcAccess = s.writeAccess;
     }
-    push(step, false, b);
+    Barrier& b = add(step, false, Barrier::Kind::Transition, resource);
+    b.srcStages = srcStages;
+    b.srcAccess = s.writeAccess;
+    b.dstStages = use.stages;
+    b.dstAccess = use.access;
+    b.oldLayout = texture ? s.layout : Layout::Undefined;
+    b.newLayout = texture ? layout : Layout::Undefined;
+    b.srcQueue = b.dstQueue = queue;
   }
 
   static void advance(TrackedState& s, const MergedUse& use, uint32_t queue, uint32_t step, Layout layout,
@@ -194,18 +222,16 @@ class BarrierPlanner {
     s.lastStep = step;
   }
 
-  void finalState(uint32_t resource, bool texture, const TrackedState& s, bool discardsOnEntry) {
+  void finalState(uint32_t resource, bool texture, const TrackedState& s) {
     const ResourceDecl& decl = state_.graph.resources()[resource];
-    if (!decl.imported || s.lastStep == kInvalidIndex) return;
+    if (s.lastStep == kInvalidIndex) return;
     const ImportState& final = decl.finalState;
     const uint32_t finalQueue =
-        discardsOnEntry ? s.queue : state_.options.queueOfClass[static_cast<size_t>(final.queue)];
+        s.discardsOnEntry ? s.queue : state_.options.queueOfClass[static_cast<size_t>(final.queue)];
     const Layout finalLayout = (!texture || final.layout == Layout::Undefined) ? s.layout : final.layout;
     const bool queueChange = familyOf(finalQueue) != familyOf(s.queue);
     if (!queueChange && finalLayout == s.layout && final.stages == kStageNone) return;
-    Barrier b;
-    b.kind = queueChange ? Barrier::Kind::Release : Barrier::Kind::Transition;
-    b.resource = resource;
+    Barrier& b = add(s.lastStep, true, queueChange ? Barrier::Kind::Release : Barrier::Kind::Transition, resource);
     b.srcStages = s.writeStages | s.readStages;
     b.srcAccess = s.writeAccess;
     b.dstStages = queueChange ? kStageNone : final.stages;
@@ -214,35 +240,150 @@ class BarrierPlanner {
     b.newLayout = texture ? finalLayout : Layout::Undefined;
     b.srcQueue = s.queue;
     b.dstQueue = finalQueue;
-    push(s.lastStep, true, b);
   }
 
-  // Stable counting sort of the pending barriers into per-step before/after ranges.
+ public:
+  // Moves the barriers found into CompiledGraph::barriers in slot order (a stable counting sort,
+  // unless they came in slot order already) and sets each step's before/after ranges.
   void emitIntoSteps() {
     auto& steps = state_.out.steps;
+    auto& barriers = state_.out.barriers;
     const auto slots = static_cast<uint32_t>(steps.size() * 2);
     ScratchVector<uint32_t> slotStart(slots + 1, 0);
-    for (const PendingBarrier& p : pending_) ++slotStart[p.slot + 1];
+    for (const uint32_t slot : slots_) ++slotStart[slot + 1];
     for (uint32_t i = 1; i <= slots; ++i) slotStart[i] += slotStart[i - 1];
-    auto& barriers = state_.out.barriers;
-    barriers.resize(pending_.size());
-    ScratchVector<uint32_t> cursor(slotStart.begin(), slotStart.end() - 1);
-    for (const PendingBarrier& p : pending_) barriers[cursor[p.slot]++] = p.barrier;
+    if (inSlotOrder_) {
+      barriers.swap(found_);  // (the output's old storage goes back to the pool with found_)
+    } else {
+      barriers.resize(found_.size());
+      ScratchVector<uint32_t> cursor(slotStart.begin(), slotStart.end() - 1);
+      for (uint32_t i = 0; i < found_.size(); ++i) barriers[cursor[slots_[i]]++] = found_[i];
+    }
     for (uint32_t s = 0; s < steps.size(); ++s) {
       steps[s].before = {slotStart[2 * s], slotStart[2 * s + 1] - slotStart[2 * s]};
       steps[s].after = {slotStart[2 * s + 1], slotStart[2 * s + 2] - slotStart[2 * s + 1]};
     }
   }
 
+ private:
   CompileState& state_;
-  const ScratchVector<uint32_t>& start_;  // state.resourceUses (built by computeLifetimes)
-  const ScratchVector<uint32_t>& end_;
-  const ScratchVector<MergedUse>& uses_;
-  ScratchVector<PendingBarrier> pending_;
+  const uint32_t* queueOf_;  // state_.queueOf
+  const uint8_t* traits_;    // state_.resourceTraits
+  const std::array<uint32_t, kQueueClassCount> familyOfQueue_;
+  uint32_t queue_ = 0;  // queue and step of the node whose uses are being planned
+  uint32_t step_ = 0;
+  ScratchVector<TrackedState> trackedStates_;  // per resource...
+  TrackedState* tracked_ = nullptr;            // ...and its data
+  ScratchVector<Barrier> found_;               // barriers in the order found...
+  ScratchVector<uint32_t> slots_;              // ...and the slot of each (step * 2, +1: after)
+  bool inSlotOrder_ = true;
 };
+
+MergedUse mergedUseOf(const Use& use) {
+  return {use.resource, use.stages, use.accessMask, use.layout, use.readVersion != kInvalidIndex,
+          use.writeVersion != kInvalidIndex};
+}
+
+// `uses`, one per resource, into `merged` (for a node that uses some resource more than once).
+// `mergedAt[r]` is where r went, when merged[mergedAt[r]] says so: a sparse set, valid without
+// clearing between nodes.
+void mergeUses(std::span<const Use> uses, ScratchVector<MergedUse>& merged, ScratchVector<uint32_t>& mergedAt) {
+  merged.clear();
+  for (const Use& use : uses) {
+    const uint32_t at = mergedAt[use.resource];
+    if (at >= merged.size() || merged[at].resource != use.resource) {
+      mergedAt[use.resource] = static_cast<uint32_t>(merged.size());
+      merged.push_back(mergedUseOf(use));
+      continue;
+    }
+    MergedUse& combined = merged[at];
+    combined.stages |= use.stages;
+    combined.access |= use.accessMask;
+    combined.reads |= use.readVersion != kInvalidIndex;
+    combined.writes |= use.writeVersion != kInvalidIndex;
+    if (combined.layout != use.layout) combined.layout = Layout::General;
+  }
+}
+
+// One walk over the alive uses in execution order: placement (with or without aliasing) and
+// barriers. A transient is placed at its first use and its range goes back to the free list after
+// its last user (so users at one position never share memory); an imported resource goes back to
+// its final state after its last user.
+void walkUses(CompileState& state, bool alias) {
+  TransientPlacer placer(state, alias);
+  BarrierPlanner barriers(state);
+  const uint32_t resources = state.resourceCount;
+  // What placement needs about the users of each resource on each queue (see TransientPlacer).
+  state.stagesOnQueue.assign(size_t{resources} * kQueueClassCount, kStageNone);
+  if (state.queueCount > 1) state.lastSigmaOnQueue.assign(size_t{resources} * kQueueClassCount, 0);
+  ScratchVector<MergedUse> merged;
+  ScratchVector<uint32_t> lastSeen(resources, kInvalidIndex);
+  ScratchVector<uint32_t> mergedAt;  // sized when first needed (see mergeUses)
+  ScratchVector<uint32_t> ending;  // resources whose last user is the node being walked
+  for (const uint32_t node : state.out.order) {
+    barriers.beginNode(node);
+    const size_t queueSlot = state.queueOf[node];
+    const std::span<const Use> uses = state.graph.uses(node);
+    if (ending.size() < uses.size()) ending.resize(uses.size());
+    uint32_t endingCount = 0;
+    auto visit = [&](const MergedUse& use) {
+      const uint32_t r = use.resource;
+      const bool first = state.firstUser[r] == node;
+      state.stagesOnQueue[size_t{r} * kQueueClassCount + queueSlot] |= use.stages;
+      // Uses come in order, and σ grows with the order position on each queue.
+      if (state.queueCount > 1) state.lastSigmaOnQueue[size_t{r} * kQueueClassCount + queueSlot] = state.sigma[node];
+      if (first && (state.resourceTraits[r] & kResourceImported) == 0) placer.place(r);
+      barriers.planUse(use, first);
+      // Noted without a branch: whether a use is its resource's last is as good as random.
+      ending[endingCount] = r;
+      endingCount += state.lastUser[r] == node ? 1 : 0;
+    };
+    // One use per resource: a node that uses one twice (rare) has its uses combined first.
+    bool repeats = false;
+    for (const Use& use : uses) {
+      repeats |= lastSeen[use.resource] == node;
+      lastSeen[use.resource] = node;
+    }
+    if (repeats) {
+      if (mergedAt.empty()) mergedAt.resize(resources);
+      mergeUses(uses, merged, mergedAt);
+      for (const MergedUse& use : merged) visit(use);
+    } else {
+      for (const Use& use : uses) visit(mergedUseOf(use));
+    }
+    // After the node: transients give their memory back, imports go to their final state.
+    for (uint32_t i = 0; i < endingCount; ++i) {
+      const uint32_t r = ending[i];
+      if ((state.resourceTraits[r] & kResourceImported) != 0) {
+        barriers.finalState(r);
+      } else {
+        placer.release(r);
+      }
+    }
+  }
+  placer.finish();
+  barriers.emitIntoSteps();
+}
 
 }  // namespace
 
-void planBarriers(CompileState& state) { BarrierPlanner(state).run(); }
+void placeAndPlanBarriers(CompileState& state) {
+  walkUses(state, state.options.alias);
+  // Fragmentation (mixed alignments, ranges that cannot merge) can make a placement worse than
+  // none; then keep whichever of the two layouts is smaller (barriers follow the placement).
+  AliasingPlan& plan = state.out.aliasing;
+  if (plan.peakBytesAliased <= plan.peakBytesUnaliased) return;
+  AliasingPlan aliased = std::move(plan);
+  std::vector<Barrier> aliasedBarriers = std::move(state.out.barriers);
+  const std::vector<Step> aliasedSteps = state.out.steps;
+  plan = {};
+  state.out.barriers.clear();
+  walkUses(state, false);
+  if (plan.peakBytesAliased > aliased.peakBytesAliased) {
+    plan = std::move(aliased);
+    state.out.barriers = std::move(aliasedBarriers);
+    state.out.steps = aliasedSteps;
+  }
+}
 
 }  // namespace fgb::graph::detail

@@ -1,20 +1,14 @@
-// Stage: culling (Frostbite's flood fill, run as reverse reachability over versions). A node is
-// kept when it has a side effect, writes an imported resource, or produces a version that a kept
-// node reads. Everything else is culled, with a reason a person can act on.
+// Stage: queue assignment and culling (Frostbite's flood fill, run as reverse reachability over
+// versions). A node is kept when it has a side effect, writes an imported resource, or produces a
+// version that a kept node reads. Everything else is culled, with a reason a person can act on.
 #include "compile_state.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <string>
 
 namespace fgb::graph::detail {
 namespace {
-
-bool writesImported(const FrameGraph& graph, uint32_t node) {
-  for (const Use& use : graph.uses(node)) {
-    if (use.writeVersion != kInvalidIndex && graph.resources()[use.resource].imported) return true;
-  }
-  return false;
-}
 
 // Appends "'name'" without temporaries: a large graph may cull thousands of nodes.
 void appendQuoted(std::string& out, const std::string& name) {
@@ -23,81 +17,131 @@ void appendQuoted(std::string& out, const std::string& name) {
   out += '\'';
 }
 
-std::string cullDiagnostic(const CompileState& state, uint32_t node, const Adjacency& allReaders) {
-  const FrameGraph& graph = state.graph;
-  std::string why;
-  why.reserve(96);  // one allocation for the usual "writes 'x' vN, none imported; nothing reads them"
-  std::string culledReaders;
-  std::vector<uint32_t> named;  // readers already listed (a node may read several outputs)
+// Culled readers of each version, in declaration order: the diagnostics name them. Built while
+// the culling sweep visits nodes backwards (pushing to the front keeps declaration order).
+class CulledReaders {
+ public:
+  void add(const FrameGraph& graph, uint32_t node) {
+    if (newest_.empty()) newest_.assign(graph.versions().size(), kInvalidIndex);
+    for (const Use& use : graph.uses(node)) {
+      if (use.readVersion == kInvalidIndex) continue;
+      links_.push_back({node, newest_[use.readVersion]});
+      newest_[use.readVersion] = static_cast<uint32_t>(links_.size() - 1);
+    }
+  }
+  template <typename Visit>
+  void forEach(uint32_t version, Visit&& visit) const {
+    for (uint32_t i = newest_[version]; i != kInvalidIndex; i = links_[i].next) visit(links_[i].node);
+  }
+
+ private:
+  struct Link {
+    uint32_t node;
+    uint32_t next;
+  };
+  ScratchVector<uint32_t> newest_;  // per version: first link, or kInvalidIndex
+  ScratchVector<Link> links_;
+};
+
+// Writes why `node` was culled into `why` (empty on entry, and usually with capacity left from an
+// earlier compile). `readerNames` and `named` are scratch, reused across nodes.
+void describeCulled(const FrameGraph& graph, uint32_t node, const CulledReaders& culledReaders, std::string& why,
+                    std::string& readerNames, std::vector<uint32_t>& named) {
+  readerNames.clear();
+  named.clear();  // readers already listed (a node may read several outputs)
   for (const Use& use : graph.uses(node)) {
     if (use.writeVersion == kInvalidIndex) continue;
     why += why.empty() ? "writes " : ", ";
     appendQuoted(why, graph.resources()[use.resource].name);
-    why += " v";
-    why += std::to_string(use.writeVersion);
-    for (uint32_t i = allReaders.begin(use.writeVersion); i < allReaders.end(use.writeVersion); ++i) {
-      const uint32_t reader = allReaders.items[i];
-      if (reader == node || std::find(named.begin(), named.end(), reader) != named.end()) continue;
+    char version[16] = {' ', 'v'};  // " v<version>", without a temporary string
+    const char* end = std::to_chars(version + 2, version + sizeof version, use.writeVersion).ptr;
+    why.append(version, static_cast<size_t>(end - version));
+    culledReaders.forEach(use.writeVersion, [&](uint32_t reader) {
+      if (reader == node || std::find(named.begin(), named.end(), reader) != named.end()) return;
       named.push_back(reader);
-      if (!culledReaders.empty()) culledReaders += ", ";
-      appendQuoted(culledReaders, graph.nodes()[reader].name);
-    }
+      if (!readerNames.empty()) readerNames += ", ";
+      appendQuoted(readerNames, graph.nodes()[reader].name);
+    });
   }
-  if (why.empty()) return "declares no writes and no side effect";
+  if (why.empty()) {
+    why = "declares no writes and no side effect";
+    return;
+  }
   why += ", none imported; ";
-  if (culledReaders.empty()) {
+  if (readerNames.empty()) {
     why += "nothing reads them";
   } else {
     why += "read only by culled nodes ";
-    why += culledReaders;
+    why += readerNames;
   }
-  return why;
+}
+
+// Overwrites every field (the element may be left over from an earlier compile), keeping the
+// diagnostic's capacity.
+void resetNodeInfo(NodeInfo& info, uint32_t queue) {
+  info.culled = false;
+  info.reason = CullReason::Alive;
+  info.why.clear();
+  info.level = 0;
+  info.queue = queue;
+  info.orderIndex = kInvalidIndex;
+  info.step = kInvalidIndex;
+  info.submit = kInvalidIndex;
+}
+
+bool isRoot(const CompileState& state, uint32_t node) {
+  if (state.graph.nodes()[node].sideEffect) return true;
+  for (const Use& use : state.graph.uses(node)) {
+    if (use.writeVersion != kInvalidIndex && (state.resourceTraits[use.resource] & kResourceImported) != 0) return true;
+  }
+  return false;
+}
+
+void explainCulled(CompileState& state, const CulledReaders& culledReaders) {
+  std::string readerNames;
+  ScratchVector<uint32_t> named;
+  for (uint32_t n = 0; n < state.nodeCount; ++n) {
+    if (state.alive[n]) continue;
+    NodeInfo& info = state.out.nodes[n];
+    info.culled = true;
+    bool hasWrites = false;
+    for (const Use& use : state.graph.uses(n)) hasWrites |= use.writeVersion != kInvalidIndex;
+    info.reason = hasWrites ? CullReason::OutputsUnread : CullReason::NoOutputs;
+    describeCulled(state.graph, n, culledReaders, info.why, readerNames, named);
+  }
 }
 
 }  // namespace
 
 void cullNodes(CompileState& state) {
   const FrameGraph& graph = state.graph;
+  const auto& versions = graph.versions();
   const uint32_t count = state.nodeCount;
-  state.alive.assign(count, state.options.cull ? 0 : 1);
-  if (state.options.cull) {
-    ScratchVector<uint32_t> stack;
-    for (uint32_t n = 0; n < count; ++n) {
-      if (graph.nodes()[n].sideEffect || writesImported(graph, n)) {
-        state.alive[n] = 1;
-        stack.push_back(n);
-      }
+  const bool cull = state.options.cull;
+  state.queueOf.resize(count);
+  // out.nodes may hold the elements of an earlier compile (see ~CompiledGraph): each is reset below.
+  state.out.nodes.resize(count);
+  state.alive.assign(count, cull ? 0 : 1);
+  // A version is only ever read by nodes declared after its producer, so one sweep from the last
+  // node backwards has settled every reader of a node before it reaches the node itself.
+  CulledReaders culledReaders;
+  for (uint32_t n = count; n-- > 0;) {
+    state.queueOf[n] = state.options.queueOfClass[static_cast<size_t>(graph.nodes()[n].queue)];
+    resetNodeInfo(state.out.nodes[n], state.queueOf[n]);
+    if (!cull) continue;
+    if (!state.alive[n] && !isRoot(state, n)) {
+      state.anyCulled = true;
+      culledReaders.add(graph, n);
+      continue;
     }
-    while (!stack.empty()) {
-      const uint32_t n = stack.back();
-      stack.pop_back();
-      for (const Use& use : graph.uses(n)) {
-        if (use.readVersion == kInvalidIndex) continue;
-        const uint32_t producer = graph.versions()[use.readVersion].producer;
-        if (producer != kInvalidIndex && !state.alive[producer]) {
-          state.alive[producer] = 1;
-          stack.push_back(producer);
-        }
-      }
+    state.alive[n] = 1;
+    for (const Use& use : graph.uses(n)) {
+      if (use.readVersion == kInvalidIndex) continue;
+      const uint32_t producer = versions[use.readVersion].producer;
+      if (producer != kInvalidIndex) state.alive[producer] = 1;
     }
   }
-
-  for (uint32_t n = 0; n < count && !state.anyCulled; ++n) state.anyCulled = !state.alive[n];
-  if (!state.anyCulled) return;
-  // A version written by a culled node has only culled readers (an alive reader would have kept
-  // its producer), so the diagnostics need the readers among culled nodes only.
-  ScratchVector<uint8_t> culled(count, 0);
-  for (uint32_t n = 0; n < count; ++n) culled[n] = !state.alive[n];
-  const Adjacency culledReaders = collectVersionReaders(graph, culled);
-  for (uint32_t n = 0; n < count; ++n) {
-    if (state.alive[n]) continue;
-    NodeInfo& info = state.out.nodes[n];
-    info.culled = true;
-    bool hasWrites = false;
-    for (const Use& use : graph.uses(n)) hasWrites |= use.writeVersion != kInvalidIndex;
-    info.reason = hasWrites ? CullReason::OutputsUnread : CullReason::NoOutputs;
-    info.why = cullDiagnostic(state, n, culledReaders);
-  }
+  if (state.anyCulled) explainCulled(state, culledReaders);
 }
 
 }  // namespace fgb::graph::detail

@@ -1,27 +1,47 @@
-// Stages: queue assignment, cycle detection (over every declared node) and the dependency edges
-// among alive nodes (deduplicated, as a predecessor adjacency and as CompiledGraph::edges).
+// Stage: the dependency edges among alive nodes (deduplicated, as CompiledGraph::edges grouped by
+// target), their longest-path levels, and cycle detection over every declared node.
+//
+// Versions order nodes (see frame_graph.hpp):
+//   RAW  producer(v) -> each alive reader of v
+//   WAR  each alive reader of the previous alive version -> producer(v)
+//   WAW  producer of the previous alive version -> producer(v)
+// A culled writer is skipped: its version has no alive readers, so the next alive writer is
+// ordered directly after the last alive writer and its readers.
+//
+// Reader chains come on top: readers of one version that differ in queue or (textures) layout
+// cannot run side by side, since the hand-over (ownership transfer, layout change) is a write in
+// disguise. Readers are taken in a topological order of the version edges, cut into runs of equal
+// (queue, layout), and every reader of a run is ordered before every reader of the next.
+// Following a topological order means the chains can never close a cycle the declaration does not
+// have; ordering whole runs (not just neighbours) keeps the barrier planner, which walks uses in
+// the final order, from handing a resource back and forth without a semaphore. A read-write use
+// is the next version's writer: WAR already orders it after every reader, so it is not chained.
+//
+// All of it is one walk over the alive nodes in a topological order, each node looking back at
+// what it depends on. Declaration order is such an order unless some node read an old version
+// (FrameGraph::readsOldVersions); only then is an order computed first, which also finds cycles.
 #include "compile_state.hpp"
 
 #include <algorithm>
 #include <string>
 
 namespace fgb::graph::detail {
+namespace {
 
-Adjacency collectVersionReaders(const FrameGraph& graph, const std::vector<uint8_t>& alive) {
+// ---- Topological order and cycles, for declarations with old-version reads -------------------
+
+// Readers of each version among all declared nodes, in declaration order.
+Adjacency versionReaders(const FrameGraph& graph) {
   Adjacency readers;
   readers.start.assign(graph.versions().size() + 1, 0);
-  const auto nodeCount = static_cast<uint32_t>(graph.nodes().size());
-  for (uint32_t n = 0; n < nodeCount; ++n) {
-    if (!alive[n]) continue;
-    for (const Use& use : graph.uses(n)) {
-      if (use.readVersion != kInvalidIndex) ++readers.start[use.readVersion + 1];
-    }
+  for (const Use& use : graph.allUses()) {
+    if (use.readVersion != kInvalidIndex) ++readers.start[use.readVersion + 1];
   }
   for (size_t v = 1; v < readers.start.size(); ++v) readers.start[v] += readers.start[v - 1];
   readers.items.resize(readers.start.back());
   ScratchVector<uint32_t> cursor(readers.start.begin(), readers.start.end() - 1);
+  const auto nodeCount = static_cast<uint32_t>(graph.nodes().size());
   for (uint32_t n = 0; n < nodeCount; ++n) {
-    if (!alive[n]) continue;
     for (const Use& use : graph.uses(n)) {
       if (use.readVersion != kInvalidIndex) readers.items[cursor[use.readVersion]++] = n;
     }
@@ -29,20 +49,29 @@ Adjacency collectVersionReaders(const FrameGraph& graph, const std::vector<uint8
   return readers;
 }
 
-void assignQueues(CompileState& state) {
-  state.queueOf.resize(state.nodeCount);
-  state.out.nodes.resize(state.nodeCount);
-  for (uint32_t n = 0; n < state.nodeCount; ++n) {
-    const auto queueClass = static_cast<size_t>(state.graph.nodes()[n].queue);
-    state.queueOf[n] = state.options.queueOfClass[queueClass];
-    state.out.nodes[n].queue = state.queueOf[n];
+// Predecessor lists of every declared node from the version edges alone (no reader chains, which
+// follow an order that only exists once these are acyclic).
+Adjacency versionEdgePredecessors(const FrameGraph& graph) {
+  const Adjacency readers = versionReaders(graph);
+  const auto& versions = graph.versions();
+  const auto nodeCount = static_cast<uint32_t>(graph.nodes().size());
+  ScratchVector<Edge> edges;
+  for (uint32_t v = 0; v < versions.size(); ++v) {
+    const uint32_t producer = versions[v].producer;
+    const uint32_t previous = versions[v].previous;
+    if (producer != kInvalidIndex && previous != kInvalidIndex) {
+      const uint32_t previousProducer = versions[previous].producer;
+      if (previousProducer != kInvalidIndex && previousProducer != producer) {
+        edges.push_back({previousProducer, producer});
+      }
+      for (uint32_t i = readers.begin(previous); i < readers.end(previous); ++i) {
+        if (readers.items[i] != producer) edges.push_back({readers.items[i], producer});
+      }
+    }
+    for (uint32_t i = readers.begin(v); i < readers.end(v); ++i) {
+      if (producer != kInvalidIndex && producer != readers.items[i]) edges.push_back({producer, readers.items[i]});
+    }
   }
-}
-
-namespace {
-
-// Builds a predecessor adjacency from (from, to) pairs, dropping duplicates.
-Adjacency predecessorsFromEdges(uint32_t nodeCount, const std::vector<Edge>& edges, std::vector<Edge>* unique) {
   Adjacency preds;
   preds.start.assign(nodeCount + 1, 0);
   for (const Edge& e : edges) ++preds.start[e.to + 1];
@@ -50,111 +79,17 @@ Adjacency predecessorsFromEdges(uint32_t nodeCount, const std::vector<Edge>& edg
   preds.items.resize(edges.size());
   ScratchVector<uint32_t> cursor(preds.start.begin(), preds.start.end() - 1);
   for (const Edge& e : edges) preds.items[cursor[e.to]++] = e.from;
-
-  // Deduplicate each node's list in place with a "last seen for" stamp per source node.
-  ScratchVector<uint32_t> seenFor(nodeCount, kInvalidIndex);
-  uint32_t write = 0;
-  uint32_t begin = 0;
-  for (uint32_t n = 0; n < nodeCount; ++n) {
-    const uint32_t end = preds.start[n + 1];
-    preds.start[n] = write;
-    for (uint32_t i = begin; i < end; ++i) {
-      const uint32_t from = preds.items[i];
-      if (seenFor[from] == n) continue;
-      seenFor[from] = n;
-      preds.items[write++] = from;
-      if (unique != nullptr) unique->push_back({from, n});
-    }
-    begin = end;
-  }
-  preds.start[nodeCount] = write;
-  preds.items.resize(write);
   return preds;
 }
 
-ScratchVector<Edge> versionEdges(const FrameGraph& graph, const std::vector<uint8_t>& alive,
-                               const std::vector<uint32_t>& queueOf) {
-  const Adjacency readers = collectVersionReaders(graph, alive);
-  ScratchVector<Edge> edges;
-  edges.reserve(graph.allUses().size() * 2);
-  appendVersionEdges(graph, alive, queueOf, readers, edges);
-  return edges;
-}
-
-// Kahn's algorithm; returns the nodes left with unprocessed predecessors (empty when acyclic).
-std::vector<uint32_t> nodesOnOrBehindCycles(uint32_t nodeCount, const Adjacency& preds) {
-  ScratchVector<uint32_t> pending(nodeCount, 0);
-  Adjacency succs;
-  succs.start.assign(nodeCount + 1, 0);
-  for (uint32_t n = 0; n < nodeCount; ++n) {
-    pending[n] = preds.end(n) - preds.begin(n);
-    for (uint32_t i = preds.begin(n); i < preds.end(n); ++i) ++succs.start[preds.items[i] + 1];
-  }
-  for (uint32_t n = 1; n <= nodeCount; ++n) succs.start[n] += succs.start[n - 1];
-  succs.items.resize(preds.items.size());
-  ScratchVector<uint32_t> cursor(succs.start.begin(), succs.start.end() - 1);
-  for (uint32_t n = 0; n < nodeCount; ++n) {
-    for (uint32_t i = preds.begin(n); i < preds.end(n); ++i) succs.items[cursor[preds.items[i]]++] = n;
-  }
-  ScratchVector<uint32_t> ready;
-  for (uint32_t n = 0; n < nodeCount; ++n) {
-    if (pending[n] == 0) ready.push_back(n);
-  }
-  while (!ready.empty()) {
-    const uint32_t n = ready.back();
-    ready.pop_back();
-    for (uint32_t i = succs.begin(n); i < succs.end(n); ++i) {
-      if (--pending[succs.items[i]] == 0) ready.push_back(succs.items[i]);
-    }
-  }
-  std::vector<uint32_t> left;
-  for (uint32_t n = 0; n < nodeCount; ++n) {
-    if (pending[n] != 0) left.push_back(n);
-  }
-  return left;
-}
-
-}  // namespace
-
-namespace {
-
-// Declaration order is almost a topological order of the all-node edges: a producer is declared
-// before its readers, and a version's writer after the previous one. The only edges that can point
-// backwards are WAR edges from a node that reads a version after its successor's writer was
-// declared (an old-version read). Reader chains follow a topological order of the hazard edges, so
-// they cannot close a cycle on their own. Without such a read the whole declaration is acyclic.
-bool mayHaveCycle(const FrameGraph& graph) {
-  const auto& versions = graph.versions();
-  std::vector<uint32_t> nextWriter(versions.size(), kInvalidIndex);  // producer of the version over v
-  for (const VersionDecl& version : versions) {
-    if (version.previous != kInvalidIndex) nextWriter[version.previous] = version.producer;
-  }
-  const auto nodeCount = static_cast<uint32_t>(graph.nodes().size());
-  for (uint32_t n = 0; n < nodeCount; ++n) {
-    for (const Use& use : graph.uses(n)) {
-      if (use.readVersion != kInvalidIndex && nextWriter[use.readVersion] < n) return true;
-    }
-  }
-  return false;
-}
-
-}  // namespace
-
-void detectCycles(const CompileState& state) {
-  if (!mayHaveCycle(state.graph)) return;
-  const std::vector<uint8_t> everyNode(state.nodeCount, 1);
-  const Adjacency preds =
-      predecessorsFromEdges(state.nodeCount, versionEdges(state.graph, everyNode, state.queueOf), nullptr);
-  const std::vector<uint32_t> left = nodesOnOrBehindCycles(state.nodeCount, preds);
-  if (!left.empty()) reportCycle(state, preds, left);
-}
-
-void reportCycle(const CompileState& state, const Adjacency& preds, const std::vector<uint32_t>& left) {
+// Throws GraphError naming a cycle among `left` (nodes Kahn's algorithm could not order).
+[[noreturn]] void reportCycle(const FrameGraph& graph, const Adjacency& preds, const std::vector<uint32_t>& left) {
   // Every node left over has a predecessor that is also left over: walk predecessors until a
   // node repeats; the walk from its first visit is a cycle.
-  std::vector<uint8_t> isLeft(state.nodeCount, 0);
+  const auto nodeCount = static_cast<uint32_t>(graph.nodes().size());
+  std::vector<uint8_t> isLeft(nodeCount, 0);
   for (uint32_t n : left) isLeft[n] = 1;
-  std::vector<uint32_t> visitedAt(state.nodeCount, kInvalidIndex);
+  std::vector<uint32_t> visitedAt(nodeCount, kInvalidIndex);
   std::vector<uint32_t> walk;
   uint32_t node = left.front();
   while (visitedAt[node] == kInvalidIndex) {
@@ -170,15 +105,166 @@ void reportCycle(const CompileState& state, const Adjacency& preds, const std::v
   std::vector<uint32_t> cycle(walk.begin() + visitedAt[node], walk.end());
   std::reverse(cycle.begin(), cycle.end());  // the walk followed predecessors
   std::string names;
-  for (uint32_t n : cycle) names += "'" + state.graph.nodes()[n].name + "' -> ";
-  names += "'" + state.graph.nodes()[cycle.front()].name + "'";
+  for (uint32_t n : cycle) names += "'" + graph.nodes()[n].name + "' -> ";
+  names += "'" + graph.nodes()[cycle.front()].name + "'";
   throw GraphError("frame graph has a cycle: " + names);
 }
 
+// Every declared node in a topological order of the version edges (Kahn, FIFO); throws on a cycle.
+ScratchVector<uint32_t> topologicalOrder(const FrameGraph& graph) {
+  const auto nodeCount = static_cast<uint32_t>(graph.nodes().size());
+  const Adjacency preds = versionEdgePredecessors(graph);
+  Adjacency succs;
+  succs.start.assign(nodeCount + 1, 0);
+  for (uint32_t p : preds.items) ++succs.start[p + 1];
+  for (uint32_t n = 1; n <= nodeCount; ++n) succs.start[n] += succs.start[n - 1];
+  succs.items.resize(preds.items.size());
+  ScratchVector<uint32_t> cursor(succs.start.begin(), succs.start.end() - 1);
+  ScratchVector<uint32_t> pending(nodeCount, 0);
+  ScratchVector<uint32_t> order;
+  for (uint32_t n = 0; n < nodeCount; ++n) {
+    pending[n] = preds.end(n) - preds.begin(n);
+    if (pending[n] == 0) order.push_back(n);
+    for (uint32_t i = preds.begin(n); i < preds.end(n); ++i) succs.items[cursor[preds.items[i]]++] = n;
+  }
+  for (size_t i = 0; i < order.size(); ++i) {  // FIFO over a growing vector
+    const uint32_t n = order[i];
+    for (uint32_t s = succs.begin(n); s < succs.end(n); ++s) {
+      if (--pending[succs.items[s]] == 0) order.push_back(succs.items[s]);
+    }
+  }
+  if (order.size() < nodeCount) {
+    std::vector<uint32_t> left;
+    for (uint32_t n = 0; n < nodeCount; ++n) {
+      if (pending[n] != 0) left.push_back(n);
+    }
+    reportCycle(graph, preds, left);
+  }
+  return order;
+}
+
+// ---- The dependency walk ----------------------------------------------------------------------
+
+// Visits alive nodes in a topological order; each visit records the node's dependencies (edges
+// into it) and its level, from what earlier visits recorded about the versions they read.
+class DependencyWalk {
+ public:
+  explicit DependencyWalk(CompileState& state)
+      : state_(state), graph_(state.graph), versions_(state.graph.versions()),
+        newestRead_(versions_.size(), kInvalidIndex), seenFor_(state.nodeCount, kInvalidIndex) {
+    runs_.resize(versions_.size());  // each entry is set at its version's first read
+    state.edgeStart.assign(state.nodeCount, 0);
+    state.edgeEnd.assign(state.nodeCount, 0);
+    state.level.assign(state.nodeCount, 0);
+    state.out.edges.reserve(graph_.allUses().size());  // about one edge per read
+    reads_.reserve(graph_.allUses().size());
+  }
+
+  void visit(uint32_t node) {
+    node_ = node;
+    level_ = 0;
+    state_.edgeStart[node] = static_cast<uint32_t>(state_.out.edges.size());
+    for (const Use& use : graph_.uses(node)) {
+      if (use.readVersion != kInvalidIndex) visitRead(use);
+      if (use.writeVersion != kInvalidIndex) visitWrite(use.writeVersion);
+    }
+    state_.edgeEnd[node] = static_cast<uint32_t>(state_.out.edges.size());
+    state_.level[node] = level_;
+    state_.maxLevel = std::max(state_.maxLevel, level_);
+  }
+
+ private:
+  // What the walk knows about a version's alive readers so far: all of them (newestRead_, a list
+  // linked through reads_, newest first), and the current and previous run of the reader chain
+  // (lists of the same kind). Set at the version's first read; constructing it does nothing, so
+  // that sizing the per-version array does not write to every entry.
+  struct ReaderRuns {
+    ReaderRuns() {}  // NOLINT(modernize-use-equals-default): leaves the fields unset on purpose
+    uint32_t run;
+    uint32_t previousRun;
+    uint32_t runKey;  // queue and layout the current run shares
+  };
+  struct Read {
+    uint32_t node;
+    uint32_t nextOfVersion;  // older reader of the same version
+    uint32_t nextInRun;      // older reader of the same run
+  };
+
+  void dependOn(uint32_t predecessor) {
+    if (predecessor == node_ || seenFor_[predecessor] == node_) return;  // no self-loops or duplicates
+    seenFor_[predecessor] = node_;
+    state_.out.edges.push_back({predecessor, node_});
+    level_ = std::max(level_, state_.level[predecessor] + 1);
+  }
+  void dependOnList(uint32_t read, uint32_t Read::*next) {
+    for (; read != kInvalidIndex; read = reads_[read].*next) dependOn(reads_[read].node);
+  }
+
+  void visitRead(const Use& use) {
+    const uint32_t version = use.readVersion;
+    if (versions_[version].producer != kInvalidIndex) dependOn(versions_[version].producer);  // RAW
+    uint32_t& newest = newestRead_[version];
+    // One entry per (node, version), like the node's first use of it (a node may read it twice).
+    if (newest != kInvalidIndex && reads_[newest].node == node_) return;
+    ReaderRuns& readers = runs_[version];
+    if (newest == kInvalidIndex) readers.run = readers.previousRun = kInvalidIndex;  // its first read
+    const auto read = static_cast<uint32_t>(reads_.size());
+    Read& added = reads_.emplace_back();  // filled in place: see add() in stage_barriers.cpp
+    added.node = node_;
+    added.nextOfVersion = newest;
+    added.nextInRun = kInvalidIndex;
+    newest = read;
+    if (use.writeVersion != kInvalidIndex) return;  // a read-write use is not chained (see above)
+    const bool texture = (state_.resourceTraits[use.resource] & kResourceTexture) != 0;
+    const uint32_t key = state_.queueOf[node_] << 8 | static_cast<uint32_t>(texture ? use.layout : Layout::General);
+    if (readers.run != kInvalidIndex && readers.runKey != key) {  // this reader starts the next run
+      readers.previousRun = readers.run;
+      readers.run = kInvalidIndex;
+      readers.runKey = key;
+    } else if (readers.run == kInvalidIndex) {
+      readers.runKey = key;
+    }
+    dependOnList(readers.previousRun, &Read::nextInRun);  // after every reader of the run before
+    reads_[read].nextInRun = readers.run;
+    readers.run = read;
+  }
+
+  void visitWrite(uint32_t version) {
+    // The previous alive version: versions of culled writers have no alive readers; skip them.
+    uint32_t previous = versions_[version].previous;
+    while (previous != kInvalidIndex && versions_[previous].producer != kInvalidIndex &&
+           !state_.alive[versions_[previous].producer]) {
+      previous = versions_[previous].previous;
+    }
+    if (previous == kInvalidIndex) return;
+    if (versions_[previous].producer != kInvalidIndex) dependOn(versions_[previous].producer);  // WAW
+    dependOnList(newestRead_[previous], &Read::nextOfVersion);                                   // WAR
+  }
+
+  CompileState& state_;
+  const FrameGraph& graph_;
+  const std::vector<VersionDecl>& versions_;
+  ScratchVector<uint32_t> newestRead_;     // per version
+  ScratchVector<ReaderRuns> runs_;         // per version
+  ScratchVector<Read> reads_;
+  ScratchVector<uint32_t> seenFor_;        // per node: the last node that depended on it
+  uint32_t node_ = kInvalidIndex;          // the node being visited...
+  uint32_t level_ = 0;                     // ...and its level so far
+};
+
+}  // namespace
+
 void buildDependencies(CompileState& state) {
-  const ScratchVector<Edge> edges = versionEdges(state.graph, state.alive, state.queueOf);
-  state.out.edges.reserve(edges.size());
-  state.predecessors = predecessorsFromEdges(state.nodeCount, edges, &state.out.edges);
+  DependencyWalk walk(state);
+  if (!state.graph.readsOldVersions()) {
+    for (uint32_t n = 0; n < state.nodeCount; ++n) {
+      if (state.alive[n]) walk.visit(n);
+    }
+    return;
+  }
+  for (const uint32_t n : topologicalOrder(state.graph)) {
+    if (state.alive[n]) walk.visit(n);
+  }
 }
 
 }  // namespace fgb::graph::detail

@@ -1,5 +1,5 @@
 // Stages: resolving resource descriptions (dependent fields → values, memory requirements) and
-// lifetimes (first/last order position of alive uses), plus the per-queue facts aliasing needs.
+// lifetimes (first/last order position of alive uses; the users were found with the dependencies).
 #include "compile_state.hpp"
 
 #include <algorithm>
@@ -7,9 +7,11 @@
 
 namespace fgb::graph {
 
-MemoryRequirements estimateRequirements(const ResourceDecl& decl, const ResolvedResource& resolved) {
+namespace {
+
+MemoryRequirements estimate(ResourceKind kind, const ResolvedResource& resolved) {
   constexpr uint64_t kAlignment = 256;
-  if (decl.kind == ResourceKind::Buffer) return {resolved.buffer.size, kAlignment, ~0u};
+  if (kind == ResourceKind::Buffer) return {resolved.buffer.size, kAlignment, ~0u};
   const TextureDesc& t = resolved.texture;
   uint64_t bytes = 0;
   uint64_t w = t.extent.width, h = t.extent.height, d = t.extent.depth;
@@ -22,6 +24,12 @@ MemoryRequirements estimateRequirements(const ResourceDecl& decl, const Resolved
   return {bytes * std::max(1u, t.layers) * std::max(1u, t.samples), kAlignment, ~0u};
 }
 
+}  // namespace
+
+MemoryRequirements estimateRequirements(const ResourceDecl& decl, const ResolvedResource& resolved) {
+  return estimate(decl.kind, resolved);
+}
+
 namespace detail {
 
 void resolveResources(CompileState& state) {
@@ -29,11 +37,14 @@ void resolveResources(CompileState& state) {
   const auto& versions = state.graph.versions();
   auto& resolved = state.out.resources;
   resolved.resize(decls.size());
+  state.resourceTraits.resize(decls.size());
   // A dependent field can only name a version that existed when the resource was declared, so
   // its source has a smaller index and is already resolved.
   for (size_t r = 0; r < decls.size(); ++r) {
     const ResourceDecl& decl = decls[r];
     ResolvedResource& res = resolved[r];
+    state.resourceTraits[r] = static_cast<uint8_t>((decl.kind == ResourceKind::Texture ? kResourceTexture : 0) |
+                                                   (decl.imported ? kResourceImported : 0));
     res.texture = decl.texture;
     res.buffer = decl.buffer;
     if (decl.kind == ResourceKind::Texture && decl.texture.extentFrom.valid()) {
@@ -53,70 +64,77 @@ void resolveResources(CompileState& state) {
 
 namespace {
 
-// Fills state.resourceUses: the uses of each resource by alive nodes, in execution order, one entry
-// per (node, resource). Lifetimes come from it here and the barrier plan walks it again.
-void collectUsesByResource(CompileState& state) {
-  const FrameGraph& graph = state.graph;
-  const auto resourceCount = static_cast<uint32_t>(graph.resources().size());
-  ResourceUses& lists = state.resourceUses;
-  lists.start.assign(resourceCount + 1, 0);
-  for (const uint32_t n : state.out.order) {
-    for (const Use& use : graph.uses(n)) ++lists.start[use.resource + 1];
-  }
-  for (uint32_t r = 1; r <= resourceCount; ++r) lists.start[r] += lists.start[r - 1];
-  lists.uses.resize(lists.start.back());
-  lists.end.assign(lists.start.begin(), lists.start.end() - 1);  // the cursor, and finally each end
-  for (const uint32_t n : state.out.order) {
-    for (const Use& use : graph.uses(n)) {
-      const bool reads = use.readVersion != kInvalidIndex;
-      const bool writes = use.writeVersion != kInvalidIndex;
-      uint32_t& end = lists.end[use.resource];
-      if (end != lists.start[use.resource] && lists.uses[end - 1].node == n) {
-        MergedUse& merged = lists.uses[end - 1];  // a node using one resource twice: one combined use
-        merged.stages |= use.stages;
-        merged.access |= use.accessMask;
-        merged.reads |= reads;
-        merged.writes |= writes;
-        if (merged.layout != use.layout) merged.layout = Layout::General;
-        continue;
-      }
-      lists.uses[end++] = {n, use.stages, use.accessMask, use.layout, reads, writes};
+// estimate() for a run of resources: neighbours often share a description (a chain of
+// same-size targets), and then the previous answer is reused.
+class EstimateCache {
+ public:
+  // Sets resolved.requirements (field by field: see add() in stage_barriers.cpp).
+  void set(ResolvedResource& resolved, ResourceKind kind) {
+    if (!valid_ || kind != kind_ || !sameEstimateInputs(resolved)) {
+      kind_ = kind;
+      last_ = resolved;
+      valid_ = true;
+      answer_ = estimate(kind, resolved);
     }
+    resolved.requirements.size = answer_.size;
+    resolved.requirements.alignment = answer_.alignment;
+    resolved.requirements.memoryTypeBits = answer_.memoryTypeBits;
   }
-}
+
+ private:
+  // Everything estimateRequirements() reads.
+  [[nodiscard]] bool sameEstimateInputs(const ResolvedResource& r) const {
+    if (kind_ == ResourceKind::Buffer) return r.buffer.size == last_.buffer.size;
+    const TextureDesc& a = r.texture;
+    const TextureDesc& b = last_.texture;
+    return a.format == b.format && a.extent.width == b.extent.width && a.extent.height == b.extent.height &&
+           a.extent.depth == b.extent.depth && a.mipLevels == b.mipLevels && a.layers == b.layers &&
+           a.samples == b.samples;
+  }
+
+  bool valid_ = false;
+  ResourceKind kind_ = ResourceKind::Texture;
+  ResolvedResource last_{};
+  MemoryRequirements answer_{};
+};
 
 }  // namespace
 
 void computeLifetimes(CompileState& state) {
   const auto& decls = state.graph.resources();
-  collectUsesByResource(state);
-  const ResourceUses& lists = state.resourceUses;
-  state.out.lifetimes.assign(decls.size(), {});
-  state.out.resourceAlive.assign(decls.size(), false);
-  state.lastSigmaOnQueue.assign(decls.size() * kQueueClassCount, 0);
-  state.stagesOnQueue.assign(decls.size() * kQueueClassCount, kStageNone);
-  state.firstUser.assign(decls.size(), kInvalidIndex);
-  for (uint32_t r = 0; r < decls.size(); ++r) {
-    const uint32_t begin = lists.start[r];
-    const uint32_t end = lists.end[r];
-    if (begin == end) continue;
-    state.out.resourceAlive[r] = true;
-    state.firstUser[r] = lists.uses[begin].node;
-    state.out.lifetimes[r] = {state.out.nodes[lists.uses[begin].node].orderIndex,
-                              state.out.nodes[lists.uses[end - 1].node].orderIndex};
-    for (uint32_t i = begin; i < end; ++i) {
-      const uint32_t node = lists.uses[i].node;
-      const size_t slot = r * kQueueClassCount + state.queueOf[node];
-      state.lastSigmaOnQueue[slot] = std::max(state.lastSigmaOnQueue[slot], state.sigma[node]);
-      state.stagesOnQueue[slot] |= lists.uses[i].stages;
+  const uint32_t resources = state.resourceCount;
+  auto& lifetimes = state.out.lifetimes;
+  lifetimes.assign(resources, {});
+  state.firstUser.assign(resources, kInvalidIndex);
+  state.lastUser.assign(resources, kInvalidIndex);
+  // In execution order: a resource's first user is the first seen, its last the last seen.
+  const auto& order = state.out.order;
+  for (uint32_t position = 0; position < order.size(); ++position) {
+    const uint32_t node = order[position];
+    for (const Use& use : state.graph.uses(node)) {
+      const uint32_t r = use.resource;
+      if (state.firstUser[r] == kInvalidIndex) {
+        state.firstUser[r] = node;
+        lifetimes[r].first = position;
+      }
+      state.lastUser[r] = node;
+      lifetimes[r].last = position;
     }
   }
-  for (size_t r = 0; r < decls.size(); ++r) {
-    if (decls[r].imported || !state.out.resourceAlive[r]) continue;
-    auto requirements = state.options.requirements ? state.options.requirements(decls[r], state.out.resources[r])
-                                                   : estimateRequirements(decls[r], state.out.resources[r]);
-    if (requirements.alignment == 0) requirements.alignment = 1;
-    state.out.resources[r].requirements = requirements;
+  state.out.resourceAlive.assign(resources, false);
+  EstimateCache estimates;
+  for (uint32_t r = 0; r < resources; ++r) {
+    if (state.firstUser[r] == kInvalidIndex) continue;
+    state.out.resourceAlive[r] = true;
+    if ((state.resourceTraits[r] & kResourceImported) != 0) continue;
+    ResolvedResource& resolved = state.out.resources[r];
+    if (state.options.requirements) {
+      resolved.requirements = state.options.requirements(decls[r], resolved);
+    } else {
+      estimates.set(resolved, (state.resourceTraits[r] & kResourceTexture) != 0 ? ResourceKind::Texture
+                                                                                  : ResourceKind::Buffer);
+    }
+    if (resolved.requirements.alignment == 0) resolved.requirements.alignment = 1;
   }
 }
 

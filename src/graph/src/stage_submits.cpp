@@ -9,57 +9,84 @@
 
 namespace fgb::graph::detail {
 
+namespace {
+
+enum SyncRole : uint8_t { kSyncSource = 1u << 0, kSyncTarget = 1u << 1 };
+
+// Steps: the order, grouped by queue (a stable counting sort); returns where each queue's steps begin.
+ScratchVector<uint32_t> groupStepsByQueue(CompileState& state) {
+  CompiledGraph& out = state.out;
+  ScratchVector<uint32_t> queueStart(state.queueCount + 1, 0);
+  for (const uint32_t n : out.order) ++queueStart[state.queueOf[n] + 1];
+  for (uint32_t q = 1; q <= state.queueCount; ++q) queueStart[q] += queueStart[q - 1];
+  out.steps.resize(out.order.size());
+  ScratchVector<uint32_t> cursor(queueStart.begin(), queueStart.end() - 1);
+  for (const uint32_t n : out.order) {
+    const uint32_t step = cursor[state.queueOf[n]]++;
+    out.steps[step].node = n;
+    out.nodes[n].step = step;
+  }
+  return queueStart;
+}
+
+}  // namespace
+
 void placeSubmits(CompileState& state) {
   CompiledGraph& out = state.out;
-  const uint32_t queues = state.options.queueCount;
-  ScratchVector<uint8_t> isSource(state.nodeCount, 0);
-  ScratchVector<uint8_t> isTarget(state.nodeCount, 0);
-  for (const Edge& e : out.syncEdges) {
-    isSource[e.from] = 1;
-    isTarget[e.to] = 1;
-  }
-
-  out.submitsPerQueue.assign(queues, 0);
-  out.steps.reserve(out.order.size());
-  ScratchVector<uint32_t> onQueue;
-  for (uint32_t queue = 0; queue < queues; ++queue) {
-    onQueue.clear();
-    for (const uint32_t n : out.order) {
-      if (state.queueOf[n] == queue) onQueue.push_back(n);
+  const uint32_t queues = state.queueCount;
+  ScratchVector<uint8_t> syncRole;
+  if (!out.syncEdges.empty()) {
+    syncRole.assign(state.nodeCount, 0);
+    for (const Edge& e : out.syncEdges) {
+      syncRole[e.from] |= kSyncSource;
+      syncRole[e.to] |= kSyncTarget;
     }
+  }
+  auto roleOf = [&](uint32_t node) -> uint8_t { return syncRole.empty() ? 0 : syncRole[node]; };
+
+  const ScratchVector<uint32_t> queueStart = groupStepsByQueue(state);
+  out.submitsPerQueue.assign(queues, 0);
+  // out.submits may hold the submits of an earlier compile (see ~CompiledGraph): they are
+  // overwritten one by one, keeping the capacity of their wait lists, and the rest dropped.
+  uint32_t submitCount = 0;
+  auto openSubmit = [&](uint32_t queue, uint32_t firstStep, uint64_t signal) {
+    if (submitCount == out.submits.size()) out.submits.emplace_back();
+    Submit& submit = out.submits[submitCount++];
+    submit.queue = queue;
+    submit.firstStep = firstStep;
+    submit.stepCount = 0;
+    submit.waits.clear();
+    submit.signalValue = signal;
+  };
+  for (uint32_t queue = 0; queue < queues; ++queue) {
     uint64_t signal = 0;
     bool open = false;
-    auto closeSubmit = [&] {
-      if (open) out.submits.back().stepCount = static_cast<uint32_t>(out.steps.size()) - out.submits.back().firstStep;
+    auto closeSubmitAt = [&](uint32_t step) {
+      Submit& last = out.submits[submitCount - 1];
+      if (open) last.stepCount = step - last.firstStep;
       open = false;
     };
-    for (size_t begin = 0; begin < onQueue.size();) {
-      const uint32_t level = out.nodes[onQueue[begin]].level;
-      size_t end = begin;
-      bool levelHasTarget = false;
-      bool levelHasSource = false;
-      while (end < onQueue.size() && out.nodes[onQueue[end]].level == level) {
-        levelHasTarget |= isTarget[onQueue[end]] != 0;
-        levelHasSource |= isSource[onQueue[end]] != 0;
-        ++end;
-      }
-      if (levelHasTarget) closeSubmit();
+    const uint32_t queueEnd = queueStart[queue + 1];
+    for (uint32_t begin = queueStart[queue]; begin < queueEnd;) {
+      // One level of this queue: steps [begin, end).
+      const uint32_t level = state.level[out.steps[begin].node];
+      uint32_t end = begin;
+      uint8_t roles = 0;
+      for (; end < queueEnd && state.level[out.steps[end].node] == level; ++end) roles |= roleOf(out.steps[end].node);
+      if ((roles & kSyncTarget) != 0) closeSubmitAt(begin);
       if (!open) {
-        out.submits.push_back({queue, static_cast<uint32_t>(out.steps.size()), 0, {}, ++signal});
+        openSubmit(queue, begin, ++signal);
         open = true;
       }
-      for (size_t i = begin; i < end; ++i) {
-        const uint32_t n = onQueue[i];
-        out.nodes[n].step = static_cast<uint32_t>(out.steps.size());
-        out.nodes[n].submit = static_cast<uint32_t>(out.submits.size() - 1);
-        out.steps.push_back({n, {}, {}});
-      }
-      if (levelHasSource) closeSubmit();
+      const uint32_t submit = submitCount - 1;
+      for (uint32_t step = begin; step < end; ++step) out.nodes[out.steps[step].node].submit = submit;
+      if ((roles & kSyncSource) != 0) closeSubmitAt(end);
       begin = end;
     }
-    closeSubmit();
+    closeSubmitAt(queueEnd);
     out.submitsPerQueue[queue] = static_cast<uint32_t>(signal);
   }
+  out.submits.resize(submitCount);
 
   // Waits: one per (submit, source queue), on the latest submit needed.
   for (const Edge& e : out.syncEdges) {

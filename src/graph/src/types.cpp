@@ -1,63 +1,11 @@
 #include <fgb/graph/types.hpp>
 
+#include "access_table.hpp"
+
 namespace fgb::graph {
-namespace {
-
-StageMask shaderStagesFor(NodeType type, StageMask requested) {
-  if (requested != kStageNone) return requested;
-  switch (type) {
-    case NodeType::Graphics: return kStageVertexShader | kStageFragmentShader;
-    case NodeType::Compute: return kStageComputeShader;
-    case NodeType::Transfer: return kStageTransfer;
-  }
-  return kStageAllCommands;
-}
-
-}  // namespace
 
 AccessInfo accessInfo(Access access, NodeType nodeType, StageMask shaderStages) {
-  const StageMask shader = shaderStagesFor(nodeType, shaderStages);
-  constexpr StageMask kDepthStages = kStageEarlyFragmentTests | kStageLateFragmentTests;
-  switch (access) {
-    case Access::Sampled:
-      return {true, false, shader, kAccessShaderSampledRead, Layout::ShaderReadOnly};
-    case Access::StorageRead:
-      return {true, false, shader, kAccessShaderStorageRead, Layout::General};
-    case Access::StorageWrite:
-      return {false, true, shader, kAccessShaderStorageWrite, Layout::General};
-    case Access::StorageReadWrite:
-      return {true, true, shader, kAccessShaderStorageRead | kAccessShaderStorageWrite, Layout::General};
-    case Access::ColorAttachmentWrite:
-      return {false, true, kStageColorAttachmentOutput, kAccessColorAttachmentWrite, Layout::ColorAttachment};
-    case Access::ColorAttachmentReadWrite:
-      return {true, true, kStageColorAttachmentOutput,
-              kAccessColorAttachmentRead | kAccessColorAttachmentWrite, Layout::ColorAttachment};
-    case Access::DepthAttachmentWrite:
-      return {false, true, kDepthStages, kAccessDepthStencilWrite, Layout::DepthStencilAttachment};
-    case Access::DepthAttachmentReadWrite:
-      return {true, true, kDepthStages, kAccessDepthStencilRead | kAccessDepthStencilWrite,
-              Layout::DepthStencilAttachment};
-    case Access::DepthAttachmentRead:
-      return {true, false, kDepthStages, kAccessDepthStencilRead, Layout::DepthStencilReadOnly};
-    case Access::ResolveDst:
-      // Dynamic-rendering resolves run in the colour-attachment-output stage.
-      return {false, true, kStageColorAttachmentOutput, kAccessColorAttachmentWrite, Layout::ColorAttachment};
-    case Access::TransferSrc:
-      return {true, false, kStageTransfer, kAccessTransferRead, Layout::TransferSrc};
-    case Access::TransferDst:
-      return {false, true, kStageTransfer, kAccessTransferWrite, Layout::TransferDst};
-    case Access::Indirect:
-      return {true, false, kStageDrawIndirect, kAccessIndirectCommandRead, Layout::General};
-    case Access::Vertex:
-      return {true, false, kStageVertexInput, kAccessVertexAttributeRead, Layout::General};
-    case Access::Index:
-      return {true, false, kStageVertexInput, kAccessIndexRead, Layout::General};
-    case Access::Uniform:
-      return {true, false, shader, kAccessUniformRead, Layout::General};
-    case Access::HostRead:
-      return {true, false, kStageHost, kAccessHostRead, Layout::General};
-  }
-  return {true, true, kStageAllCommands, kAccessNone, Layout::General};
+  return detail::lookupAccessInfo(access, nodeType, shaderStages);
 }
 
 std::string_view toString(Access access) {

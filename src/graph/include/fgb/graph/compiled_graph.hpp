@@ -128,6 +128,16 @@ struct ResolvedResource {
 };
 
 struct CompiledGraph {
+  // A graph is compiled every frame: destroying a CompiledGraph hands its arrays to a per-thread
+  // pool that the next compile() on that thread draws from, so a frame reuses the previous frame's
+  // storage instead of allocating (and page-faulting) anew.
+  CompiledGraph() = default;
+  ~CompiledGraph();
+  CompiledGraph(const CompiledGraph&) = default;
+  CompiledGraph& operator=(const CompiledGraph&) = default;
+  CompiledGraph(CompiledGraph&&) noexcept = default;
+  CompiledGraph& operator=(CompiledGraph&&) noexcept = default;
+
   uint32_t queueCount = 1;
   std::vector<NodeInfo> nodes;          // per declared node
   std::vector<uint32_t> order;          // alive nodes, topological, levels non-decreasing

@@ -148,10 +148,8 @@ struct NodeDecl {
   NodeType type = NodeType::Graphics;
   QueueClass queue = QueueClass::Graphics;
   bool sideEffect = false;
-  // This node's uses are FrameGraph::allUses()[firstUse, firstUse + useCount); see FrameGraph::uses().
-  // (One flat array for all nodes: declaring 10,000 nodes must not cost 10,000 allocations.)
-  uint32_t firstUse = 0;
-  uint32_t useCount = 0;
+  // The node's uses live in one flat array for all nodes (FrameGraph::uses(node), allUses()):
+  // declaring 10,000 nodes must not cost 10,000 allocations.
   std::vector<ColorAttachment> colorAttachments;  // graphics nodes only
   DepthAttachment depthAttachment{};              // graphics nodes only; target invalid if none
   Job job;
@@ -192,7 +190,14 @@ class NodeBuilder {
 
 class FrameGraph {
  public:
-  FrameGraph() = default;
+  // A graph is declared every frame: its arrays come from, and go back to, a per-thread pool, so
+  // a frame reuses the previous frame's storage instead of allocating (and page-faulting) anew.
+  FrameGraph();
+  ~FrameGraph();
+  FrameGraph(const FrameGraph&) = default;
+  FrameGraph& operator=(const FrameGraph&) = default;
+  FrameGraph(FrameGraph&&) noexcept = default;
+  FrameGraph& operator=(FrameGraph&&) noexcept = default;
 
   TextureHandle importTexture(std::string_view name, const TextureDesc& desc, ExternalResource external,
                               ImportState initial, ImportState final);
@@ -213,6 +218,10 @@ class FrameGraph {
     return {allUses_.data() + useStart_[node], useStart_[node + 1] - useStart_[node]};
   }
   [[nodiscard]] const std::vector<Use>& allUses() const { return allUses_; }
+  // True when some node read a version after another node had already written over it (an
+  // "old-version" read). Only such a read orders a node before an earlier-declared one (WAR), so
+  // without one the declaration order is already a topological order of every dependency.
+  [[nodiscard]] bool readsOldVersions() const { return readsOldVersions_; }
   [[nodiscard]] uint32_t resourceOf(TextureHandle h) const { return versionAt(h.version, "texture").resource; }
   [[nodiscard]] uint32_t resourceOf(BufferHandle h) const { return versionAt(h.version, "buffer").resource; }
   // Jobs are moved out by the backend when it builds an executable graph.
@@ -222,15 +231,17 @@ class FrameGraph {
   friend class NodeBuilder;
   ResourceDecl& addResource(std::string_view name, ResourceKind kind, bool imported);
   uint32_t addUse(uint32_t node, uint32_t version, ResourceKind kind, Access access, StageMask stages);
+  void noteOldVersionRead(uint32_t node, uint32_t version, uint32_t latest);
   const VersionDecl& versionAt(uint32_t version, std::string_view what) const;
 
   std::vector<NodeDecl> nodes_;
   std::vector<ResourceDecl> resources_;
   std::vector<VersionDecl> versions_;
   std::vector<Use> allUses_;
-  // Node n's uses are allUses_[useStart_[n], useStart_[n + 1]) (the same as its firstUse/useCount).
-  // A dense copy: the compiler walks uses node by node many times, and NodeDecl is large.
-  std::vector<uint32_t> useStart_{0};
+  // Node n's uses are allUses_[useStart_[n], useStart_[n + 1]). Kept apart from NodeDecl, which
+  // is large: the compiler walks uses node by node and should not touch the rest of a node.
+  std::vector<uint32_t> useStart_;
+  bool readsOldVersions_ = false;
 };
 
 }  // namespace fgb::graph

@@ -94,8 +94,7 @@ void BM_CompareInProcess(benchmark::State& state) {
   double flipMean = 0.0;
   int exposures = 0;
   for (auto _ : state) {
-    const Image a = readImage(p.reference);
-    const Image b = readImage(p.test);
+    const auto [a, b] = readImagePair(p.reference, p.test);
     const Comparison c = compareImages(a, b);
     flipMean = c.metrics.flip->mean;
     exposures = c.metrics.flip->exposures;

@@ -55,8 +55,7 @@ std::string limitFailures(const harness::ImageMetrics& m, const CompareOptions& 
 }
 
 int compareVerb(const CompareOptions& o) {
-  const harness::Image a = harness::readImage(o.reference);
-  const harness::Image b = harness::readImage(o.test);
+  const auto [a, b] = harness::readImagePair(o.reference, o.test);
   if (a.width != b.width || a.height != b.height) {
     throw InputError(fmt::format("{} is {} but {} is {}: images must have the same size", o.reference,
                                  harness::describeSize(a), o.test, harness::describeSize(b)));

@@ -7,10 +7,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <numbers>
 #include <random>
+#include <string>
 #include <vector>
 
 namespace fgb::harness {
@@ -121,7 +124,11 @@ struct Reference {
   }
 
   std::vector<double> flip(const Image& refImage, const Image& testImage) const {
-    const Planar ref = linearPlanes(refImage), test = linearPlanes(testImage);
+    return flipLinear(linearPlanes(refImage), linearPlanes(testImage));
+  }
+
+  // FLIP of two linear display images in [0, 1].
+  std::vector<double> flipLinear(const Planar& ref, const Planar& test) const {
     const int w = ref.w, h = ref.h;
     const std::size_t n = static_cast<std::size_t>(w * h);
     auto opponent = [&](const Planar& p) {
@@ -208,6 +215,121 @@ TEST(FlipReference, FastImplementationMatchesDirectEvaluation) {
   }
 }
 
+// The engine is compiled for several instruction sets; FGBENCH_FLIP_ISA caps the one it uses.
+class IsaCap {
+ public:
+  explicit IsaCap(const char* isa) {
+    if (isa) setenv("FGBENCH_FLIP_ISA", isa, 1);
+  }
+  ~IsaCap() { unsetenv("FGBENCH_FLIP_ISA"); }
+  IsaCap(const IsaCap&) = delete;
+  IsaCap& operator=(const IsaCap&) = delete;
+};
+constexpr std::array<const char*, 3> kIsas{"baseline", "avx2", nullptr};  // nullptr: the best the CPU has
+
+// An HDR pair: the scene's colours scaled up to ~8x with a few bright spots, the test one changed.
+Image hdrScene(int w, int h, unsigned seed, double shift) {
+  Image image = scene(w, h, seed, shift);
+  image.encoding = Encoding::Linear;
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      float* p = &image.rgba[static_cast<std::size_t>(y * w + x) * 4];
+      const float gain = 0.25f + 8.0f * static_cast<float>(y) / static_cast<float>(h);
+      for (int c = 0; c < 3; ++c) p[c] *= gain;
+      if ((x * 7 + y * 3) % 97 == 0) p[0] = p[1] = p[2] = 40.0f;
+    }
+  }
+  return image;
+}
+
+// HDR-FLIP as the paper defines it: the maximum over the exposures of LDR-FLIP of the ACES
+// tone-mapped pair, evaluated directly (in double, with the public acesToneMap).
+std::vector<double> referenceHdrFlip(const Image& a, const Image& b, double ppd) {
+  const ExposureRange range = hdrExposureRange(a);
+  const double step = (range.stop - range.start) / std::max(range.count - 1, 1);
+  const Reference reference(ppd);
+  std::vector<double> result(a.pixelCount(), 0.0);
+  for (int i = 0; i < range.count; ++i) {
+    const double exposure = range.start + i * step;
+    auto toneMapped = [&](const Image& image) {
+      Planar p{static_cast<int>(image.width), static_cast<int>(image.height), {}};
+      for (auto& plane : p.c) plane.resize(image.pixelCount());
+      for (std::size_t k = 0; k < image.pixelCount(); ++k) {
+        for (int c = 0; c < 3; ++c) p.c[static_cast<std::size_t>(c)][k] = acesToneMap(image.rgba[k * 4 + static_cast<std::size_t>(c)], exposure);
+      }
+      return p;
+    };
+    const std::vector<double> errors = reference.flipLinear(toneMapped(a), toneMapped(b));
+    for (std::size_t k = 0; k < errors.size(); ++k) result[k] = std::max(result[k], errors[k]);
+  }
+  return result;
+}
+
+void expectMatches(const std::vector<double>& expected, const std::vector<float>& actual, const std::string& what) {
+  ASSERT_EQ(expected.size(), actual.size()) << what;
+  double worst = 0.0, meanExpected = 0.0, meanActual = 0.0;
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    worst = std::max(worst, std::abs(expected[i] - actual[i]));
+    meanExpected += expected[i];
+    meanActual += actual[i];
+  }
+  meanExpected /= static_cast<double>(expected.size());
+  meanActual /= static_cast<double>(expected.size());
+  EXPECT_LT(worst, 2e-3) << what;
+  EXPECT_NEAR(meanActual, meanExpected, 1e-4) << what;
+  EXPECT_GT(meanExpected, 0.01) << what;  // the pair does differ
+}
+
+TEST(FlipReference, HdrFlipMatchesDirectEvaluationOnEveryIsa) {
+  const Image a = hdrScene(48, 40, 1, 0.0), b = hdrScene(48, 40, 2, 2.5);
+  const double ppd = defaultPixelsPerDegree();
+  const std::vector<double> expected = referenceHdrFlip(a, b, ppd);
+  for (const char* isa : kIsas) {
+    const IsaCap cap(isa);
+    const HdrFlipResult fast = hdrFlip(a, b, ppd);
+    EXPECT_EQ(fast.exposures, hdrExposureRange(a).count);
+    expectMatches(expected, fast.map.error, std::string("hdr, isa ") + (isa ? isa : "best"));
+  }
+}
+
+// Wide and tall enough (at a small observer distance, so that the direct evaluation stays cheap)
+// that the engine cuts the image into several strips and bands of rows.
+TEST(FlipReference, TiledImagesMatchDirectEvaluationOnEveryIsa) {
+  const double ppd = 12.0;
+  const Image a = scene(300, 150, 3, 0.0), b = scene(300, 150, 4, 3.0);
+  const std::vector<double> expected = Reference(ppd).flip(a, b);
+  const Image ha = hdrScene(300, 150, 3, 0.0), hb = hdrScene(300, 150, 4, 3.0);
+  const std::vector<double> expectedHdr = referenceHdrFlip(ha, hb, ppd);
+  for (const char* isa : kIsas) {
+    const IsaCap cap(isa);
+    const std::string name = isa ? isa : "best";
+    expectMatches(expected, ldrFlip(a, b, ppd).error, "ldr, isa " + name);
+    expectMatches(expectedHdr, hdrFlip(ha, hb, ppd).map.error, "hdr, isa " + name);
+  }
+}
+
+TEST(FlipReference, InstructionSetsAgree) {
+  const Image a = hdrScene(200, 70, 5, 0.0), b = hdrScene(200, 70, 6, 1.5);
+  std::vector<std::vector<float>> maps;
+  for (const char* isa : kIsas) {
+    const IsaCap cap(isa);
+    maps.push_back(hdrFlip(a, b).map.error);
+  }
+  // The same arithmetic up to rounding (FMA contraction, vector widths). Where two colours are
+  // nearly equal, their HyAB distance is at the rounding noise of L*a*b* (~1e-5 of L = 50) and the
+  // error there, ~1e-4, is noise too: bound the worst pixel loosely and the mean tightly.
+  for (std::size_t m = 1; m < maps.size(); ++m) {
+    float worst = 0.0f;
+    double sumDifference = 0.0;
+    for (std::size_t i = 0; i < maps[0].size(); ++i) {
+      worst = std::max(worst, std::abs(maps[m][i] - maps[0][i]));
+      sumDifference += static_cast<double>(maps[m][i]) - static_cast<double>(maps[0][i]);
+    }
+    EXPECT_LT(worst, 5e-4f) << "isa " << m;
+    EXPECT_LT(std::abs(sumDifference) / static_cast<double>(maps[0].size()), 1e-6) << "isa " << m;
+  }
+}
+
 TEST(FlipReference, FastMathApproximationsAreAccurate) {
   for (float x = 1e-6f; x < 1e4f; x *= 1.37f) {
     EXPECT_NEAR(flip_detail::fastLog2(x), std::log2(x), 2e-6f * std::max(1.0f, std::abs(std::log2(x))));
@@ -215,6 +337,7 @@ TEST(FlipReference, FastMathApproximationsAreAccurate) {
   }
   for (float x = -20.0f; x < 20.0f; x += 0.173f) EXPECT_NEAR(flip_detail::fastExp2(x), std::exp2(x), 2e-6f * std::exp2(x));
   EXPECT_EQ(flip_detail::fastPow(0.0f, 0.7f), 0.0f);
+  for (float x = 1e-7f; x < 1e3f; x *= 1.0013f) EXPECT_NEAR(flip_detail::fastCbrt(x), std::cbrt(x), 3e-7f * std::cbrt(x)) << x;
 }
 
 }  // namespace

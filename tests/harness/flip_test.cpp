@@ -6,8 +6,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <random>
+#include <vector>
 
 namespace fgb::harness {
 namespace {
@@ -110,6 +112,43 @@ TEST(HdrFlip, AcesMapsTheStartExposureOfTheBrightestPixelTo085) {
   EXPECT_NEAR(acesToneMap(1.0f, r.stop), 0.85f, 1e-4f);  // the median luminance is 1
   EXPECT_NEAR(r.stop - r.start, 4.0, 1e-9);               // log2(16 / 1)
   EXPECT_EQ(r.count, 4);
+}
+
+// The exposure range's median and maximum luminance come from a radix selection: check them
+// against std::nth_element on an image with ties, black, negative and non-finite pixels.
+TEST(HdrFlip, ExposureRangeUsesTheExactMedianLuminance) {
+  for (const bool mostlyBlack : {false, true}) {
+    Image hdr = makeImage(123, 77, Encoding::Linear);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> value(0.0f, 30.0f);
+    for (std::size_t i = 0; i < hdr.pixelCount(); ++i) {
+      float* p = &hdr.rgba[i * 4];
+      const bool black = mostlyBlack ? i % 4 != 0 : i % 7 == 0;
+      for (int c = 0; c < 3; ++c) p[c] = black ? 0.0f : (i % 11 == 0 ? 2.0f : value(rng));
+      if (i % 13 == 0) p[1] = -1.0f;
+      if (i == 5) p[0] = std::numeric_limits<float>::quiet_NaN();
+      if (i == 6) p[2] = std::numeric_limits<float>::infinity();
+    }
+    std::vector<float> lum;
+    for (std::size_t i = 0; i < hdr.pixelCount(); ++i) {
+      const float* p = &hdr.rgba[i * 4];
+      const float y = 0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2];
+      lum.push_back(std::isfinite(y) ? std::max(0.0f, y) : 0.0f);
+    }
+    float yMax = 0.0f;
+    for (float v : lum) yMax = std::max(yMax, v);
+    std::vector<float> sorted = lum;
+    std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
+    float yMedian = sorted[sorted.size() / 2];
+    if (yMedian <= 0.0f) {
+      yMedian = yMax;
+      for (float v : lum) if (v > 0.0f) yMedian = std::min(yMedian, v);
+    }
+    const ExposureRange r = hdrExposureRange(hdr);
+    // acesToneMap(y, exposure) = 0.85 exactly where exposure = log2(x / y): the same x for both.
+    EXPECT_NEAR(r.stop - r.start, std::log2(static_cast<double>(yMax) / static_cast<double>(yMedian)), 1e-10) << mostlyBlack;
+    EXPECT_NEAR(acesToneMap(yMax, r.start), 0.85f, 1e-4f);
+  }
 }
 
 TEST(HdrFlip, IdenticalIsZeroAndDifferencesAreBounded) {

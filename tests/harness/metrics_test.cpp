@@ -2,9 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <random>
 #include <stdexcept>
+#include <vector>
 
 namespace fgb::harness {
 namespace {
@@ -93,6 +96,38 @@ TEST(Metrics, FlipSummaryPercentilesAreExact) {
   EXPECT_NEAR(s.p95, 0.95, 1e-6);
   EXPECT_NEAR(s.p99, 0.99, 1e-6);
   EXPECT_NEAR(s.max, 1.0, 1e-6);
+}
+
+// The percentiles come from a radix selection: check them against a full sort on awkward data
+// (many ties and zeros, values spread over many binades, sizes around the interpolation points).
+TEST(Metrics, FlipSummaryMatchesSortedPercentiles) {
+  std::mt19937 rng(7);
+  for (std::size_t n : {1u, 2u, 3u, 101u, 1000u, 100003u}) {
+    std::vector<float> errors(n);
+    std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+    for (std::size_t i = 0; i < n; ++i) {
+      const float u = uniform(rng);
+      errors[i] = i % 3 == 0 ? 0.0f : (i % 5 == 0 ? 0.25f : u * u * u * u);  // ties, zeros, small values
+      if (i % 17 == 0) errors[i] = -u;  // not FLIP errors, but the summary orders any values
+      if (i % 19 == 0) errors[i] = -0.0f;
+    }
+    std::vector<double> sorted(errors.begin(), errors.end());
+    std::sort(sorted.begin(), sorted.end());
+    auto percentile = [&](double p) {
+      const double position = p / 100.0 * static_cast<double>(n - 1);
+      const auto lower = static_cast<std::size_t>(position);
+      if (lower + 1 >= n) return sorted[lower];
+      return sorted[lower] + (sorted[lower + 1] - sorted[lower]) * (position - static_cast<double>(lower));
+    };
+    double sum = 0.0;
+    for (double v : sorted) sum += v;
+    const FlipStatistics s = summarizeFlip(errors, "hdr");
+    EXPECT_EQ(s.p50, percentile(50.0)) << n;
+    EXPECT_EQ(s.p95, percentile(95.0)) << n;
+    EXPECT_EQ(s.p99, percentile(99.0)) << n;
+    EXPECT_EQ(s.max, sorted.back()) << n;
+    EXPECT_NEAR(s.mean, sum / static_cast<double>(n), 1e-12) << n;
+  }
 }
 
 TEST(Metrics, HeatMapMarksNonFiniteGreenAndScalesErrors) {

@@ -1,22 +1,34 @@
 // FLIP, following the structure of the paper: a colour pipeline (opponent space, contrast
 // sensitivity filtering, Hunt-adjusted L*a*b*, HyAB distance, error redistribution) and a feature
 // pipeline (edges and points on luminance), combined as dE_c^(1 - dE_f).
-// Speed: all filters are separable (the blue-yellow CSF is a sum of two separable Gaussians); the
-// horizontal passes write planes, the vertical passes are fused with the per-pixel error, and rows
-// are spread over threads.
+//
+// Speed: all filters are separable (the blue-yellow CSF is a sum of two separable Gaussians) and
+// folded around their centre; kernels that read the same input share one pass over it. The image
+// is cut into strips of columns, which the workers take one at a time and walk from top to bottom:
+// each source row entering the vertical window is converted to YCxCz and filtered horizontally
+// into per-plane rings of the last rows, the vertical filters produce four output rows at a time
+// from the rings, and the colour transforms and the error follow on those rows. Nothing of the size
+// of the image is written except the error map, and a strip's working set stays in the core's L2
+// cache. HDR-FLIP filters several exposures per sweep down a strip (one read of the input for all
+// of them) and keeps the per-pixel maximum. The inner loops are written for 16-float vectors and
+// compiled for AVX-512, AVX2 + FMA and the baseline instruction set, chosen at run time.
 #include <fgb/harness/flip.hpp>
 
 #include <fgb/harness/parallel.hpp>
 
 #include "flip_filters.hpp"
+#include "order_statistics.hpp"
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
-#include <cstring>
-#include <functional>
+#include <cstdlib>
+#include <limits>
+#include <mutex>
 #include <numbers>
 #include <stdexcept>
+#include <string_view>
 
 namespace fgb::harness {
 namespace {
@@ -57,7 +69,7 @@ Xyz linearRgbToXyz(Rgb c) {
 
 
 // By value (std::clamp returns a reference, which keeps GCC from vectorising the loops using it).
-inline float clamp01(float v) { return v < 0.0f ? 0.0f : (v > 1.0f ? 1.0f : v); }
+FGB_INLINE float clamp01(float v) { return v < 0.0f ? 0.0f : (v > 1.0f ? 1.0f : v); }
 
 float labF(float t) {
   constexpr float delta = 6.0f / 29.0f;
@@ -85,7 +97,7 @@ float maxColorDifference() {
   return cmax;
 }
 
-float redistributeColorError(float powered, float cmax) {
+FGB_INLINE float redistributeColorError(float powered, float cmax) {
   const float knee = static_cast<float>(kRedistributionPc) * cmax;
   const auto pt = static_cast<float>(kRedistributionPt);
   const float below = pt / knee * powered;
@@ -149,210 +161,61 @@ Kernels makeKernels(double ppd) {
   return k;
 }
 
-// The seven horizontally filtered planes of one image.
-struct FilteredPlanes {
-  enum Index { Achromatic, RedGreen, BlueYellow1, BlueYellow2, FeatureGauss, FeatureEdge, FeaturePoint, Count };
-  std::array<std::vector<float>, Count> planes;
+// ---- The tiled engine --------------------------------------------------------------------------
+
+using flip_detail::FoldedKernel;
+using flip_detail::fold;
+using flip_detail::padTo;
+
+// Row lengths are padded to whole vectors.
+constexpr int kBlock = flip_detail::kMaxVecLanes;
+// Columns per strip. Its source rows are converted with r columns more on either side (which the
+// horizontal filters read); the rings hold 2 images * 7 planes * (2r + 4) rows of the strip's width
+// per exposure (~170 KB at 4K's default observer, r = 10).
+constexpr uint32_t kStripWidth = 128;
+// Source rows are prefetched this many rows ahead of the one being converted (the hardware
+// prefetcher does not cross into the next row's strip segment; measured best of 0, 1, 2, 4).
+constexpr int kPrefetchRows = 4;
+// L2 cache that the rings of the exposures filtered in one sweep may take (per core, 1 MB or more
+// on current x86 cores): three exposures at 4K's default observer.
+constexpr std::size_t kRingBudget = 700 * 1024;
+
+struct EngineKernels {
+  // Horizontal CSF terms (the blue-yellow pair padded to one radius: one pass over Cz) and
+  // vertical ones.
+  FoldedKernel hAchromatic, hRedGreen, hBlueYellow1, hBlueYellow2;
+  FoldedKernel vAchromatic, vRedGreen, vBlueYellow1, vBlueYellow2;
+  FoldedKernel gauss, edge, point;  // feature kernels, the same along both axes, of one radius
+  int radius = 0;                   // the largest radius of any of them
+  // The achromatic CSF filters Y' = 116 Y - 16. It is applied to Y instead (horizontally in the
+  // same pass as the feature kernels, which read Y too: hAchromatic is padded to their radius), as
+  // Y' filtered = 116 (Y filtered) - 16 sum, sum = the sum of the 2D kernel's taps; what remains of
+  // (Y' filtered + 16) / 116, the value the colour transform starts from, is 16 (1 - sum) / 116.
+  float achromaticOffset = 0.0f;
 };
 
-// Fills one row of linear RGB in [0, 1] (display images, or tone-mapped HDR), planar.
-using LinearSource = std::function<void(std::size_t row, float* r, float* g, float* b)>;
-
-void horizontalPasses(const LinearSource& source, uint32_t width, uint32_t height, const Kernels& k, FilteredPlanes& out) {
-  for (auto& plane : out.planes) plane.resize(static_cast<std::size_t>(width) * height);
-  parallelFor(height, 8, [&](std::size_t begin, std::size_t end) {
-    std::vector<float> r(width), g(width), b(width), y(width), cx(width), cz(width), luminance(width), scratch;
-    for (std::size_t row = begin; row < end; ++row) {
-      const std::size_t base = row * width;
-      source(row, r.data(), g.data(), b.data());
-      for (uint32_t x = 0; x < width; ++x) {
-        const Xyz c = linearRgbToXyz({r[x], g[x], b[x]});
-        const float yn = c.y / kYn;
-        y[x] = 116.0f * yn - 16.0f;
-        cx[x] = 500.0f * (c.x / kXn - yn);
-        cz[x] = 200.0f * (yn - c.z / kZn);
-        luminance[x] = yn;  // (Y + 16) / 116 of YCxCz: normalised luminance for the features
-      }
-      auto at = [&](FilteredPlanes::Index i) { return out.planes[i].data() + base; };
-      flip_detail::convolveRow(y.data(), at(FilteredPlanes::Achromatic), width, k.csfAchromatic, scratch);
-      flip_detail::convolveRow(cx.data(), at(FilteredPlanes::RedGreen), width, k.csfRedGreen, scratch);
-      flip_detail::convolveRow(cz.data(), at(FilteredPlanes::BlueYellow1), width, k.csfBlueYellow1, scratch);
-      flip_detail::convolveRow(cz.data(), at(FilteredPlanes::BlueYellow2), width, k.csfBlueYellow2, scratch);
-      flip_detail::convolveRow(luminance.data(), at(FilteredPlanes::FeatureGauss), width, k.gaussian, scratch);
-      flip_detail::convolveRow(luminance.data(), at(FilteredPlanes::FeatureEdge), width, k.edge, scratch);
-      flip_detail::convolveRow(luminance.data(), at(FilteredPlanes::FeaturePoint), width, k.point, scratch);
-    }
-  });
+EngineKernels foldKernels(const Kernels& k) {
+  EngineKernels e;
+  const int feature = std::max({k.gaussian.radius, k.edge.radius, k.point.radius});
+  e.gauss = padTo(fold(k.gaussian), feature);
+  e.edge = padTo(fold(k.edge), feature);
+  e.point = padTo(fold(k.point), feature);
+  if (e.edge.centre != 0.0f || !e.edge.odd || e.gauss.odd || e.point.odd) throw std::logic_error("FLIP: unexpected kernel parity");
+  if (k.csfAchromatic.radius > feature) throw std::logic_error("FLIP: achromatic CSF wider than the feature kernels");
+  e.hAchromatic = padTo(fold(k.csfAchromatic), feature);
+  e.hRedGreen = fold(k.csfRedGreen);
+  const int blueYellow = std::max(k.csfBlueYellow1.radius, k.csfBlueYellow2.radius);
+  e.hBlueYellow1 = padTo(fold(k.csfBlueYellow1), blueYellow);
+  e.hBlueYellow2 = padTo(fold(k.csfBlueYellow2), blueYellow);
+  e.vAchromatic = fold(k.csfAchromaticV);
+  e.vRedGreen = fold(k.csfRedGreenV);
+  e.vBlueYellow1 = fold(k.csfBlueYellow1V);
+  e.vBlueYellow2 = fold(k.csfBlueYellow2V);
+  e.radius = std::max({feature, e.hRedGreen.radius, blueYellow, e.vAchromatic.radius, e.vRedGreen.radius, e.vBlueYellow1.radius,
+                       e.vBlueYellow2.radius});
+  e.achromaticOffset = static_cast<float>(16.0 * (1.0 - flip_detail::sumOf(k.csfAchromatic) * flip_detail::sumOf(k.csfAchromaticV)) / 116.0);
+  return e;
 }
-
-// Vertical passes for one row of one image: filtered opponent colour and feature magnitudes.
-struct RowResult {
-  std::vector<float> y, cx, cz, edge, point, tmpA, tmpB;
-  explicit RowResult(uint32_t width) : y(width), cx(width), cz(width), edge(width), point(width), tmpA(width), tmpB(width) {}
-};
-
-void verticalPasses(const FilteredPlanes& in, uint32_t width, uint32_t height, uint32_t row, uint32_t x0, uint32_t count,
-                    const Kernels& k, RowResult& r) {
-  auto plane = [&](FilteredPlanes::Index i) { return in.planes[i].data(); };
-  flip_detail::convolveColumnRow(plane(FilteredPlanes::Achromatic), width, height, row, x0, count, k.csfAchromaticV, r.y.data());
-  flip_detail::convolveColumnRow(plane(FilteredPlanes::RedGreen), width, height, row, x0, count, k.csfRedGreenV, r.cx.data());
-  flip_detail::convolveColumnRow(plane(FilteredPlanes::BlueYellow1), width, height, row, x0, count, k.csfBlueYellow1V, r.cz.data());
-  flip_detail::convolveColumnRow(plane(FilteredPlanes::BlueYellow2), width, height, row, x0, count, k.csfBlueYellow2V, r.tmpA.data());
-  for (uint32_t x = 0; x < count; ++x) r.cz[x] += r.tmpA[x];
-  // Edges: d(x) g(y) and g(x) d(y); points: p(x) g(y) and g(x) p(y).
-  flip_detail::convolveColumnRow(plane(FilteredPlanes::FeatureEdge), width, height, row, x0, count, k.gaussian, r.tmpA.data());
-  flip_detail::convolveColumnRow(plane(FilteredPlanes::FeatureGauss), width, height, row, x0, count, k.edge, r.tmpB.data());
-  for (uint32_t x = 0; x < count; ++x) r.edge[x] = std::sqrt(r.tmpA[x] * r.tmpA[x] + r.tmpB[x] * r.tmpB[x]);
-  flip_detail::convolveColumnRow(plane(FilteredPlanes::FeaturePoint), width, height, row, x0, count, k.gaussian, r.tmpA.data());
-  flip_detail::convolveColumnRow(plane(FilteredPlanes::FeatureGauss), width, height, row, x0, count, k.point, r.tmpB.data());
-  for (uint32_t x = 0; x < count; ++x) r.point[x] = std::sqrt(r.tmpA[x] * r.tmpA[x] + r.tmpB[x] * r.tmpB[x]);
-}
-
-// Cube root for the L*a*b* transform: exponent-third bit trick, then two Halley steps (cubic
-// convergence: ~1e-12 relative, below float precision). Branch-free so the row loops vectorise;
-// the libm call was a tenth of FLIP's time. Inputs <= 0 give a small positive number, which the
-// caller never selects (L*a*b* uses the linear segment there).
-inline float fastCbrt(float x) {
-  const float v = std::max(x, 1e-30f);
-  uint32_t bits;
-  std::memcpy(&bits, &v, sizeof bits);
-  bits = bits / 3u + 709921077u;  // ~ (127 - 127/3) << 23: a first guess within a few percent
-  float y;
-  std::memcpy(&y, &bits, sizeof y);
-  for (int i = 0; i < 2; ++i) {
-    const float y3 = y * y * y;
-    y = y * (y3 + 2.0f * v) / (2.0f * y3 + v);
-  }
-  return y;
-}
-
-// f(t) of CIE L*a*b*, in place over n values.
-FGB_VECTOR_CLONES
-void labFunctionInPlace(float* t, uint32_t n) {
-  constexpr float delta = 6.0f / 29.0f;
-  constexpr float threshold = delta * delta * delta;
-  for (uint32_t i = 0; i < n; ++i) {
-    const float cube = fastCbrt(t[i]);
-    const float linear = t[i] / (3.0f * delta * delta) + 4.0f / 29.0f;
-    t[i] = t[i] > threshold ? cube : linear;
-  }
-}
-
-// Filtered YCxCz -> linear RGB clamped to the unit cube -> Hunt-adjusted L*a*b*, for a row.
-// Written as simple loops over arrays so that each one vectorises.
-FGB_VECTOR_CLONES
-void perceptualRow(const RowResult& in, uint32_t width, float* outL, float* outA, float* outB) {
-  // Plain restrict pointers: through the vectors the compiler must assume the outputs alias them.
-  const float* __restrict y = in.y.data();
-  const float* __restrict cx = in.cx.data();
-  const float* __restrict cz = in.cz.data();
-  float* __restrict fx = outA;  // the outputs double as scratch for f(X/Xn), f(Y/Yn), f(Z/Zn)
-  float* __restrict fy = outL;
-  float* __restrict fz = outB;
-  for (uint32_t x = 0; x < width; ++x) {
-    const float yy = (y[x] + 16.0f) / 116.0f;
-    const float X = (yy + cx[x] / 500.0f) * kXn, Y = yy * kYn, Z = (yy - cz[x] / 200.0f) * kZn;
-    // Same matrices as xyzToLinearRgb / linearRgbToXyz, spelled out so the loop vectorises.
-    const float r = clamp01(3.24100323f * X - 1.53739897f * Y - 0.49861588f * Z);
-    const float g = clamp01(-0.96922425f * X + 1.87592998f * Y + 0.04155423f * Z);
-    const float b = clamp01(0.05563942f * X - 0.20401121f * Y + 1.05714897f * Z);
-    fx[x] = (0.41238656f * r + 0.35759149f * g + 0.18045049f * b) / kXn;
-    fy[x] = (0.21263682f * r + 0.71518298f * g + 0.07218020f * b) / kYn;
-    fz[x] = (0.01933062f * r + 0.11919716f * g + 0.95037259f * b) / kZn;
-  }
-  labFunctionInPlace(fx, width);
-  labFunctionInPlace(fy, width);
-  labFunctionInPlace(fz, width);
-  for (uint32_t x = 0; x < width; ++x) {
-    const float l = 116.0f * fy[x] - 16.0f;
-    const float a = 0.01f * l * 500.0f * (fx[x] - fy[x]);
-    const float b = 0.01f * l * 200.0f * (fy[x] - fz[x]);
-    fy[x] = l;
-    fx[x] = a;
-    fz[x] = b;
-  }
-}
-
-struct CombineScratch {
-  std::vector<float> refL, refA, refB, testL, testA, testB;
-  explicit CombineScratch(uint32_t width)
-      : refL(width), refA(width), refB(width), testL(width), testA(width), testB(width) {}
-};
-
-// HyAB colour error, redistributed; feature error; combined dE_c^(1 - dE_f).
-FGB_VECTOR_CLONES
-void errorRow(const RowResult& ref, const RowResult& test, const CombineScratch& s, uint32_t width, float cmax, float* out) {
-  const auto qc = static_cast<float>(kColorExponent);
-  static_assert(kFeatureExponent == 0.5, "the feature exponent is applied as a square root");
-  const float* __restrict rl = s.refL.data();
-  const float* __restrict ra = s.refA.data();
-  const float* __restrict rb = s.refB.data();
-  const float* __restrict tl = s.testL.data();
-  const float* __restrict ta = s.testA.data();
-  const float* __restrict tb = s.testB.data();
-  const float* __restrict re = ref.edge.data();
-  const float* __restrict rp = ref.point.data();
-  const float* __restrict te = test.edge.data();
-  const float* __restrict tp = test.point.data();
-  float* __restrict o = out;
-  for (uint32_t x = 0; x < width; ++x) {
-    const float da = ra[x] - ta[x], db = rb[x] - tb[x];
-    const float hy = std::abs(rl[x] - tl[x]) + std::sqrt(da * da + db * db);
-    const float colorError = redistributeColorError(flip_detail::fastPow(hy, qc), cmax);
-    const float featureDifference = std::max(std::abs(re[x] - te[x]), std::abs(rp[x] - tp[x]));
-    const float featureError = std::clamp(std::sqrt(featureDifference / std::numbers::sqrt2_v<float>), 0.0f, 1.0f);
-    o[x] = std::min(1.0f, flip_detail::fastPow(colorError, 1.0f - featureError));
-  }
-}
-
-void combineRow(const RowResult& ref, const RowResult& test, uint32_t width, float cmax, CombineScratch& s, float* out) {
-  perceptualRow(ref, width, s.refL.data(), s.refA.data(), s.refB.data());
-  perceptualRow(test, width, s.testL.data(), s.testA.data(), s.testB.data());
-  errorRow(ref, test, s, width, cmax, out);
-}
-
-// Planes reused across HDR-FLIP's exposures: allocating 14 fresh full-size planes per exposure
-// cost more in page faults than some of the filters.
-struct FlipWorkspace {
-  FilteredPlanes reference, test;
-};
-
-FlipMap flipFromSources(const LinearSource& reference, const LinearSource& test, uint32_t width, uint32_t height, double ppd,
-                        FlipWorkspace& workspace) {
-  const Kernels kernels = makeKernels(ppd);
-  FilteredPlanes& ref = workspace.reference;
-  FilteredPlanes& tst = workspace.test;
-  horizontalPasses(reference, width, height, kernels, ref);
-  horizontalPasses(test, width, height, kernels, tst);
-  FlipMap map{width, height, std::vector<float>(static_cast<std::size_t>(width) * height)};
-  const float cmax = maxColorDifference();
-  // Column blocks walked top to bottom: consecutive rows share all but one of the rows each
-  // vertical tap reads, so those stay in cache instead of streaming 14 planes per output row.
-  constexpr uint32_t kColumnBlock = 256;
-  parallelFor(height, 8, [&](std::size_t begin, std::size_t end) {
-    RowResult r(kColumnBlock), t(kColumnBlock);
-    CombineScratch scratch(kColumnBlock);
-    for (uint32_t x0 = 0; x0 < width; x0 += kColumnBlock) {
-      const uint32_t count = std::min(kColumnBlock, width - x0);
-      for (std::size_t row = begin; row < end; ++row) {
-        const auto y = static_cast<uint32_t>(row);
-        verticalPasses(ref, width, height, y, x0, count, kernels, r);
-        verticalPasses(tst, width, height, y, x0, count, kernels, t);
-        combineRow(r, t, count, cmax, scratch, map.error.data() + row * width + x0);
-      }
-    }
-  });
-  return map;
-}
-
-void requireSameSize(const Image& a, const Image& b) {
-  if (a.width != b.width || a.height != b.height) {
-    throw std::invalid_argument("FLIP: image sizes differ (" + describeSize(a) + " vs " + describeSize(b) + ")");
-  }
-  if (a.width == 0 || a.height == 0) throw std::invalid_argument("FLIP: empty image");
-}
-
-float finiteOrZero(float v) { return std::isfinite(v) ? v : 0.0f; }
 
 // sRGB decoding by table with linear interpolation (error < 1e-6): the exact curve's powf per
 // channel dominated LDR-FLIP's colour conversion.
@@ -373,25 +236,439 @@ class SrgbDecoder {
   std::array<float, kSteps + 1> table_{};
 };
 
-LinearSource displaySource(const Image& image) {
-  const bool srgb = image.encoding == Encoding::Srgb;
-  const float* p = image.rgba.data();
-  const uint32_t width = image.width;
-  static const SrgbDecoder decode;
-  return [p, srgb, width](std::size_t row, float* r, float* g, float* b) {
-    const float* px = p + row * width * 4;
-    for (uint32_t x = 0; x < width; ++x, px += 4) {
-      float* out[3] = {r + x, g + x, b + x};
-      for (int c = 0; c < 3; ++c) {
-        const float v = std::clamp(finiteOrZero(px[c]), 0.0f, 1.0f);
-        *out[c] = srgb ? decode(v) : v;
-      }
-    }
-  };
+const SrgbDecoder& srgbDecoder() {
+  static const SrgbDecoder decoder;
+  return decoder;
 }
 
 // ACES fit with the 0.6 pre-exposure folded into the coefficients: (k0 x^2 + k1 x) / (k3 x^2 + k4 x + k5).
 constexpr double kAces0 = 0.6 * 0.6 * 2.51, kAces1 = 0.6 * 0.03, kAces3 = 0.6 * 0.6 * 2.43, kAces4 = 0.6 * 0.59, kAces5 = 0.14;
+
+// The same curve in float for the per-pixel loops, of an exposed value x >= 0 (or +inf). Inputs
+// beyond 1e15 are clamped there (x^2 would overflow; the curve is 1 after clamping long before).
+FGB_INLINE float acesCurveFloat(float x) {
+  constexpr auto k0 = static_cast<float>(kAces0), k1 = static_cast<float>(kAces1), k3 = static_cast<float>(kAces3),
+                 k4 = static_cast<float>(kAces4), k5 = static_cast<float>(kAces5);
+  const float v = std::min(x, 1e15f);
+  return clamp01((k0 * v * v + k1 * v) / (k3 * v * v + k4 * v + k5));
+}
+
+// max(0, v) for finite v; 0 for NaN and infinities. As comparisons, so that loops vectorise.
+FGB_INLINE float nonNegativeFinite(float v) { return (v > 0.0f && v <= std::numeric_limits<float>::max()) ? v : 0.0f; }
+// clamp(v, 0, 1) for finite v; 0 for NaN and infinities.
+FGB_INLINE float unitFinite(float v) { return v <= std::numeric_limits<float>::max() ? clamp01(v) : 0.0f; }
+
+// f(t) of CIE L*a*b*.
+FGB_INLINE float labFunction(float t) {
+  constexpr float delta = 6.0f / 29.0f;
+  constexpr float threshold = delta * delta * delta;
+  const float cube = flip_detail::fastCbrt(t);
+  const float linear = t * (1.0f / (3.0f * delta * delta)) + 4.0f / 29.0f;
+  return t > threshold ? cube : linear;
+}
+
+struct EngineInput {
+  uint32_t width = 0, height = 0;
+  std::array<const float*, 2> rgba{};  // reference, test
+  std::array<bool, 2> srgb{};          // display images: sRGB-encoded, else linear
+  bool toneMap = false;                // HDR: ACES of scale * value, one pass per scale
+  std::vector<float> scales{1.0f};
+  EngineKernels k;
+  float cmax = 1.0f;
+  uint32_t stripWidth = kStripWidth, strips = 1, bandHeight = 1, bands = 1;
+  uint32_t group = 1;  // exposures filtered together per sweep down a strip
+  float* map = nullptr;
+};
+
+// Output rows filtered vertically in one pass (see convolveRows).
+constexpr int kRowsPerPass = 4;
+
+enum Signal { SignalRed, SignalGreen, SignalBlue, SignalCx, SignalCz, SignalY, kSignals };
+// Horizontally filtered planes kept in the rings: Y (achromatic CSF, feature Gaussian, edge and
+// point kernels), Cx (red-green CSF), Cz (both blue-yellow terms).
+enum Plane { PlaneAchromatic, PlaneGauss, PlaneEdge, PlanePoint, PlaneRedGreen, PlaneBlueYellow1, PlaneBlueYellow2, kPlanes };
+
+struct EngineScratch {
+  int radius, ringRows, group;
+  int outWidth;     // output columns of a strip, rounded up to whole vectors
+  int signalWidth;  // columns of the source signals: outWidth + 2 radius (the horizontal margins)
+  std::vector<float> signals;   // [signal][column]: one source row, linear RGB and YCxCz at one exposure
+  std::vector<float> ring;      // [exposure in group][image][plane][row % ringRows][column]
+  std::vector<float> block;     // [output row of the pass][image][BlockValue][column]
+  std::vector<float> rowError;  // [output row of the pass][column]: the error, maximum over the group's exposures
+  std::vector<std::ptrdiff_t> rowOffsets, columnOffsets;
+
+  explicit EngineScratch(const EngineInput& in)
+      : radius(in.k.radius),
+        ringRows(2 * in.k.radius + kRowsPerPass),  // the vertical windows of one pass
+        group(static_cast<int>(in.group)),
+        outWidth(roundUp(static_cast<int>(std::min(in.stripWidth, in.width)))),
+        signalWidth(roundUp(outWidth + 2 * radius)),
+        signals(static_cast<std::size_t>(kSignals) * static_cast<std::size_t>(signalWidth)),
+        ring(static_cast<std::size_t>(group) * 2 * kPlanes * static_cast<std::size_t>(ringRows) * static_cast<std::size_t>(outWidth)),
+        block(static_cast<std::size_t>(kRowsPerPass) * 2 * kPerImage * static_cast<std::size_t>(outWidth)),
+        rowError(static_cast<std::size_t>(kRowsPerPass) * static_cast<std::size_t>(outWidth)),
+        rowOffsets(static_cast<std::size_t>(ringRows)),
+        columnOffsets(static_cast<std::size_t>(2 * radius + 1)) {
+    for (std::size_t i = 0; i < columnOffsets.size(); ++i) columnOffsets[i] = static_cast<std::ptrdiff_t>(i);
+  }
+
+  static int roundUp(int n) { return (n + kBlock - 1) / kBlock * kBlock; }
+  float* signal(int which) { return signals.data() + static_cast<std::size_t>(which) * static_cast<std::size_t>(signalWidth); }
+  float* plane(int exposure, int image, int which) {
+    return ring.data() + static_cast<std::size_t>((exposure * 2 + image) * kPlanes + which) * static_cast<std::size_t>(ringRows) *
+                             static_cast<std::size_t>(outWidth);
+  }
+  // Per output row and image: filtered Y, Cx, the two Cz terms, the edge and point components;
+  // then L, a, b.
+  enum BlockValue { Y, Cx, Cz1, Cz2, Edge1, Edge2, Point1, Point2, L, A, B, kPerImage };
+  float* blockValues(int row, int image, int value) {
+    return block.data() + static_cast<std::size_t>((row * 2 + image) * kPerImage + value) * static_cast<std::size_t>(outWidth);
+  }
+  float* errors(int row) { return rowError.data() + static_cast<std::size_t>(row) * static_cast<std::size_t>(outWidth); }
+};
+
+// Linear RGB of source columns x0 .. x0 + count - 1 of one row, planar (clamped to the image: the
+// replicated border of the paper's filters): display images decoded and clamped to [0, 1], HDR
+// images with negative and non-finite values set to 0 (the exposure and tone mapping follow).
+FGB_INLINE void loadRow(const EngineInput& in, int image, uint32_t row, int x0, int count, float* __restrict r, float* __restrict g,
+                        float* __restrict b) {
+  const int first = std::max(0, x0), end = std::min(static_cast<int>(in.width), x0 + count);
+  const int offset = first - x0;
+  const float* __restrict px = in.rgba[static_cast<std::size_t>(image)] + (static_cast<std::size_t>(row) * in.width + static_cast<std::size_t>(first)) * 4;
+  const int n = end - first;
+  if (in.toneMap) {
+#pragma GCC ivdep
+    for (int i = 0; i < n; ++i) {
+      r[offset + i] = nonNegativeFinite(px[4 * i + 0]);
+      g[offset + i] = nonNegativeFinite(px[4 * i + 1]);
+      b[offset + i] = nonNegativeFinite(px[4 * i + 2]);
+    }
+  } else if (in.srgb[static_cast<std::size_t>(image)]) {
+    const SrgbDecoder& decode = srgbDecoder();
+    for (int i = 0; i < n; ++i) {
+      r[offset + i] = decode(unitFinite(px[4 * i + 0]));
+      g[offset + i] = decode(unitFinite(px[4 * i + 1]));
+      b[offset + i] = decode(unitFinite(px[4 * i + 2]));
+    }
+  } else {
+#pragma GCC ivdep
+    for (int i = 0; i < n; ++i) {
+      r[offset + i] = unitFinite(px[4 * i + 0]);
+      g[offset + i] = unitFinite(px[4 * i + 1]);
+      b[offset + i] = unitFinite(px[4 * i + 2]);
+    }
+  }
+  for (float* channel : {r, g, b}) {
+    std::fill(channel, channel + offset, channel[offset]);
+    std::fill(channel + offset + n, channel + count, channel[offset + n - 1]);
+  }
+}
+
+// Cx, Cz and Y of YCxCz from a row of linear RGB (HDR: ACES-tone-mapped at an exposure scale first).
+FGB_INLINE void opponentRow(const float* __restrict r, const float* __restrict g, const float* __restrict b, int count, bool toneMap,
+                            float scale, float* __restrict cx, float* __restrict cz, float* __restrict yn) {
+  constexpr float invXn = 1.0f / kXn, invZn = 1.0f / kZn;
+  auto opponent = [&](int i, float red, float green, float blue) FGB_LAMBDA_INLINE {
+    const float x = 0.41238656f * red + 0.35759149f * green + 0.18045049f * blue;
+    const float y = 0.21263682f * red + 0.71518298f * green + 0.07218020f * blue;
+    const float z = 0.01933062f * red + 0.11919716f * green + 0.95037259f * blue;
+    cx[i] = 500.0f * (x * invXn - y);
+    cz[i] = 200.0f * (y - z * invZn);
+    yn[i] = y;  // = (Y' + 16) / 116 of YCxCz, and the luminance the features filter
+  };
+  if (toneMap) {
+#pragma GCC ivdep
+    for (int i = 0; i < count; ++i) opponent(i, acesCurveFloat(r[i] * scale), acesCurveFloat(g[i] * scale), acesCurveFloat(b[i] * scale));
+  } else {
+#pragma GCC ivdep
+    for (int i = 0; i < count; ++i) opponent(i, r[i], g[i], b[i]);
+  }
+}
+
+// Filtered YCxCz -> linear RGB clamped to the unit cube -> Hunt-adjusted L*a*b*, for one row.
+// The linear steps are folded into two 3x3 matrices (computed in double): YCxCz -> XYZ -> RGB, and
+// RGB -> XYZ / white point; same matrices as xyzToLinearRgb / linearRgbToXyz.
+struct PerceptualMatrices {
+  std::array<float, 9> toRgb{};  // rows r, g, b; columns Y (normalised), Cx, Cz
+  std::array<float, 9> toXyz{};  // rows X / Xn, Y / Yn, Z / Zn; columns r, g, b
+};
+constexpr PerceptualMatrices makePerceptualMatrices() {
+  constexpr double fromXyz[9] = {3.24100323, -1.53739897, -0.49861588, -0.96922425, 1.87592998, 0.04155423,
+                                 0.05563942, -0.20401121, 1.05714897};
+  constexpr double toXyz[9] = {0.41238656, 0.35759149, 0.18045049, 0.21263682, 0.71518298, 0.07218020,
+                               0.01933062, 0.11919716, 0.95037259};
+  const double xn = static_cast<double>(kXn), yn = static_cast<double>(kYn), zn = static_cast<double>(kZn);
+  PerceptualMatrices m;
+  for (int row = 0; row < 3; ++row) {
+    const double* c = fromXyz + 3 * row;
+    // X = (y + cx / 500) Xn, Y = y Yn, Z = (y - cz / 200) Zn.
+    m.toRgb[static_cast<std::size_t>(3 * row + 0)] = static_cast<float>(c[0] * xn + c[1] * yn + c[2] * zn);
+    m.toRgb[static_cast<std::size_t>(3 * row + 1)] = static_cast<float>(c[0] * xn / 500.0);
+    m.toRgb[static_cast<std::size_t>(3 * row + 2)] = static_cast<float>(-c[2] * zn / 200.0);
+    const double white = row == 0 ? xn : (row == 1 ? yn : zn);
+    for (int column = 0; column < 3; ++column) {
+      m.toXyz[static_cast<std::size_t>(3 * row + column)] = static_cast<float>(toXyz[3 * row + column] / white);
+    }
+  }
+  return m;
+}
+constexpr PerceptualMatrices kPerceptual = makePerceptualMatrices();
+
+FGB_INLINE void perceptualRow(EngineScratch& s, int row, int image, int n, float achromaticOffset) {
+  const float* __restrict y = s.blockValues(row, image, EngineScratch::Y);
+  const float* __restrict cx = s.blockValues(row, image, EngineScratch::Cx);
+  const float* __restrict cz1 = s.blockValues(row, image, EngineScratch::Cz1);
+  const float* __restrict cz2 = s.blockValues(row, image, EngineScratch::Cz2);
+  float* __restrict outL = s.blockValues(row, image, EngineScratch::L);
+  float* __restrict outA = s.blockValues(row, image, EngineScratch::A);
+  float* __restrict outB = s.blockValues(row, image, EngineScratch::B);
+  constexpr std::array<float, 9> m = kPerceptual.toRgb;
+  constexpr std::array<float, 9> w = kPerceptual.toXyz;
+#pragma GCC ivdep
+  for (int x = 0; x < n; ++x) {
+    const float yy = y[x] + achromaticOffset;  // (Y' + 16) / 116 of the filtered Y'
+    const float cxx = cx[x], czz = cz1[x] + cz2[x];
+    const float r = clamp01(m[0] * yy + m[1] * cxx + m[2] * czz);
+    const float g = clamp01(m[3] * yy + m[4] * cxx + m[5] * czz);
+    const float b = clamp01(m[6] * yy + m[7] * cxx + m[8] * czz);
+    const float fx = labFunction(w[0] * r + w[1] * g + w[2] * b);
+    const float fy = labFunction(w[3] * r + w[4] * g + w[5] * b);
+    const float fz = labFunction(w[6] * r + w[7] * g + w[8] * b);
+    const float l = 116.0f * fy - 16.0f;
+    outL[x] = l;
+    outA[x] = 5.0f * l * (fx - fy);  // 0.01 L * 500 (fx - fy)
+    outB[x] = 2.0f * l * (fy - fz);  // 0.01 L * 200 (fy - fz)
+  }
+}
+
+// HyAB colour error, redistributed; feature error; combined dE_c^(1 - dE_f); the maximum with the
+// exposures before (First: the first exposure of the group).
+template <bool First>
+FGB_INLINE void errorRow(EngineScratch& s, int row, float cmax, int n) {
+  const auto qc = static_cast<float>(kColorExponent);
+  static_assert(kFeatureExponent == 0.5, "the feature exponent is applied as a square root");
+  auto value = [&](int image, int which) { return s.blockValues(row, image, which); };
+  const float* __restrict rl = value(0, EngineScratch::L);
+  const float* __restrict ra = value(0, EngineScratch::A);
+  const float* __restrict rb = value(0, EngineScratch::B);
+  const float* __restrict tl = value(1, EngineScratch::L);
+  const float* __restrict ta = value(1, EngineScratch::A);
+  const float* __restrict tb = value(1, EngineScratch::B);
+  const float* __restrict re1 = value(0, EngineScratch::Edge1);
+  const float* __restrict re2 = value(0, EngineScratch::Edge2);
+  const float* __restrict rp1 = value(0, EngineScratch::Point1);
+  const float* __restrict rp2 = value(0, EngineScratch::Point2);
+  const float* __restrict te1 = value(1, EngineScratch::Edge1);
+  const float* __restrict te2 = value(1, EngineScratch::Edge2);
+  const float* __restrict tp1 = value(1, EngineScratch::Point1);
+  const float* __restrict tp2 = value(1, EngineScratch::Point2);
+  float* __restrict out = s.errors(row);
+#pragma GCC ivdep
+  for (int x = 0; x < n; ++x) {
+    const float da = ra[x] - ta[x], db = rb[x] - tb[x];
+    const float hy = std::abs(rl[x] - tl[x]) + std::sqrt(da * da + db * db);
+    const float colorError = redistributeColorError(flip_detail::fastPow(hy, qc), cmax);
+    const float refEdge = std::sqrt(re1[x] * re1[x] + re2[x] * re2[x]);
+    const float refPoint = std::sqrt(rp1[x] * rp1[x] + rp2[x] * rp2[x]);
+    const float testEdge = std::sqrt(te1[x] * te1[x] + te2[x] * te2[x]);
+    const float testPoint = std::sqrt(tp1[x] * tp1[x] + tp2[x] * tp2[x]);
+    const float featureDifference = std::max(std::abs(refEdge - testEdge), std::abs(refPoint - testPoint));
+    const float featureError = clamp01(std::sqrt(featureDifference * (1.0f / std::numbers::sqrt2_v<float>)));
+    const float error = std::min(1.0f, flip_detail::fastPow(colorError, 1.0f - featureError));
+    if constexpr (First) {
+      out[x] = error;
+    } else {
+      out[x] = std::max(out[x], error);
+    }
+  }
+}
+
+// One tile (a strip of columns, a band of rows) of the error map, over every exposure.
+// Each source row that enters the vertical window is converted (for every exposure of the group,
+// from one read of the input) to YCxCz and filtered horizontally into rings of 7 planes per image
+// and exposure; the vertical filters then run on the rings for kRowsPerPass output rows at once, and
+// the colour transforms and the error on the rows they produce. All of it stays in L1 and L2.
+template <int L, int NV, int NVRows, int QRows>
+FGB_INLINE void processTile(const EngineInput& in, uint32_t tile, EngineScratch& s) {
+  static_assert(QRows <= kRowsPerPass);
+  const EngineKernels& k = in.k;
+  const int R = s.radius;
+  const uint32_t strip = tile % in.strips, band = tile / in.strips;
+  const uint32_t x0 = strip * in.stripWidth;
+  const int width = static_cast<int>(std::min(in.stripWidth, in.width - x0));
+  const int outWidth = EngineScratch::roundUp(width);
+  const int stride = s.outWidth;
+  const uint32_t y0 = band * in.bandHeight, y1 = std::min(in.height, y0 + in.bandHeight);
+  const int lastRow = static_cast<int>(in.height) - 1;
+  const std::ptrdiff_t* columns = s.columnOffsets.data();
+  const auto exposures = static_cast<int>(in.scales.size());
+  const int firstColumn = std::max(0, static_cast<int>(x0) - R);
+  const int prefetchPixels = std::min(outWidth + 2 * R, static_cast<int>(in.width) - firstColumn);
+  const FoldedKernel* const achromatic[1] = {&k.vAchromatic};
+  const FoldedKernel* const redGreen[1] = {&k.vRedGreen};
+  const FoldedKernel* const blueYellow1[1] = {&k.vBlueYellow1};
+  const FoldedKernel* const blueYellow2[1] = {&k.vBlueYellow2};
+  const FoldedKernel* const gauss[1] = {&k.gauss};
+  const FoldedKernel* const edgeAndPoint[2] = {&k.edge, &k.point};
+  float* const red = s.signal(SignalRed);
+  float* const green = s.signal(SignalGreen);
+  float* const blue = s.signal(SignalBlue);
+  float* const cx = s.signal(SignalCx);
+  float* const cz = s.signal(SignalCz);
+  float* const yn = s.signal(SignalY);
+
+  for (int g0 = 0; g0 < exposures; g0 += s.group) {
+    const int g1 = std::min(exposures, g0 + s.group);
+    int next = std::max(0, static_cast<int>(y0) - R);  // the next source row to filter horizontally
+    for (uint32_t y = y0; y < y1; y += QRows) {
+      const int rowsHere = static_cast<int>(std::min<uint32_t>(QRows, y1 - y));
+      for (const int last = std::min(lastRow, static_cast<int>(y) + QRows - 1 + R); next <= last; ++next) {
+        const std::ptrdiff_t slot = static_cast<std::ptrdiff_t>(next % s.ringRows) * stride;
+        for (int image = 0; image < 2; ++image) {
+          if (next + kPrefetchRows <= lastRow) {  // a later row: its cache lines arrive while these rows are filtered
+            const float* ahead = in.rgba[static_cast<std::size_t>(image)] +
+                                 (static_cast<std::size_t>(next + kPrefetchRows) * in.width + static_cast<std::size_t>(firstColumn)) * 4;
+            for (int i = 0; i < prefetchPixels * 4; i += 16) __builtin_prefetch(ahead + i);
+          }
+          loadRow(in, image, static_cast<uint32_t>(next), static_cast<int>(x0) - R, outWidth + 2 * R, red, green, blue);
+          for (int e = g0; e < g1; ++e) {
+            opponentRow(red, green, blue, outWidth + 2 * R, in.toneMap, in.scales[static_cast<std::size_t>(e)], cx, cz, yn);
+            auto plane = [&](int which) { return s.plane(e - g0, image, which) + slot; };
+            // Output column x reads signal[R + x + j - r] for tap j of a radius-r kernel.
+            flip_detail::convolveFeatures<L, NV>(yn + R - k.gauss.radius, columns, k.gauss, k.edge, k.point, k.hAchromatic,
+                                              plane(PlaneGauss), plane(PlaneEdge), plane(PlanePoint), plane(PlaneAchromatic), outWidth);
+            flip_detail::convolve1<L, NV>(cx + R - k.hRedGreen.radius, columns, k.hRedGreen, plane(PlaneRedGreen), outWidth);
+            flip_detail::convolve2<L, NV>(cz + R - k.hBlueYellow1.radius, columns, k.hBlueYellow1, k.hBlueYellow2,
+                                       plane(PlaneBlueYellow1), plane(PlaneBlueYellow2), outWidth);
+          }
+        }
+      }
+      // Window entry i is input row clamp(y + i - R), wherever the ring keeps it.
+      for (int i = 0; i < s.ringRows; ++i) {
+        const int row = std::clamp(static_cast<int>(y) + i - R, 0, lastRow);
+        s.rowOffsets[static_cast<std::size_t>(i)] = static_cast<std::ptrdiff_t>(row % s.ringRows) * stride;
+      }
+      const std::ptrdiff_t* rows = s.rowOffsets.data();
+      for (int e = g0; e < g1; ++e) {
+        for (int image = 0; image < 2; ++image) {
+          // Kernel j of `kernels` on `plane`, into block value values[j] of each output row.
+          auto vertical = [&]<int K, unsigned OddMask>(int plane, const FoldedKernel* const* kernels,
+                                                       const std::array<int, K>& values) FGB_LAMBDA_INLINE {
+            float* out[QRows * K];
+            for (int q = 0; q < QRows; ++q) {
+              for (int j = 0; j < K; ++j) out[q * K + j] = s.blockValues(q, image, values[static_cast<std::size_t>(j)]);
+            }
+            flip_detail::convolveRows<L, NVRows, QRows, K, OddMask>(s.plane(e - g0, image, plane), rows + (R - kernels[0]->radius), kernels,
+                                                                 out, outWidth);
+          };
+          vertical.template operator()<1, 0>(PlaneAchromatic, achromatic, {EngineScratch::Y});
+          vertical.template operator()<1, 0>(PlaneRedGreen, redGreen, {EngineScratch::Cx});
+          vertical.template operator()<1, 0>(PlaneBlueYellow1, blueYellow1, {EngineScratch::Cz1});
+          vertical.template operator()<1, 0>(PlaneBlueYellow2, blueYellow2, {EngineScratch::Cz2});
+          // Edge = (E * g, G * e) and point = (P * g, G * p) along y.
+          vertical.template operator()<1, 0>(PlaneEdge, gauss, {EngineScratch::Edge1});
+          vertical.template operator()<1, 0>(PlanePoint, gauss, {EngineScratch::Point1});
+          vertical.template operator()<2, 1>(PlaneGauss, edgeAndPoint, {EngineScratch::Edge2, EngineScratch::Point2});
+        }
+        for (int q = 0; q < rowsHere; ++q) {
+          perceptualRow(s, q, 0, outWidth, k.achromaticOffset);
+          perceptualRow(s, q, 1, outWidth, k.achromaticOffset);
+          if (e == g0) {
+            errorRow<true>(s, q, in.cmax, outWidth);
+          } else {
+            errorRow<false>(s, q, in.cmax, outWidth);
+          }
+        }
+      }
+      for (int q = 0; q < rowsHere; ++q) {
+        const float* __restrict rowError = s.errors(q);
+        float* __restrict out = in.map + static_cast<std::size_t>(y + static_cast<uint32_t>(q)) * in.width + x0;
+        if (g0 == 0) {
+          std::copy(rowError, rowError + width, out);
+        } else {
+#pragma GCC ivdep
+          for (int x = 0; x < width; ++x) out[x] = std::max(out[x], rowError[x]);
+        }
+      }
+    }
+  }
+}
+
+using TileFunction = void (*)(const EngineInput&, uint32_t, EngineScratch&);
+
+// Vector width (floats), vectors per step of the horizontal and the vertical filters, output rows
+// per vertical pass: as many accumulators as the ISA has registers for.
+void tileBaseline(const EngineInput& in, uint32_t tile, EngineScratch& s) { processTile<4, 2, 1, 2>(in, tile, s); }
+#if FGB_X86_DISPATCH
+__attribute__((target("arch=x86-64-v3"))) void tileAvx2(const EngineInput& in, uint32_t tile, EngineScratch& s) {
+  processTile<8, 2, 1, 2>(in, tile, s);
+}
+__attribute__((target("arch=x86-64-v4,prefer-vector-width=512"))) void tileAvx512(const EngineInput& in, uint32_t tile,
+                                                                                   EngineScratch& s) {
+  processTile<16, 4, 1, 4>(in, tile, s);
+}
+#endif
+
+// The widest instruction set the CPU has; FGBENCH_FLIP_ISA=baseline|avx2 caps it (for tests and
+// for comparing the variants).
+TileFunction selectTileFunction() {
+  const char* cap = std::getenv("FGBENCH_FLIP_ISA");
+  const std::string_view limit = cap ? cap : "";
+  if (limit == "baseline") return tileBaseline;
+#if FGB_X86_DISPATCH
+  __builtin_cpu_init();
+  const bool v3 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("bmi2") &&
+                  __builtin_cpu_supports("f16c") && __builtin_cpu_supports("movbe");
+  const bool v4 = v3 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
+                  __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512cd");
+  if (v4 && limit != "avx2") return tileAvx512;
+  if (v3) return tileAvx2;
+#endif
+  return tileBaseline;
+}
+
+// The error map of two sources (one pass per exposure scale; the maximum over the passes).
+FlipMap runEngine(EngineInput in, double ppd) {
+  in.k = foldKernels(makeKernels(ppd));
+  in.cmax = maxColorDifference();
+  (void)srgbDecoder();  // built before the workers start
+  FlipMap map{in.width, in.height, zeroFilledBuffer(static_cast<std::size_t>(in.width) * in.height)};
+  in.map = map.error.data();
+  const unsigned workers = workerCount();
+  in.stripWidth = std::min(kStripWidth, in.width);
+  in.strips = (in.width + in.stripWidth - 1) / in.stripWidth;
+  // Enough tiles that workers finishing at different times wait little for each other; bands of
+  // rows (each re-filtering 2r rows of its neighbours) only where there are few strips.
+  const uint32_t wanted = 8 * workers;
+  const uint32_t maxBands = std::max(1u, in.height / static_cast<uint32_t>(8 * in.k.radius + 8));
+  in.bands = std::clamp((wanted + in.strips - 1) / in.strips, 1u, maxBands);
+  in.bandHeight = (in.height + in.bands - 1) / in.bands;
+  in.bands = (in.height + in.bandHeight - 1) / in.bandHeight;
+  // Exposures per sweep: as many as the L2 budget takes, in groups of equal size.
+  const auto ringWidth = static_cast<std::size_t>(EngineScratch::roundUp(static_cast<int>(in.stripWidth)));
+  const std::size_t ringBytes = 2 * kPlanes * static_cast<std::size_t>(2 * in.k.radius + kRowsPerPass) * ringWidth * sizeof(float);
+  const std::size_t maxGroup = std::max<std::size_t>(1, kRingBudget / ringBytes);
+  const std::size_t groups = (in.scales.size() + maxGroup - 1) / maxGroup;
+  in.group = static_cast<uint32_t>((in.scales.size() + groups - 1) / groups);
+  const uint32_t tiles = in.strips * in.bands;
+  const TileFunction tileFunction = selectTileFunction();
+  std::atomic<uint32_t> nextTile{0};
+  parallelFor(std::min<std::size_t>(workers, tiles), 1, [&](std::size_t, std::size_t) {
+    EngineScratch scratch(in);
+    for (uint32_t tile = nextTile++; tile < tiles; tile = nextTile++) tileFunction(in, tile, scratch);
+  });
+  return map;
+}
+
+void requireSameSize(const Image& a, const Image& b) {
+  if (a.width != b.width || a.height != b.height) {
+    throw std::invalid_argument("FLIP: image sizes differ (" + describeSize(a) + " vs " + describeSize(b) + ")");
+  }
+  if (a.width == 0 || a.height == 0) throw std::invalid_argument("FLIP: empty image");
+}
+
+float finiteOrZero(float v) { return std::isfinite(v) ? v : 0.0f; }
 
 // The x with ACES(x) = t (the positive root of the quadratic).
 double acesInverse(double t) {
@@ -406,25 +683,18 @@ float acesCurve(double x) {
   return static_cast<float>(std::clamp(std::isfinite(mapped) ? mapped : 1.0, 0.0, 1.0));
 }
 
-// The same curve in float for the per-pixel loops; large inputs saturate to 1 like the double one.
-float acesCurveFloat(float x) {
-  constexpr auto k0 = static_cast<float>(kAces0), k1 = static_cast<float>(kAces1), k3 = static_cast<float>(kAces3),
-                 k4 = static_cast<float>(kAces4), k5 = static_cast<float>(kAces5);
-  if (x > 1e15f) return 1.0f;  // x^2 would overflow; the curve is 1 after clamping long before
-  return std::clamp((k0 * x * x + k1 * x) / (k3 * x * x + k4 * x + k5), 0.0f, 1.0f);
-}
-
-float luminance(const float* p) { return 0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2]; }
-
 }  // namespace
 
 double defaultPixelsPerDegree() { return 0.7 * 3840.0 / 0.7 * kPi / 180.0; }
 
 FlipMap ldrFlip(const Image& reference, const Image& test, double pixelsPerDegree) {
   requireSameSize(reference, test);
-  FlipWorkspace workspace;
-  return flipFromSources(displaySource(reference), displaySource(test), reference.width, reference.height, pixelsPerDegree,
-                         workspace);
+  EngineInput in;
+  in.width = reference.width;
+  in.height = reference.height;
+  in.rgba = {reference.rgba.data(), test.rgba.data()};
+  in.srgb = {reference.encoding == Encoding::Srgb, test.encoding == Encoding::Srgb};
+  return runEngine(std::move(in), pixelsPerDegree);
 }
 
 float acesToneMap(float value, double exposure) {
@@ -433,19 +703,37 @@ float acesToneMap(float value, double exposure) {
 
 ExposureRange hdrExposureRange(const Image& linearReference) {
   constexpr double kTarget = 0.85;  // tone-mapped value the extreme luminances are mapped to
-  std::vector<float> lum(linearReference.pixelCount());
-  for (std::size_t i = 0; i < lum.size(); ++i) lum[i] = std::max(0.0f, finiteOrZero(luminance(&linearReference.rgba[i * 4])));
   ExposureRange range;
-  if (lum.empty()) return range;
-  const float yMax = *std::max_element(lum.begin(), lum.end());
+  const std::size_t n = linearReference.pixelCount();
+  if (n == 0) return range;
+  // Luminance keys: max(0, Y) of finite luminances, 0 otherwise.
+  const float* rgba = linearReference.rgba.data();
+  const detail::OrderKeysOf keysOf = [rgba](std::size_t begin, std::size_t end, uint32_t* keys) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const float* p = rgba + i * 4;
+      keys[i - begin] = detail::orderKey(nonNegativeFinite(0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2]));
+    }
+  };
+  const std::vector<uint32_t> keys = detail::selectOrderKeys(n, keysOf, {n / 2, n - 1});
+  const float yMax = detail::fromOrderKey(keys[1]);
   if (yMax <= 0.0f) return range;
-  auto middle = lum.begin() + static_cast<std::ptrdiff_t>(lum.size() / 2);
-  std::nth_element(lum.begin(), middle, lum.end());
-  float yMedian = *middle;
+  float yMedian = detail::fromOrderKey(keys[0]);
   if (yMedian <= 0.0f) {
     // A mostly black image: use the darkest lit pixel so the range still reaches the shadows.
+    std::mutex mutex;
     float smallest = yMax;
-    for (float v : lum) if (v > 0.0f) smallest = std::min(smallest, v);
+    parallelFor(n, 1 << 16, [&](std::size_t begin, std::size_t end) {
+      std::array<uint32_t, detail::kOrderKeyChunk> chunk{};
+      const uint32_t zero = detail::orderKey(0.0f);
+      uint32_t least = detail::orderKey(yMax);
+      for (std::size_t b = begin; b < end; b += chunk.size()) {
+        const std::size_t e = std::min(end, b + chunk.size());
+        keysOf(b, e, chunk.data());
+        for (std::size_t i = 0; i < e - b; ++i) least = chunk[i] > zero && chunk[i] < least ? chunk[i] : least;
+      }
+      std::lock_guard lock(mutex);
+      smallest = std::min(smallest, detail::fromOrderKey(least));
+    });
     yMedian = smallest;
   }
   const double x = acesInverse(kTarget);
@@ -464,31 +752,14 @@ HdrFlipResult hdrFlip(const Image& reference, const Image& test, double pixelsPe
   result.stopExposure = range.stop;
   result.exposures = range.count;
   const double step = (range.stop - range.start) / std::max(range.count - 1, 1);
-  FlipWorkspace workspace;
-  for (int i = 0; i < range.count; ++i) {
-    const double exposure = range.start + i * step;
-    const double scaleFactor = std::exp2(exposure);
-    const auto exposureScale = static_cast<float>(scaleFactor);
-    auto toneMapped = [exposureScale](const Image& image) -> LinearSource {
-      const float* p = image.rgba.data();
-      const uint32_t width = image.width;
-      return [p, exposureScale, width](std::size_t row, float* r, float* g, float* b) {
-        const float* px = p + row * width * 4;
-        for (uint32_t x = 0; x < width; ++x, px += 4) {
-          r[x] = acesCurveFloat(std::max(0.0f, finiteOrZero(px[0])) * exposureScale);
-          g[x] = acesCurveFloat(std::max(0.0f, finiteOrZero(px[1])) * exposureScale);
-          b[x] = acesCurveFloat(std::max(0.0f, finiteOrZero(px[2])) * exposureScale);
-        }
-      };
-    };
-    FlipMap map = flipFromSources(toneMapped(reference), toneMapped(test), reference.width, reference.height, pixelsPerDegree,
-                                  workspace);
-    if (i == 0) {
-      result.map = std::move(map);
-    } else {
-      for (std::size_t k = 0; k < map.error.size(); ++k) result.map.error[k] = std::max(result.map.error[k], map.error[k]);
-    }
-  }
+  EngineInput in;
+  in.width = reference.width;
+  in.height = reference.height;
+  in.rgba = {reference.rgba.data(), test.rgba.data()};
+  in.toneMap = true;
+  in.scales.clear();
+  for (int i = 0; i < range.count; ++i) in.scales.push_back(static_cast<float>(std::exp2(range.start + i * step)));
+  result.map = runEngine(std::move(in), pixelsPerDegree);
   return result;
 }
 

@@ -4,42 +4,9 @@
 #include <cmath>
 #include <cstring>
 #include <numeric>
+#include <stdexcept>
 
 namespace fgb::harness::flip_detail {
-namespace {
-
-// out[x] = sum over taps of w * rows[tap][x], folding mirrored taps for (anti)symmetric kernels.
-// rows[i] points at the input row for tap i (horizontal: shifted views of one padded row).
-// Tap-outer, pixel-inner: every inner loop is a contiguous multiply-add that vectorises; the output
-// row (<= one image row) stays in L1. (A register-blocked variant measured slower with GCC 12.)
-FGB_VECTOR_CLONES
-void accumulate(const float* const* rows, const float* taps, int radius, int symmetry, uint32_t width, float* out) {
-  const auto n = static_cast<std::size_t>(width);
-  if (symmetry == 0) {
-    std::fill(out, out + n, 0.0f);
-    for (int i = 0; i <= 2 * radius; ++i) {
-      const float w = taps[i];
-      const float* src = rows[i];
-      for (std::size_t x = 0; x < n; ++x) out[x] += w * src[x];
-    }
-    return;
-  }
-  const float centre = taps[radius];
-  const float* mid = rows[radius];
-  for (std::size_t x = 0; x < n; ++x) out[x] = centre * mid[x];
-  for (int i = 1; i <= radius; ++i) {
-    const float w = taps[radius + i];
-    const float* after = rows[radius + i];
-    const float* before = rows[radius - i];
-    if (symmetry > 0) {
-      for (std::size_t x = 0; x < n; ++x) out[x] += w * (after[x] + before[x]);
-    } else {
-      for (std::size_t x = 0; x < n; ++x) out[x] += w * (after[x] - before[x]);
-    }
-  }
-}
-
-}  // namespace
 
 double sumOf(const Kernel& k) { return std::accumulate(k.taps.begin(), k.taps.end(), 0.0); }
 
@@ -80,26 +47,23 @@ void trimNegligibleTaps(Kernel& k, double relative) {
   k.radius = keep;
 }
 
-void convolveRow(const float* in, float* out, uint32_t width, const Kernel& k, std::vector<float>& padded) {
-  const auto r = static_cast<std::size_t>(k.radius);
-  padded.resize(width + 2 * r);
-  std::fill(padded.begin(), padded.begin() + static_cast<std::ptrdiff_t>(r), in[0]);
-  std::copy(in, in + width, padded.begin() + static_cast<std::ptrdiff_t>(r));
-  std::fill(padded.begin() + static_cast<std::ptrdiff_t>(r + width), padded.end(), in[width - 1]);
-  std::vector<const float*> rows(k.taps.size());
-  for (std::size_t i = 0; i < rows.size(); ++i) rows[i] = padded.data() + i;  // tap i reads x + i - r
-  accumulate(rows.data(), k.taps.data(), k.radius, k.symmetry, width, out);
+FoldedKernel fold(const Kernel& k) {
+  if (k.symmetry == 0) throw std::logic_error("FLIP: kernels must be even or odd");
+  FoldedKernel f;
+  f.radius = k.radius;
+  f.odd = k.symmetry < 0;
+  f.centre = f.odd ? 0.0f : k.taps[static_cast<std::size_t>(k.radius)];
+  f.side.assign(static_cast<std::size_t>(k.radius) + 1, 0.0f);
+  for (int i = 1; i <= k.radius; ++i) f.side[static_cast<std::size_t>(i)] = k.taps[static_cast<std::size_t>(k.radius + i)];
+  return f;
 }
 
-void convolveColumnRow(const float* plane, uint32_t width, uint32_t height, uint32_t y, uint32_t x0, uint32_t count,
-                       const Kernel& k, float* out) {
-  const int last = static_cast<int>(height) - 1;
-  std::vector<const float*> rows(k.taps.size());
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    const int row = std::clamp(static_cast<int>(y) + static_cast<int>(i) - k.radius, 0, last);
-    rows[i] = plane + static_cast<std::size_t>(row) * width + x0;
+FoldedKernel padTo(FoldedKernel k, int radius) {
+  if (radius > k.radius) {
+    k.side.resize(static_cast<std::size_t>(radius) + 1, 0.0f);
+    k.radius = radius;
   }
-  accumulate(rows.data(), k.taps.data(), k.radius, k.symmetry, count, out);
+  return k;
 }
 
 }  // namespace fgb::harness::flip_detail

@@ -4,15 +4,47 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
 
 namespace fgb::harness {
+
+namespace {
+
+// Reserved (allocated, untouched) storage first, the huge-page hint on it, then the zeros.
+template <typename T>
+std::vector<T> zeroFilled(std::size_t count) {
+  std::vector<T> buffer;
+  buffer.reserve(count);
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  constexpr std::size_t kHugePage = std::size_t{2} << 20;
+  const std::size_t bytes = count * sizeof(T);
+  if (bytes >= 2 * kHugePage) {
+    const auto begin = reinterpret_cast<std::uintptr_t>(buffer.data());
+    const std::uintptr_t first = (begin + kHugePage - 1) & ~(kHugePage - 1);
+    const std::uintptr_t last = (begin + bytes) & ~(kHugePage - 1);
+    // Only a hint: without transparent huge pages the buffer is simply made of small pages.
+    if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
+  }
+#endif
+  buffer.resize(count, T{});
+  return buffer;
+}
+
+}  // namespace
+
+std::vector<float> zeroFilledBuffer(std::size_t count) { return zeroFilled<float>(count); }
+std::vector<uint8_t> zeroFilledBytes(std::size_t count) { return zeroFilled<uint8_t>(count); }
 
 Image makeImage(uint32_t width, uint32_t height, Encoding encoding) {
   Image image;
   image.width = width;
   image.height = height;
   image.encoding = encoding;
-  image.rgba.assign(image.pixelCount() * 4, 0.0f);
+  image.rgba = zeroFilledBuffer(image.pixelCount() * 4);
   return image;
 }
 

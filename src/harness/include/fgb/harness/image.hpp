@@ -23,6 +23,12 @@ struct Image {
 };
 
 Image makeImage(uint32_t width, uint32_t height, Encoding encoding);
+
+// `count` zeros. Large buffers are backed by transparent huge pages where the OS offers them: for
+// 4K images, first-touch page faults on 4 KiB pages cost as much as some of the metrics.
+std::vector<float> zeroFilledBuffer(std::size_t count);
+std::vector<uint8_t> zeroFilledBytes(std::size_t count);
+
 Image fromRendered(const render::ImageRGBA32F& rendered, Encoding encoding = Encoding::Linear);
 
 float srgbToLinear(float encoded);

@@ -6,6 +6,7 @@
 #include <fgb/harness/image.hpp>
 
 #include <filesystem>
+#include <utility>
 
 namespace fgb::harness {
 
@@ -15,6 +16,8 @@ enum class ImageFormat { Exr, Png };
 ImageFormat detectImageFormat(const std::filesystem::path& path);
 
 Image readImage(const std::filesystem::path& path);
+// Both images, decoded concurrently; errors as reading first `a` then `b` would report them.
+std::pair<Image, Image> readImagePair(const std::filesystem::path& a, const std::filesystem::path& b);
 Image readExr(const std::filesystem::path& path);  // encoding Linear
 Image readPng(const std::filesystem::path& path);  // encoding Srgb, values in [0, 1]
 

@@ -51,7 +51,7 @@ class EmptyNodes : public GpuTest, public testing::WithParamInterface<uint32_t> 
     return device_->compile(std::move(g), {.name = "empty nodes", .queues = queues});
   }
 
-  double nodeMs(const rhi::GraphTimings& t, const rhi::ExecutableGraph& graph, const std::string& name) {
+  double nodeStartMs(const rhi::GraphTimings& t, const rhi::ExecutableGraph& graph, const std::string& name) {
     const auto& nodes = graph.declaration().nodes();
     for (uint32_t n = 0; n < nodes.size(); ++n) {
       if (nodes[n].name == name) return t.nodeStartMs[n];
@@ -73,9 +73,9 @@ TEST_P(EmptyNodes, DataArrivesSilentlyAndEmptyNodesHaveNoGpuTime) {
   const auto timings = graph->takeTimings();
   ASSERT_FALSE(timings.empty());
   const auto& last = timings.back();
-  EXPECT_GE(nodeMs(last, *graph, "Fill 7"), 0.0);
-  EXPECT_GE(nodeMs(last, *graph, "Copy out"), 0.0);
-  for (int i = 0; i < 4; ++i) EXPECT_EQ(nodeMs(last, *graph, "Empty " + std::to_string(i)), -1.0) << i;
+  EXPECT_GE(nodeStartMs(last, *graph, "Fill 7"), 0.0);
+  EXPECT_GE(nodeStartMs(last, *graph, "Copy out"), 0.0);
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(nodeStartMs(last, *graph, "Empty " + std::to_string(i)), -1.0) << i;
 }
 
 TEST_P(EmptyNodes, AGraphOfOnlyEmptyNodesRunsRepeatedly) {

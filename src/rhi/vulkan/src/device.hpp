@@ -165,6 +165,8 @@ class VulkanDevice final : public rhi::Device {
 
   friend class VulkanGraph;
   VkShaderModule shaderModule(const std::string& path);
+  // Names the pipeline and keeps it; its id is its index.
+  rhi::PipelineId addPipeline(VkPipeline pipeline, VkPipelineBindPoint bindPoint, const std::string& name);
 };
 
 }  // namespace fgb::vulkan

@@ -135,9 +135,7 @@ rhi::PipelineId VulkanDevice::createGraphicsPipeline(const rhi::GraphicsPipeline
     check(vkCreateGraphicsPipelines(device_, pipelineCache_->get(), 1, &info, nullptr, &pipeline),
           "vkCreateGraphicsPipelines '" + desc.name + "'");
   }
-  setName(VK_OBJECT_TYPE_PIPELINE, reinterpret_cast<uint64_t>(pipeline), desc.name);
-  pipelines_.push_back({Owned<VkPipeline>(device_, pipeline, vkDestroyPipeline), VK_PIPELINE_BIND_POINT_GRAPHICS});
-  return rhi::PipelineId{static_cast<uint32_t>(pipelines_.size() - 1)};
+  return addPipeline(pipeline, VK_PIPELINE_BIND_POINT_GRAPHICS, desc.name);
 }
 
 rhi::PipelineId VulkanDevice::createComputePipeline(const rhi::ComputePipelineDesc& desc) {
@@ -150,8 +148,12 @@ rhi::PipelineId VulkanDevice::createComputePipeline(const rhi::ComputePipelineDe
     check(vkCreateComputePipelines(device_, pipelineCache_->get(), 1, &info, nullptr, &pipeline),
           "vkCreateComputePipelines '" + desc.name + "'");
   }
-  setName(VK_OBJECT_TYPE_PIPELINE, reinterpret_cast<uint64_t>(pipeline), desc.name);
-  pipelines_.push_back({Owned<VkPipeline>(device_, pipeline, vkDestroyPipeline), VK_PIPELINE_BIND_POINT_COMPUTE});
+  return addPipeline(pipeline, VK_PIPELINE_BIND_POINT_COMPUTE, desc.name);
+}
+
+rhi::PipelineId VulkanDevice::addPipeline(VkPipeline pipeline, VkPipelineBindPoint bindPoint, const std::string& name) {
+  setName(VK_OBJECT_TYPE_PIPELINE, reinterpret_cast<uint64_t>(pipeline), name);
+  pipelines_.push_back({Owned<VkPipeline>(device_, pipeline, vkDestroyPipeline), bindPoint});
   return rhi::PipelineId{static_cast<uint32_t>(pipelines_.size() - 1)};
 }
 

@@ -3,7 +3,8 @@
 //   layered — layers of width 8; each node reads 2 distinct outputs of the previous layer chosen
 //             with std::mt19937(42)() % 8 and writes one new transient; the last layer is a side
 //             effect.
-// Q = 1 and Q = 3 logical queues (on lavapipe all map to its one queue). Node types cycle
+// Q = 1 and Q = 3 logical queues (on lavapipe all map to its one queue, and so are one queue; the
+// "separate:1" rows keep them apart there, to show the cost of submits and semaphores). Node types cycle
 // graphics, compute, graphics, transfer; resources are 256-byte transient buffers.
 //   Execute/...        : record + submit of one execution (CPU), the GPU idle at the start.
 //   ExecuteAndWait/... : one execution end to end, including the device running it.
@@ -115,9 +116,10 @@ template <FrameGraph (*Shape)(uint32_t), bool Labels = false, bool Recording = f
 void executeOnly(benchmark::State& state) {
   const auto count = static_cast<uint32_t>(state.range(0));
   const auto queues = static_cast<uint32_t>(state.range(1));
+  const bool separate = state.range(2) != 0;
   rhi::Device& device = benchDevice(Labels);
   gRecordingJobs = Recording;
-  auto graph = device.compile(Shape(count), {.name = "bench", .queues = queues, .timestamps = true});
+  auto graph = device.compile(Shape(count), {.name = "bench", .queues = queues, .separateQueues = separate, .timestamps = true});
   gRecordingJobs = false;
   device.wait(device.execute(*graph));  // warm: first-use allocations out of the way
   for (auto _ : state) {
@@ -134,8 +136,9 @@ template <FrameGraph (*Shape)(uint32_t)>
 void executeAndWait(benchmark::State& state) {
   const auto count = static_cast<uint32_t>(state.range(0));
   const auto queues = static_cast<uint32_t>(state.range(1));
+  const bool separate = state.range(2) != 0;
   rhi::Device& device = benchDevice(false);
-  auto graph = device.compile(Shape(count), {.name = "bench", .queues = queues, .timestamps = true});
+  auto graph = device.compile(Shape(count), {.name = "bench", .queues = queues, .separateQueues = separate, .timestamps = true});
   device.wait(device.execute(*graph));
   for (auto _ : state) {
     device.wait(device.execute(*graph));
@@ -145,10 +148,11 @@ void executeAndWait(benchmark::State& state) {
 }
 
 void shapes(benchmark::internal::Benchmark* bench) {
-  bench->ArgNames({"nodes", "Q"});
+  bench->ArgNames({"nodes", "Q", "separate"});
   for (int64_t queues : {1, 3}) {
-    for (int64_t nodes : {100, 1000, 10000}) bench->Args({nodes, queues});
+    for (int64_t nodes : {100, 1000, 10000}) bench->Args({nodes, queues, 0});
   }
+  bench->Args({10000, 3, 1});
   bench->Unit(benchmark::kMicrosecond);
 }
 
@@ -160,8 +164,8 @@ BENCHMARK(executeOnly<chain, false, true>)->Name("ExecuteRecording/chain")->Appl
 BENCHMARK(executeOnly<layered, false, true>)->Name("ExecuteRecording/layered")->Apply(shapes);
 BENCHMARK(executeOnly<layered, true>)
     ->Name("Execute/layered_with_labels")
-    ->ArgNames({"nodes", "Q"})
-    ->Args({10000, 1})
+    ->ArgNames({"nodes", "Q", "separate"})
+    ->Args({10000, 1, 0})
     ->Unit(benchmark::kMicrosecond);
 
 }  // namespace

@@ -147,6 +147,36 @@ TEST(Barriers, SameFamilyQueuesNeedNoOwnershipTransfer) {
   EXPECT_EQ(acquired[0].newLayout, Layout::ShaderReadOnly);
 }
 
+// Buffers created with CONCURRENT sharing change queue family with no release/acquire pair (a
+// semaphore still orders them); textures keep their ownership transfers.
+TEST(Barriers, SharedBuffersChangeFamilyWithoutOwnershipTransfer) {
+  FrameGraph g;
+  const TextureHandle out = importOutput(g, "out");
+  const BufferHandle counts = g.createBuffer("counts", bufferDesc());
+  const TextureHandle ao = g.createTexture("ao", colorDesc());
+  NodeBuilder compute = g.addNode("Cull", NodeType::Compute);
+  const BufferHandle counts1 = compute.write(counts, Access::StorageWrite);
+  const TextureHandle ao1 = compute.write(ao, Access::StorageWrite);
+  NodeBuilder light = g.addNode("Light", NodeType::Graphics);
+  light.read(counts1, Access::StorageRead);
+  light.read(ao1);
+  light.addColorTarget(out);
+  CompileOptions options = queueOptions(3);
+  options.buffersShareFamilies = true;
+  const CompiledGraph c = compile(g, options);
+  const uint32_t buffer = g.resourceOf(counts);
+  const uint32_t texture = g.resourceOf(ao);
+  uint32_t textureTransfers = 0;
+  for (const Barrier& b : c.barriers) {
+    if (b.kind == Barrier::Kind::Transition) continue;
+    EXPECT_NE(b.resource, buffer) << "a shared buffer got an ownership transfer";
+    textureTransfers += b.resource == texture ? 1 : 0;
+  }
+  EXPECT_EQ(textureTransfers, 2u);  // release on compute, acquire on graphics
+  EXPECT_EQ(edgeNames(g, c.syncEdges), (NamePairs{{"Cull", "Light"}}));
+  expectAllInvariants(g, c, options);
+}
+
 TEST(Barriers, ReadOnlyDepthAfterDepthWrite) {
   FrameGraph g;
   const TextureHandle out = importOutput(g, "out");

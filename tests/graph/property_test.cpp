@@ -142,6 +142,21 @@ TEST_P(RandomDags, EveryInvariantHoldsWithoutCullingOrAliasing) {
   EXPECT_GT(tally.compiled, kGraphsPerQueueCount / 8);  // (no overlaps: checked per graph)
 }
 
+TEST_P(RandomDags, EveryInvariantHoldsWithBuffersSharedByAllFamilies) {
+  const uint32_t queues = GetParam();
+  CompileOptions options = randomCompileOptions(queues);
+  options.buffersShareFamilies = true;
+  Tally tally;
+  uint32_t failures = 0;
+  for (uint32_t seed = 1; seed <= kGraphsPerQueueCount / 4 && failures < 5; ++seed) {
+    failures += checkOne(seed * 613 + queues, queues, options, tally) ? 0 : 1;
+  }
+  EXPECT_GT(tally.compiled, kGraphsPerQueueCount / 8);
+  if (queues > 1) {
+    EXPECT_GT(tally.syncEdges, 100u);
+  }
+}
+
 TEST(RandomDags, DefaultOptionsAndEstimatedRequirementsHold) {
   for (uint32_t queues = 1; queues <= 3; ++queues) {
     CompileOptions options;

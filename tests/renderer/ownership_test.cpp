@@ -18,11 +18,12 @@
 namespace fgb::render {
 namespace {
 
-graph::CompiledGraph compileWithThreeFamilies(const graph::FrameGraph& declaration) {
+graph::CompiledGraph compileWithThreeFamilies(const graph::FrameGraph& declaration, bool buffersShared) {
   graph::CompileOptions options;
   options.queueCount = 3;
   options.queueOfClass = {0, 1, 2};
   options.familyOfQueue = {0, 2, 1};  // as on the H200: graphics 0, compute 2, transfer 1
+  options.buffersShareFamilies = buffersShared;
   return graph::compile(declaration, options);
 }
 
@@ -49,19 +50,39 @@ std::unique_ptr<Workload> open(const std::string& scene) {
 
 class SceneOwnership : public ::testing::TestWithParam<std::string> {};
 
+void expectPaired(const graph::FrameGraph& declaration, const graph::CompiledGraph& compiled) {
+  for (const auto& [key, count] : unpairedTransfers(declaration, compiled)) {
+    const auto& [resource, src, dst] = key;
+    ADD_FAILURE() << "'" << declaration.resources()[resource].name << "' queue " << src << " -> " << dst << ": "
+                  << (count > 0 ? "release(s) without acquire: " : "acquire(s) without release: ") << count;
+  }
+}
+
+// Exclusive buffers (a backend that does not share them): imported buffers change families on
+// every frame, and every transfer must pair up.
 TEST_P(SceneOwnership, EveryAcquireOfAnImportPairsWithARelease) {
   const auto workload = open(GetParam());
   const graph::FrameGraph* declaration = frameGraphOf(*workload);
   ASSERT_NE(declaration, nullptr);
-  const auto compiled = compileWithThreeFamilies(*declaration);
+  const auto compiled = compileWithThreeFamilies(*declaration, false);
   uint32_t transfers = 0;
   for (const auto& b : compiled.barriers) transfers += b.kind != graph::Barrier::Kind::Transition;
   EXPECT_GT(transfers, 0u) << "three families but no ownership transfer: the check would be vacuous";
-  for (const auto& [key, count] : unpairedTransfers(*declaration, compiled)) {
-    const auto& [resource, src, dst] = key;
-    ADD_FAILURE() << "'" << declaration->resources()[resource].name << "' queue " << src << " -> " << dst << ": "
-                  << (count > 0 ? "release(s) without acquire: " : "acquire(s) without release: ") << count;
+  expectPaired(*declaration, compiled);
+}
+
+// As the Vulkan backend compiles it (buffers shared by all families): only textures transfer.
+TEST_P(SceneOwnership, SharedBuffersNeverTransferAndTexturesPairUp) {
+  const auto workload = open(GetParam());
+  const graph::FrameGraph* declaration = frameGraphOf(*workload);
+  ASSERT_NE(declaration, nullptr);
+  const auto compiled = compileWithThreeFamilies(*declaration, true);
+  for (const auto& b : compiled.barriers) {
+    const bool buffer = declaration->resources()[b.resource].kind == graph::ResourceKind::Buffer;
+    EXPECT_FALSE(buffer && b.kind != graph::Barrier::Kind::Transition)
+        << "'" << declaration->resources()[b.resource].name << "' is a shared buffer but got an ownership transfer";
   }
+  expectPaired(*declaration, compiled);
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, SceneOwnership,

@@ -48,7 +48,7 @@ class EmptyNodes : public GpuTest, public testing::WithParamInterface<uint32_t> 
       auto& ctx = rhi::rhiContext(c);
       ctx.cmd().copyBuffer(ctx.buffer(words), ctx.buffer(out), kWords * 4);
     });
-    return device_->compile(std::move(g), {.name = "empty nodes", .queues = queues});
+    return device_->compile(std::move(g), {.name = "empty nodes", .queues = queues, .separateQueues = true});
   }
 
   double nodeStartMs(const rhi::GraphTimings& t, const rhi::ExecutableGraph& graph, const std::string& name) {
@@ -92,7 +92,7 @@ TEST_P(EmptyNodes, AGraphOfOnlyEmptyNodesRunsRepeatedly) {
     node.sideEffect();
     node.setJob([](graph::JobContext&) {});
   }
-  auto graph = device_->compile(std::move(g), {.name = "only empty", .queues = GetParam()});
+  auto graph = device_->compile(std::move(g), {.name = "only empty", .queues = GetParam(), .separateQueues = true});
   for (int frame = 0; frame < 4; ++frame) device_->execute(*graph);
   device_->waitIdle();
   const auto timings = graph->takeTimings();

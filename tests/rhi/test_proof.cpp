@@ -44,6 +44,8 @@ std::unique_ptr<render::Workload> openProof(uint32_t msaa, const std::string& qu
   config.msaa = msaa;
   config.validation = true;
   config.knobs["queues"] = queues;
+  // Several queues stay apart even on a one-queue device: submits and semaphores get exercised.
+  if (queues != "0") config.knobs["separate-queues"] = "1";
   return render::openWorkload(config);
 }
 

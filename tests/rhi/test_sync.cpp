@@ -156,7 +156,7 @@ TEST_P(SameLayout, RawAndWawAreSynchronisedAndGiveTheRightResult) {
     ASSERT_NEAR(at(p * 4 + 0), 64, 1) << "pixel " << p;
     ASSERT_NEAR(at(p * 4 + 1), 128, 1) << "pixel " << p;
     ASSERT_EQ(at(p * 4 + 2), 0) << "pixel " << p;
-    ASSERT_EQ(at(p * 4 + 3), 255) << "pixel " << p;
+    ASSERT_NEAR(at(p * 4 + 3), 255, 1) << "pixel " << p;  // blended: GPUs round 254 or 255
   }
   const auto transferWords = words(transfer_, kWords);
   for (uint32_t i = 0; i < kWords; ++i) ASSERT_EQ(transferWords[i], i < kWords / 2 ? 9u : 3u) << "word " << i;

@@ -50,7 +50,7 @@ class BarrierPlanner {
  public:
   explicit BarrierPlanner(CompileState& state)
       : state_(state), queueOf_(state.queueOf.data()), traits_(state.resourceTraits.data()),
-        familyOfQueue_(state.options.familyOfQueue) {
+        familyOfQueue_(state.options.familyOfQueue), buffersShared_(state.options.buffersShareFamilies) {
     // Most uses get one barrier (transfers two, final states one more): size it once, not by doubling.
     const size_t uses = state.graph.allUses().size();
     found_.reserve(uses + uses / 4);
@@ -74,10 +74,11 @@ class BarrierPlanner {
     const uint32_t step = step_;
     const Layout layout = texture ? use.layout : Layout::Undefined;
     // An ownership transfer or a layout change is a write in disguise (see advance()).
-    const bool transitioned = s.owned && (familyOf(s.queue) != familyOf(queue) || (texture && layout != s.layout));
+    const bool ownerChanges = changesOwner(s.queue, queue, texture);
+    const bool transitioned = s.owned && (ownerChanges || (texture && layout != s.layout));
     if (!s.owned) {
       firstUseBarrier(resource, texture, use, queue, step);
-    } else if (familyOf(s.queue) != familyOf(queue)) {
+    } else if (ownerChanges) {
       transferOwnership(resource, s, use, queue, step, layout);
     } else {
       sameQueueHazard(resource, texture, s, use, queue, step, layout);
@@ -90,6 +91,11 @@ class BarrierPlanner {
 
  private:
   [[nodiscard]] uint32_t familyOf(uint32_t queue) const { return familyOfQueue_[queue]; }
+  // Whether moving a resource between these queues is a queue-family ownership transfer. Buffers
+  // shared by every family (CompileOptions::buffersShareFamilies) never need one.
+  [[nodiscard]] bool changesOwner(uint32_t from, uint32_t to, bool texture) const {
+    return (texture || !buffersShared_) && familyOf(from) != familyOf(to);
+  }
   [[nodiscard]] bool isImported(uint32_t resource) const { return (traits_[resource] & kResourceImported) != 0; }
   [[nodiscard]] bool isTexture(uint32_t resource) const { return (traits_[resource] & kResourceTexture) != 0; }
 
@@ -229,7 +235,7 @@ class BarrierPlanner {
     const uint32_t finalQueue =
         s.discardsOnEntry ? s.queue : state_.options.queueOfClass[static_cast<size_t>(final.queue)];
     const Layout finalLayout = (!texture || final.layout == Layout::Undefined) ? s.layout : final.layout;
-    const bool queueChange = familyOf(finalQueue) != familyOf(s.queue);
+    const bool queueChange = changesOwner(s.queue, finalQueue, texture);
     if (!queueChange && finalLayout == s.layout && final.stages == kStageNone) return;
     Barrier& b = add(s.lastStep, true, queueChange ? Barrier::Kind::Release : Barrier::Kind::Transition, resource);
     b.srcStages = s.writeStages | s.readStages;
@@ -270,6 +276,7 @@ class BarrierPlanner {
   const uint32_t* queueOf_;  // state_.queueOf
   const uint8_t* traits_;    // state_.resourceTraits
   const std::array<uint32_t, kQueueClassCount> familyOfQueue_;
+  const bool buffersShared_;
   uint32_t queue_ = 0;  // queue and step of the node whose uses are being planned
   uint32_t step_ = 0;
   ScratchVector<TrackedState> trackedStates_;  // per resource...

@@ -67,7 +67,9 @@ ProofSettings proofSettings(const WorkloadConfig& config, uint32_t deviceSampleC
     else if (key == "triangles") s.triangles = parseKnob<uint32_t>(key, value);
     else if (key == "speed") s.speed = parseKnob<float>(key, value);
     else if (key == "queues") s.queues = parseKnob<uint32_t>(key, value);
-    else throw InputError("builtin:proof: unknown knob '" + key + "' (known: exposure, triangles, speed, queues)");
+    else if (key == "separate-queues") s.separateQueues = parseKnob<uint32_t>(key, value) != 0;
+    else throw InputError("builtin:proof: unknown knob '" + key +
+                          "' (known: exposure, triangles, speed, queues, separate-queues)");
   }
   if (s.triangles < 2 || s.triangles > 100000) throw InputError("builtin:proof: triangles must be in [2, 100000]");
   if (s.queues > 3) throw InputError("builtin:proof: queues must be 0..3");

@@ -21,7 +21,8 @@ class ProofWorkload final : public Workload {
     description_ = describeDevice(device_->adapter());
     settings_ = proofSettings(config, device_->sampleCounts());
     resources_ = createProofResources(*device_, settings_);
-    graph_ = device_->compile(buildProofGraph(settings_, resources_), {.name = "builtin:proof", .queues = settings_.queues});
+    graph_ = device_->compile(buildProofGraph(settings_, resources_),
+                              {.name = "builtin:proof", .queues = settings_.queues, .separateQueues = settings_.separateQueues});
   }
 
   ~ProofWorkload() override {

@@ -4,7 +4,8 @@
 //   Tone map (graphics)      1 - exp(-hdr * exposure) into an sRGB display target;
 //   Readback (transfer)      copies HDR and display images into host-visible buffers (side effect);
 //   Debug luminance (compute) writes a buffer nobody reads: the compiler culls it.
-// Knobs (--set): exposure (0.6), triangles (12), speed (0: static; radians/4 per frame), queues (0).
+// Knobs (--set): exposure (0.6), triangles (12), speed (0: static; radians/4 per frame), queues (0),
+// separate-queues (0; 1 keeps logical queues apart on a one-queue device, see rhi::GraphOptions).
 #pragma once
 
 #include <fgb/graph/frame_graph.hpp>
@@ -23,6 +24,7 @@ struct ProofSettings {
   uint32_t triangles = 12;
   float speed = 0.0f;
   uint32_t queues = 0;  // logical queues (0: one per distinct device queue family)
+  bool separateQueues = false;
 };
 
 // Device objects the proof graph uses (created once).

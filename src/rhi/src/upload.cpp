@@ -20,7 +20,7 @@ constexpr graph::ImportState kHostWritten{graph::kStageHost, graph::kAccessHostW
 
 }  // namespace
 
-void uploadBuffer(Device& device, BufferId dst, std::span<const std::byte> bytes, graph::QueueClass owner) {
+void uploadBuffer(Device& device, BufferId dst, std::span<const std::byte> bytes) {
   if (bytes.empty()) return;
   const BufferId staging = stagingWith(device, bytes);
   graph::FrameGraph graph;
@@ -28,11 +28,10 @@ void uploadBuffer(Device& device, BufferId dst, std::span<const std::byte> bytes
                                                                graph::kAccessIndexRead | graph::kAccessIndirectCommandRead |
                                                                graph::kAccessUniformRead,
                                  graph::Layout::Undefined};
-  // The staging buffer is host-written: its first device use is on `owner` (no ownership to acquire).
-  const graph::ImportState hostWritten{graph::kStageHost, graph::kAccessHostWrite, graph::Layout::Undefined, owner};
-  const auto src = graph.importBuffer("staging", {bytes.size()}, external(staging), hostWritten, hostWritten);
+  const auto src = graph.importBuffer("staging", {bytes.size()}, external(staging), kHostWritten, kHostWritten);
   auto target = graph.importBuffer("upload target", {bytes.size()}, external(dst), kUntouched, after);
-  auto node = graph.addNode("Upload buffer", graph::NodeType::Transfer, owner);
+  // On the graphics queue: buffers are shared by every queue family, so no queue needs to own it.
+  auto node = graph.addNode("Upload buffer", graph::NodeType::Transfer, graph::QueueClass::Graphics);
   node.read(src, graph::Access::TransferSrc);
   target = node.write(target, graph::Access::TransferDst);
   const uint64_t size = bytes.size();
@@ -40,9 +39,7 @@ void uploadBuffer(Device& device, BufferId dst, std::span<const std::byte> bytes
     auto& rhi = rhiContext(context);
     rhi.cmd().copyBuffer(rhi.buffer(src), rhi.buffer(target), size);
   });
-  // Graphics: one logical queue suffices; another class needs the device's queues mapped.
-  const uint32_t queues = owner == graph::QueueClass::Graphics ? 1 : 0;
-  auto executable = device.compile(std::move(graph), {.name = "upload", .queues = queues, .timestamps = false});
+  auto executable = device.compile(std::move(graph), {.name = "upload", .queues = 1, .timestamps = false});
   device.wait(device.execute(*executable));
   device.destroyBuffer(staging);
 }
@@ -65,19 +62,6 @@ void uploadTexture(Device& device, TextureId dst, const TextureDesc& desc, std::
   auto executable = device.compile(std::move(graph), {.name = "upload", .queues = 1, .timestamps = false});
   device.wait(device.execute(*executable));
   device.destroyBuffer(staging);
-}
-
-void releaseBuffer(Device& device, BufferId buffer, uint64_t size, graph::QueueClass from, graph::QueueClass to) {
-  graph::FrameGraph graph;
-  const graph::ImportState before{graph::kStageAllCommands, graph::kAccessNone, graph::Layout::Undefined, from};
-  const graph::ImportState after{graph::kStageNone, graph::kAccessNone, graph::Layout::Undefined, to};
-  const auto handle = graph.importBuffer("released buffer", {size}, external(buffer), before, after);
-  // A read (contents kept) on `from`, with no work: the graph releases the buffer after it.
-  auto node = graph.addNode("Release ownership", graph::NodeType::Transfer, from);
-  node.read(handle, graph::Access::TransferSrc);
-  node.sideEffect();
-  auto executable = device.compile(std::move(graph), {.name = "release", .queues = 0, .timestamps = false});
-  device.wait(device.execute(*executable));
 }
 
 }  // namespace fgb::rhi

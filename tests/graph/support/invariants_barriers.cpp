@@ -237,6 +237,8 @@ void checkAcquireBeforeRead(Replay& r, uint32_t u, const std::vector<uint32_t>& 
   if (!use.reads() || use.readPos == 0 || r.useAt[u].first == kInvalidIndex) return;
   const auto [queue, position] = r.useAt[u];
   if (familyOf(r, producerQueue[static_cast<size_t>(use.readPos)]) == familyOf(r, queue)) return;
+  const bool texture = r.graph.resources()[use.resource].kind == ResourceKind::Texture;
+  if (!texture && r.options.buffersShareFamilies) return;  // shared buffers have no owner to change
   for (uint32_t p = position; p-- > 0;) {
     const Event& e = r.timeline[queue][p];
     if (e.barrier != kInvalidIndex) {

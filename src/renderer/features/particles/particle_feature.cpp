@@ -49,13 +49,9 @@ struct RenderPush {
 
 constexpr uint64_t kArgsBytes = sizeof(DrawIndexedCommand);
 
-// Particle state persists across frames. Import states name the queue class of the use that
-// comes before (initial) and after (final) the graph, so that repeated executions hand ownership
-// over consistently where compute has its own queue family:
-// - the free list is used by compute only: it stays on compute (uploaded there);
-// - the pool is updated by compute, then read by the graphics draw: each execution acquires it
-//   from graphics at its first compute use and releases it back to compute after the draw
-//   (releaseBuffer() at creation supplies the release the first execution acquires).
+// Particle state persists across frames. Import states name the stages and accesses of the use
+// that comes before (initial) and after (final) the graph; the queue classes document where those
+// uses run (buffers are shared by every queue family, so no ownership changes hands).
 constexpr graph::ImportState kFreeListState{graph::kStageComputeShader,
                                             graph::kAccessShaderStorageRead | graph::kAccessShaderStorageWrite,
                                             graph::Layout::Undefined, graph::QueueClass::Compute};
@@ -106,8 +102,7 @@ void ParticleFeature::createState(rhi::Device& device, const scene::Scene& scene
   std::vector<EmitterGpu> emitters;
   for (const auto& emitter : scene.emitters) emitters.push_back(toGpu(emitter, seedOffset));
   rhi::uploadBuffer(device, pool_, bytesOf(std::vector<ParticleGpu>(poolSize_)));
-  rhi::releaseBuffer(device, pool_, sizeof(ParticleGpu) * poolSize_, graph::QueueClass::Graphics, graph::QueueClass::Compute);
-  rhi::uploadBuffer(device, freeList_, bytesOf(freeList), graph::QueueClass::Compute);
+  rhi::uploadBuffer(device, freeList_, bytesOf(freeList));
   rhi::uploadBuffer(device, emitters_, bytesOf(emitters));
   rhi::uploadBuffer(device, quadIndices_, bytesOf(std::vector<uint32_t>{0, 1, 2, 2, 1, 3}));
   rhi::uploadBuffer(device, argsTemplate_, bytesOf(std::vector<DrawIndexedCommand>{{6, 0, 0, 0, 0}}));

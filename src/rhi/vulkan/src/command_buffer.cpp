@@ -1,5 +1,9 @@
 #include "command_buffer.hpp"
 
+#include "translate.hpp"
+
+#include <fgb/core/error.hpp>
+
 #include <algorithm>
 #include <vector>
 
@@ -44,6 +48,21 @@ void VulkanCommandBuffer::dispatch(uint32_t x, uint32_t y, uint32_t z) { vkCmdDi
 void VulkanCommandBuffer::dispatchIndirect(rhi::BufferId arguments, uint64_t offset) {
   const VkCommandBuffer cmd = recording();
   vkCmdDispatchIndirect(cmd, vkBuffer(arguments), offset);
+}
+
+void VulkanCommandBuffer::memoryBarrier(graph::StageMask srcStages, graph::AccessMask srcAccess,
+                                        graph::StageMask dstStages, graph::AccessMask dstAccess) {
+  if (rendering_) throw DeviceError("memoryBarrier inside a render pass: split the work into graph nodes instead");
+  const VkCommandBuffer cmd = recording();
+  auto barrier = vkStruct<VkMemoryBarrier2>(VK_STRUCTURE_TYPE_MEMORY_BARRIER_2);
+  barrier.srcStageMask = toVkStages(srcStages);
+  barrier.srcAccessMask = toVkAccess(srcAccess);
+  barrier.dstStageMask = toVkStages(dstStages);
+  barrier.dstAccessMask = toVkAccess(dstAccess);
+  auto dependency = vkStruct<VkDependencyInfo>(VK_STRUCTURE_TYPE_DEPENDENCY_INFO);
+  dependency.memoryBarrierCount = 1;
+  dependency.pMemoryBarriers = &barrier;
+  vkCmdPipelineBarrier2(cmd, &dependency);
 }
 
 void VulkanCommandBuffer::setViewport(float x, float y, float width, float height) {

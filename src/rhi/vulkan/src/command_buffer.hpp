@@ -22,10 +22,12 @@ class VulkanCommandBuffer final : public rhi::CommandBuffer {
 
   using Prologue = void (*)(void* context);
   // A node starts: `prologue(context)` runs before its first command (or at once via start()).
-  void beginNode(Prologue prologue, void* context) {
+  // `rendering`: the prologue begins a render pass (no pipeline barriers inside it).
+  void beginNode(Prologue prologue, void* context, bool rendering) {
     prologue_ = prologue;
     prologueContext_ = context;
     started_ = false;
+    rendering_ = rendering;
   }
   void start() {
     if (started_) return;
@@ -39,6 +41,8 @@ class VulkanCommandBuffer final : public rhi::CommandBuffer {
   void pushConstants(const void* data, uint32_t size, uint32_t offset) override;
   void dispatch(uint32_t x, uint32_t y, uint32_t z) override;
   void dispatchIndirect(rhi::BufferId arguments, uint64_t offset) override;
+  void memoryBarrier(graph::StageMask srcStages, graph::AccessMask srcAccess, graph::StageMask dstStages,
+                     graph::AccessMask dstAccess) override;
   void setViewport(float x, float y, float width, float height) override;
   void setScissor(int32_t x, int32_t y, uint32_t width, uint32_t height) override;
   void bindVertexBuffer(uint32_t binding, rhi::BufferId buffer, uint64_t offset) override;
@@ -71,6 +75,7 @@ class VulkanCommandBuffer final : public rhi::CommandBuffer {
   Prologue prologue_ = nullptr;
   void* prologueContext_ = nullptr;
   bool started_ = true;
+  bool rendering_ = false;
 };
 
 }  // namespace fgb::vulkan

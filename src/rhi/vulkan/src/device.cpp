@@ -117,6 +117,7 @@ void VulkanDevice::createLogicalDevice() {
   v12.timelineSemaphore = VK_TRUE;
   v12.hostQueryReset = VK_TRUE;
   v12.drawIndirectCount = has12.drawIndirectCount;
+  drawIndirectCount_ = has12.drawIndirectCount == VK_TRUE;
   v12.descriptorIndexing = has12.descriptorIndexing;
   v12.descriptorBindingPartiallyBound = has12.descriptorBindingPartiallyBound;
   v12.descriptorBindingUpdateUnusedWhilePending = has12.descriptorBindingUpdateUnusedWhilePending;
@@ -155,6 +156,7 @@ void VulkanDevice::createLogicalDevice() {
     queue.family = family;
     vkGetDeviceQueue(device_, family, 0, &queue.queue);
     queues_.push_back(queue);
+    queueFamilies_.push_back(family);
   }
   const auto indexOf = [&](uint32_t family) {
     return static_cast<uint32_t>(std::find(distinct.begin(), distinct.end(), family) - distinct.begin());

@@ -74,6 +74,7 @@ class VulkanDevice final : public rhi::Device {
   uint32_t maxSamples() const override { return rhi::clampSampleCount(64, sampleCounts_); }
   uint32_t sampleCounts() const override { return sampleCounts_; }
   bool bindless() const override { return descriptors_->bindless(); }
+  bool drawIndirectCount() const override { return drawIndirectCount_; }
   rhi::BufferId createBuffer(const rhi::BufferDesc& desc) override;
   rhi::TextureId createTexture(const rhi::TextureDesc& desc) override;
   rhi::SamplerId createSampler(const rhi::SamplerDesc& desc) override;
@@ -112,7 +113,8 @@ class VulkanDevice final : public rhi::Device {
   const PipelineRecord& pipeline(rhi::PipelineId id) const;
 
   // Resources of a graph: created unbound or placed at an offset of a given memory block.
-  static VkBufferCreateInfo bufferInfo(const rhi::BufferDesc& desc);
+  // (points into the device: use it while the device lives)
+  VkBufferCreateInfo bufferInfo(const rhi::BufferDesc& desc) const;
   static VkImageCreateInfo imageInfo(const rhi::TextureDesc& desc);
   rhi::BufferId createBufferIn(const rhi::BufferDesc& desc, const Allocation* placement);
   rhi::TextureId createTextureIn(const rhi::TextureDesc& desc, const Allocation* placement);
@@ -137,9 +139,11 @@ class VulkanDevice final : public rhi::Device {
   rhi::AdapterInfo adapter_;
   VkDevice device_ = VK_NULL_HANDLE;
   std::vector<DeviceQueue> queues_;
+  std::vector<uint32_t> queueFamilies_;  // distinct families of queues_ (buffers are shared by them)
   std::array<uint32_t, 3> queueOfClass_{0, 0, 0};
   uint32_t sampleCounts_ = 1;  // rhi::Device::sampleCounts()
   bool debugLabels_ = false;
+  bool drawIndirectCount_ = false;
   uint32_t framesInFlight_ = 2;
 
   std::unique_ptr<MemoryAllocator> memory_;

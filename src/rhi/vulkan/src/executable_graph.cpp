@@ -31,7 +31,7 @@ VulkanGraph::VulkanGraph(VulkanDevice& device, graph::FrameGraph&& graph, const 
     : device_(device), id_(device.registerGraph(this)), options_(options), declaration_(std::move(graph)),
       commandBuffer_(device) {
   try {
-    mapQueues(options.queues);
+    mapQueues(options.queues, options.separateQueues);
     compiled_ = graph::compile(declaration_, compileOptions());
     for (auto& node : declaration_.mutableNodes()) jobs_.push_back(std::move(node.job));
     createResources();
@@ -63,13 +63,30 @@ VulkanGraph::~VulkanGraph() {
   for (const auto& heap : heaps_) device_.memory().free(heap);
 }
 
-void VulkanGraph::mapQueues(uint32_t requested) {
+void VulkanGraph::mapQueues(uint32_t requested, bool separate) {
   const auto& deviceQueues = device_.queues();
   const auto& ofClass = device_.queueOfClass();
-  logicalQueues_ = requested == 0 ? static_cast<uint32_t>(deviceQueues.size()) : std::min(requested, 3u);
-  // Logical queue q serves queue class q (the last logical queue also serves the classes beyond it).
-  deviceQueueOf_.resize(logicalQueues_);
-  for (uint32_t q = 0; q < logicalQueues_; ++q) deviceQueueOf_[q] = ofClass[q];
+  // Requested queue r serves class r (the last one also the classes beyond it) on the device queue
+  // of that class. Requests that land on one device queue merge (unless kept apart): one queue
+  // needs no semaphores, and its barriers are planned as one queue's.
+  const uint32_t wanted = requested == 0 ? graph::kQueueClassCount : std::min(requested, graph::kQueueClassCount);
+  std::vector<uint32_t> requestOf;  // per logical queue: the request it serves first
+  deviceQueueOf_.clear();
+  for (uint32_t c = 0; c < graph::kQueueClassCount; ++c) {
+    const uint32_t request = std::min(c, wanted - 1);
+    const uint32_t deviceQueue = ofClass[request];
+    uint32_t logical = 0;
+    while (logical < deviceQueueOf_.size() &&
+           (separate ? requestOf[logical] != request : deviceQueueOf_[logical] != deviceQueue)) {
+      ++logical;
+    }
+    if (logical == deviceQueueOf_.size()) {
+      deviceQueueOf_.push_back(deviceQueue);
+      requestOf.push_back(request);
+    }
+    logicalOfClass_[c] = logical;
+  }
+  logicalQueues_ = static_cast<uint32_t>(deviceQueueOf_.size());
   VkPhysicalDeviceProperties properties{};
   vkGetPhysicalDeviceProperties(device_.physical(), &properties);
   uint32_t familyCount = 0;
@@ -86,10 +103,11 @@ void VulkanGraph::mapQueues(uint32_t requested) {
 graph::CompileOptions VulkanGraph::compileOptions() {
   graph::CompileOptions options;
   options.queueCount = logicalQueues_;
-  for (uint32_t c = 0; c < graph::kQueueClassCount; ++c) options.queueOfClass[c] = std::min(c, logicalQueues_ - 1);
+  options.queueOfClass = logicalOfClass_;
   for (uint32_t q = 0; q < logicalQueues_; ++q) {
     options.familyOfQueue[q] = device_.queues()[deviceQueueOf_[q]].family;
   }
+  options.buffersShareFamilies = true;  // VulkanDevice::bufferInfo
   options.cull = options_.cull;
   options.alias = options_.alias;
 
@@ -103,6 +121,7 @@ graph::CompileOptions VulkanGraph::compileOptions() {
   vkGetPhysicalDeviceProperties(device_.physical(), &properties);
   const uint64_t granularity = properties.limits.bufferImageGranularity;
   const VkDevice device = device_.device();
+  const VulkanDevice* owner = &device_;
 
   options.requirements = [=](const graph::ResourceDecl& decl, const graph::ResolvedResource& resolved) {
     const uint32_t r = indexOfFirstVersion->at(decl.firstVersion);
@@ -113,7 +132,7 @@ graph::CompileOptions VulkanGraph::compileOptions() {
       query.pCreateInfo = &info;
       vkGetDeviceImageMemoryRequirements(device, &query, &requirements);
     } else {
-      const VkBufferCreateInfo info = VulkanDevice::bufferInfo(bufferDesc(decl.name, resolved.buffer, (*bufferUsage)[r]));
+      const VkBufferCreateInfo info = owner->bufferInfo(bufferDesc(decl.name, resolved.buffer, (*bufferUsage)[r]));
       auto query = vkStruct<VkDeviceBufferMemoryRequirements>(VK_STRUCTURE_TYPE_DEVICE_BUFFER_MEMORY_REQUIREMENTS);
       query.pCreateInfo = &info;
       vkGetDeviceBufferMemoryRequirements(device, &query, &requirements);
@@ -412,6 +431,7 @@ void VulkanGraph::orderSubmits() {
 
 void VulkanGraph::createSyncAndSlots() {
   const VkDevice device = device_.device();
+  const VulkanDevice* owner = &device_;
   uint32_t maxSubmits = 0;
   for (uint32_t n : compiled_.submitsPerQueue) maxSubmits = std::max(maxSubmits, n);
   valuesPerExecution_ = maxSubmits + 1;

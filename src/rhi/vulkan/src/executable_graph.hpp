@@ -81,7 +81,7 @@ class VulkanGraph final : public rhi::ExecutableGraph {
 
   // executable_graph.cpp
   graph::CompileOptions compileOptions();
-  void mapQueues(uint32_t requested);
+  void mapQueues(uint32_t requested, bool separate);
   std::vector<rhi::TextureUsage> textureUsages() const;
   std::vector<rhi::BufferUsage> bufferUsages() const;
   void createResources();
@@ -113,6 +113,7 @@ class VulkanGraph final : public rhi::ExecutableGraph {
 
   uint32_t logicalQueues_ = 1;
   std::vector<uint32_t> deviceQueueOf_;     // per logical queue
+  std::array<uint32_t, graph::kQueueClassCount> logicalOfClass_{0, 0, 0};
   std::vector<uint64_t> timestampMask_;     // per logical queue; 0: no timestamps there
   std::vector<rhi::BufferId> buffers_;      // per resource
   std::vector<rhi::TextureId> textures_;    // per resource

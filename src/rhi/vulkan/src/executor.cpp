@@ -124,7 +124,7 @@ void VulkanGraph::recordStep(uint32_t stepIndex, uint64_t execution) {
   const Step& step = steps_[stepIndex];
   recording_.step = stepIndex;
   queueBarriers(step.before);
-  commandBuffer_.beginNode([](void* graph) { static_cast<VulkanGraph*>(graph)->beginStep(); }, this);
+  commandBuffer_.beginNode([](void* graph) { static_cast<VulkanGraph*>(graph)->beginStep(); }, this, step.rendering);
   // Attachments are accessed by vkCmdBeginRendering itself (load and store operations): a node
   // rendering into them does work even if its job draws nothing.
   if (step.rendering) commandBuffer_.start();

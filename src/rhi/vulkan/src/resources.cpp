@@ -24,11 +24,21 @@ uint32_t takeSlot(std::vector<uint32_t>& freeList, size_t size) {
 
 }  // namespace
 
-VkBufferCreateInfo VulkanDevice::bufferInfo(const rhi::BufferDesc& desc) {
+VkBufferCreateInfo VulkanDevice::bufferInfo(const rhi::BufferDesc& desc) const {
   auto info = vkStruct<VkBufferCreateInfo>(VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO);
   info.size = desc.size;
   info.usage = toVkBufferUsage(desc.usage);
-  info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;  // cross-queue use goes through ownership transfers
+  // Buffers are shared by every queue family the device uses (as Granite does): no ownership
+  // transfers for them, which costs nothing on current hardware (buffers are never compressed) and
+  // lets a buffer written in one graph be read on another family in the next. Images stay
+  // exclusive (concurrent images can lose compression); the frame graph transfers their ownership.
+  if (queueFamilies_.size() > 1) {
+    info.sharingMode = VK_SHARING_MODE_CONCURRENT;
+    info.queueFamilyIndexCount = static_cast<uint32_t>(queueFamilies_.size());
+    info.pQueueFamilyIndices = queueFamilies_.data();
+  } else {
+    info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  }
   return info;
 }
 

@@ -24,6 +24,9 @@ struct CompileOptions {
   std::array<uint32_t, kQueueClassCount> queueOfClass{0, 0, 0};
   // Queue family of each queue index; ownership transfers happen only between different families.
   std::array<uint32_t, kQueueClassCount> familyOfQueue{0, 1, 2};
+  // Buffers are created shareable by every queue family (Vulkan's CONCURRENT sharing mode): they
+  // change queues with no ownership transfer (semaphores still order them); only textures transfer.
+  bool buffersShareFamilies = false;
   bool cull = true;
   bool alias = true;
   // Size/alignment/memory types of a transient resource (backend: vkGet*MemoryRequirements).

@@ -32,6 +32,16 @@ class CommandBuffer {
 
   virtual void dispatch(uint32_t groupsX, uint32_t groupsY = 1, uint32_t groupsZ = 1) = 0;
   virtual void dispatchIndirect(BufferId arguments, uint64_t offset = 0) = 0;
+  // A dependency between two commands of this node on memory the node declared (a compute node
+  // whose second dispatch reads what its first wrote). The graph orders nodes; only work inside
+  // one node needs this. Not inside a render pass: compute and transfer nodes only (throws).
+  virtual void memoryBarrier(graph::StageMask srcStages, graph::AccessMask srcAccess, graph::StageMask dstStages,
+                             graph::AccessMask dstAccess) = 0;
+  // The common case: compute shader writes made visible to compute shader reads and writes.
+  void computeBarrier() {
+    memoryBarrier(graph::kStageComputeShader, graph::kAccessShaderStorageWrite, graph::kStageComputeShader,
+                  graph::kAccessShaderStorageRead | graph::kAccessShaderStorageWrite);
+  }
 
   virtual void setViewport(float x, float y, float width, float height) = 0;
   virtual void setScissor(int32_t x, int32_t y, uint32_t width, uint32_t height) = 0;

@@ -50,9 +50,13 @@ struct PipelineStats {
 struct GraphOptions {
   std::string name = "graph";
   // Logical queues (1..3): graphics, compute, transfer nodes go to their own queue when > 1. Each
-  // logical queue maps to a device queue of a fitting family (all to one queue where only one exists).
-  // 0: one logical queue per distinct family the device offers for the three classes.
+  // logical queue maps to a device queue of a fitting family; logical queues that land on the same
+  // device queue are one queue (on lavapipe everything runs on its one queue, with no semaphores).
+  // 0: as many as the device offers distinct queues for the three classes.
   uint32_t queues = 0;
+  // Test and benchmark aid: keep the logical queues apart even where they share a device queue, so
+  // that a one-queue device (lavapipe) still exercises cross-queue submits and semaphores.
+  bool separateQueues = false;
   bool cull = true;
   bool alias = true;
   bool timestamps = true;
@@ -121,6 +125,8 @@ class Device {
   // lavapipe supports {1, 4}.
   [[nodiscard]] virtual uint32_t sampleCounts() const = 0;
   [[nodiscard]] virtual bool bindless() const = 0;
+  // CommandBuffer::drawIndexedIndirectCount is available (Vulkan 1.2 drawIndirectCount).
+  [[nodiscard]] virtual bool drawIndirectCount() const = 0;
 
   virtual BufferId createBuffer(const BufferDesc& desc) = 0;
   virtual TextureId createTexture(const TextureDesc& desc) = 0;

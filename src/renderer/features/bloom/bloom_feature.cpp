@@ -5,40 +5,42 @@
 #include <fgb/rhi/job_context.hpp>
 
 #include <algorithm>
+#include <array>
+#include <vector>
 #include <string>
 
 namespace fgb::features {
 namespace {
 
-// Mirror the push blocks of shaders/renderer/bloom_down.frag and bloom_up.frag.
+// Mirror the push blocks of shaders/renderer/bloom_down.comp and bloom_up.comp.
 struct DownPush {
   uint32_t source;
+  uint32_t sourceIsStorage;
   uint32_t linearSampler;
-  float sourceTexel[2];
+  uint32_t target;
+  int32_t sourceSize[2];
+  int32_t targetSize[2];
   uint32_t firstMip;
   float threshold;
   float knee;
 };
 struct UpPush {
   uint32_t source;
-  uint32_t linearSampler;
-  float sourceTexel[2];
+  uint32_t target;
+  int32_t sourceSize[2];
+  int32_t targetSize[2];
   float radius;
 };
+
+constexpr uint32_t kGroupSize = 8;  // local size of both shaders (8 x 8)
 
 // Size of level `level` of the chain (level 0 = the HDR image), as the graph resolves it.
 graph::Extent levelExtent(const graph::Extent& full, uint32_t level) {
   return {std::max(1u, full.width >> level), std::max(1u, full.height >> level), 1};
 }
 
-rhi::GraphicsPipelineDesc pipelineDesc(const char* name, const char* shader, rhi::BlendMode blend) {
-  rhi::GraphicsPipelineDesc desc;
-  desc.name = name;
-  desc.vertexShader = "common/fullscreen.vert";
-  desc.fragmentShader = shader;
-  desc.colorFormats = {kHdrFormat};
-  desc.blend = {blend};
-  return desc;
+void dispatchOver(rhi::CommandBuffer& cmd, const graph::Extent& size) {
+  cmd.dispatch((size.width + kGroupSize - 1) / kGroupSize, (size.height + kGroupSize - 1) / kGroupSize);
 }
 
 }  // namespace
@@ -54,46 +56,53 @@ void BloomFeature::initialize(FeatureInit& init) {
   mips_ = 0;
   while (mips_ < init.settings.bloomMips && (smallest >> (mips_ + 1)) >= 2) ++mips_;
   enabled_ = mips_ > 0;
-  downPipeline_ = init.device.createGraphicsPipeline(pipelineDesc("bloom downsample", "renderer/bloom_down.frag", rhi::BlendMode::Opaque));
-  upPipeline_ = init.device.createGraphicsPipeline(pipelineDesc("bloom upsample", "renderer/bloom_up.frag", rhi::BlendMode::Additive));
+  downPipeline_ = init.device.createComputePipeline({"bloom downsample", "renderer/bloom_down.comp"});
+  upPipeline_ = init.device.createComputePipeline({"bloom upsample", "renderer/bloom_up.comp"});
   samplerIndex_ = init.device.samplerIndex(init.scene.linearClampSampler);
 }
 
 void BloomFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
   if (!enabled_) return;
   const auto& targets = board.get<FrameTargets>();
-  std::vector<graph::TextureHandle> levels{targets.hdr};  // level 0: the HDR image
-  levels.resize(size_t{mips_} + 1);
+  auto node = graph.addNode("Bloom", graph::NodeType::Compute, graph::QueueClass::Graphics);
+  const auto hdr = node.read(targets.hdr, graph::Access::Sampled);
+  std::vector<graph::TextureHandle> levels(size_t{mips_} + 1);  // [0] unused: the HDR image
   for (uint32_t level = 1; level <= mips_; ++level) {
-    levels[level] = graph.createTexture("bloom " + std::to_string(level), {kHdrFormat, {}, 1, 1, 1, targets.hdr, level});
-    auto node = graph.addNode("Bloom Downsample " + std::to_string(level), graph::NodeType::Graphics);
-    const auto source = node.read(levels[level - 1], graph::Access::Sampled, graph::kStageFragmentShader);
-    levels[level] = node.addColorTarget(levels[level], graph::LoadOp::DontCare);
-    const auto size = levelExtent(targets.extent, level - 1);
-    DownPush push{0, samplerIndex_, {1.0f / float(size.width), 1.0f / float(size.height)}, level == 1 ? 1u : 0u,
-                  bloom_.threshold, bloom_.knee};
-    node.setJob([push, pipeline = downPipeline_, source](graph::JobContext& context) mutable {
-      auto& ctx = rhi::rhiContext(context);
-      push.source = ctx.sampledTextureIndex(source);
-      ctx.cmd().bindPipeline(pipeline);
-      ctx.cmd().push(push);
-      ctx.cmd().draw(3);
-    });
+    const auto texture = graph.createTexture("bloom " + std::to_string(level), {kHdrFormat, {}, 1, 1, 1, targets.hdr, level});
+    // Written first (the downsample), then read and added to inside the node (barriers in the job).
+    levels[level] = node.write(texture, graph::Access::StorageWrite);
   }
-  for (uint32_t level = mips_; level >= 2; --level) {
-    auto node = graph.addNode("Bloom Upsample " + std::to_string(level), graph::NodeType::Graphics);
-    const auto source = node.read(levels[level], graph::Access::Sampled, graph::kStageFragmentShader);
-    levels[level - 1] = node.addColorTarget(levels[level - 1], graph::LoadOp::Load);
-    const auto size = levelExtent(targets.extent, level);
-    UpPush push{0, samplerIndex_, {1.0f / float(size.width), 1.0f / float(size.height)}, bloom_.radius};
-    node.setJob([push, pipeline = upPipeline_, source](graph::JobContext& context) mutable {
-      auto& ctx = rhi::rhiContext(context);
-      push.source = ctx.sampledTextureIndex(source);
-      ctx.cmd().bindPipeline(pipeline);
-      ctx.cmd().push(push);
-      ctx.cmd().draw(3);
-    });
-  }
+  std::vector<graph::Extent> sizes(size_t{mips_} + 1);
+  for (uint32_t level = 0; level <= mips_; ++level) sizes[level] = levelExtent(targets.extent, level);
+
+  node.setJob([down = downPipeline_, up = upPipeline_, sampler = samplerIndex_, bloom = bloom_, mips = mips_, hdr,
+               levels, sizes](graph::JobContext& context) {
+    auto& ctx = rhi::rhiContext(context);
+    auto& cmd = ctx.cmd();
+    const auto xy = [](const graph::Extent& e) { return std::array{int32_t(e.width), int32_t(e.height)}; };
+    cmd.bindPipeline(down);
+    for (uint32_t level = 1; level <= mips; ++level) {
+      if (level > 1) cmd.computeBarrier();  // reads the level the previous dispatch wrote
+      const bool first = level == 1;
+      DownPush push{first ? ctx.sampledTextureIndex(hdr) : ctx.storageTextureIndex(levels[level - 1]),
+                    first ? 0u : 1u, sampler, ctx.storageTextureIndex(levels[level]), {}, {},
+                    first ? 1u : 0u, bloom.threshold, bloom.knee};
+      std::ranges::copy(xy(sizes[level - 1]), push.sourceSize);
+      std::ranges::copy(xy(sizes[level]), push.targetSize);
+      cmd.push(push);
+      dispatchOver(cmd, sizes[level]);
+    }
+    cmd.bindPipeline(up);
+    for (uint32_t level = mips; level >= 2; --level) {
+      cmd.computeBarrier();
+      UpPush push{ctx.storageTextureIndex(levels[level]), ctx.storageTextureIndex(levels[level - 1]), {}, {},
+                  bloom.radius};
+      std::ranges::copy(xy(sizes[level]), push.sourceSize);
+      std::ranges::copy(xy(sizes[level - 1]), push.targetSize);
+      cmd.push(push);
+      dispatchOver(cmd, sizes[level - 1]);
+    }
+  });
   board.set(BloomOutput{levels[1]});
 }
 

@@ -1,7 +1,9 @@
-// Bloom (Jimenez 2014): "Bloom Downsample k" builds a chain of half-size HDR textures with the
-// 13-tap filter (Karis-weighted and soft-thresholded on the first), "Bloom Upsample k" adds the
-// 3x3-tent-filtered smaller level onto the larger one, and tone mapping composes level 1 into the
-// image (BloomOutput). The thesis' single "Bloom" budget is the sum of the "Bloom *" nodes.
+// Bloom (Jimenez 2014) as one compute node, "Bloom" (the thesis' single budget row): it builds a
+// chain of half-size HDR textures with the 13-tap filter (Karis-weighted and soft-thresholded on
+// the first level), then adds each 3x3-tent-filtered smaller level onto the next larger one; one
+// dispatch per level, with a barrier inside the node between them. Tone mapping composes level 1
+// into the image (BloomOutput). The node runs on the graphics queue: the HDR image and level 1
+// stay with the passes around it (no ownership transfers of full-size images).
 // Parameters: post.bloom, post.bloom_threshold, post.bloom_knee, post.bloom_intensity,
 // post.bloom_radius (scene knobs) and bloom.mips.
 #pragma once

@@ -24,6 +24,18 @@ struct CullPush {
 };
 static_assert(sizeof(CullPush) <= rhi::kPushConstantBytes);
 
+constexpr uint32_t kBatchCount = 3;  // one per DrawClass
+
+// Mirrors shaders/renderer/mesh_compact.comp.
+struct CompactPush {
+  uint32_t commands;
+  uint32_t drawList;
+  uint32_t drawCounts;
+  uint32_t stats;
+  glm::uvec4 batches[kBatchCount];  // x: first group, y: group count
+};
+static_assert(sizeof(CompactPush) <= rhi::kPushConstantBytes);
+
 // Mirrors shaders/renderer/include/forward_push.glsl.
 struct ForwardPush {
   uint32_t frame;
@@ -71,16 +83,52 @@ rhi::GraphicsPipelineDesc depthOnlyPipeline(const RenderSettings& settings) {
   return desc;
 }
 
-// Binds the scene's vertex streams and indices and draws `groupCount` indirect commands.
-void drawGroups(rhi::JobContext& ctx, const GpuScene& scene, graph::BufferHandle commands, uint32_t firstGroup,
-                uint32_t groupCount) {
+// The draw groups of one draw class: one multi-draw.
+struct Batch {
+  uint32_t drawClass = 0;
+  uint32_t firstGroup = 0;
+  uint32_t groupCount = 0;
+};
+
+std::vector<Batch> batchesOf(const GpuScene& scene, const std::vector<DrawClass>& classes) {
+  std::vector<Batch> batches;
+  for (const DrawClass drawClass : classes) {
+    const auto [first, count] = scene.groupRange(drawClass);
+    if (count > 0) batches.push_back({static_cast<uint32_t>(drawClass), first, count});
+  }
+  return batches;
+}
+
+// Binds the scene's geometry and issues one multi-draw per batch: with a count buffer, the packed
+// commands of groups with visible instances; otherwise every group's command (culled groups have
+// instance count 0).
+void drawBatches(rhi::JobContext& ctx, const GpuScene& scene, const MeshCullOutputs& cull,
+                 const std::vector<Batch>& batches, bool drawCount) {
   auto& cmd = ctx.cmd();
   cmd.bindVertexBuffer(0, scene.vertices, scene.streams.positions);
   cmd.bindVertexBuffer(1, scene.vertices, scene.streams.normals);
   cmd.bindVertexBuffer(2, scene.vertices, scene.streams.tangents);
   cmd.bindVertexBuffer(3, scene.vertices, scene.streams.uvs);
   cmd.bindIndexBuffer(scene.indices, 0, rhi::IndexType::Uint32);
-  cmd.drawIndexedIndirect(ctx.buffer(commands), uint64_t{firstGroup} * kCommandStride, groupCount, kCommandStride);
+  for (const Batch& batch : batches) {
+    const uint64_t offset = uint64_t{batch.firstGroup} * kCommandStride;
+    if (drawCount) {
+      cmd.drawIndexedIndirectCount(ctx.buffer(cull.drawList), offset, ctx.buffer(cull.drawCounts),
+                                   uint64_t{4} * batch.drawClass, batch.groupCount, kCommandStride);
+    } else {
+      cmd.drawIndexedIndirect(ctx.buffer(cull.commands), offset, batch.groupCount, kCommandStride);
+    }
+  }
+}
+
+// The indirect buffers a draw node reads.
+void readDrawCommands(graph::NodeBuilder& node, const MeshCullOutputs& cull, bool drawCount) {
+  if (drawCount) {
+    node.read(cull.drawList, Access::Indirect);
+    node.read(cull.drawCounts, Access::Indirect);
+  } else {
+    node.read(cull.commands, Access::Indirect);
+  }
 }
 
 }  // namespace
@@ -96,6 +144,8 @@ void MeshFeature::initialize(FeatureInit& init) {
   device_ = &init.device;
   if (!enabled()) return;
   pipelines_.cull = init.device.createComputePipeline({"mesh frustum cull", "renderer/mesh_cull.comp"});
+  drawCount_ = init.device.drawIndirectCount();
+  if (drawCount_) pipelines_.compact = init.device.createComputePipeline({"mesh draw compaction", "renderer/mesh_compact.comp"});
   pipelines_.opaque = init.device.createGraphicsPipeline(forwardPipeline(init.settings, false));
   depthPrepass_ = init.settings.depthPrepass;
   if (depthPrepass_) pipelines_.depthOnly = init.device.createGraphicsPipeline(depthOnlyPipeline(init.settings));
@@ -105,42 +155,64 @@ void MeshFeature::initialize(FeatureInit& init) {
   std::memset(init.device.mapped(statsReadback_).data(), 0, kStatsBytes);
 }
 
-void MeshFeature::declareCull(graph::FrameGraph& graph, graph::BufferHandle& commands, graph::BufferHandle& visible,
-                              graph::BufferHandle& stats) {
+MeshCullOutputs MeshFeature::declareCull(graph::FrameGraph& graph) {
   const GpuScene& scene = *scene_;
   const auto commandBytes = uint64_t{kCommandStride} * scene.groups.size();
-  commands = graph.createBuffer("mesh draw commands", {commandBytes, {}});
-  visible = graph.createBuffer("visible instances", {uint64_t{4} * scene.instanceCount, {}});
-  stats = graph.createBuffer("mesh cull stats", {kStatsBytes, {}});
+  MeshCullOutputs out;
+  out.commands = graph.createBuffer("mesh draw commands", {commandBytes, {}});
+  out.visible = graph.createBuffer("visible instances", {uint64_t{4} * scene.instanceCount, {}});
+  out.stats = graph.createBuffer("mesh cull stats", {kStatsBytes, {}});
 
   // Reset in its own node: the template's instance counts are 0, stats are zero-filled.
   auto reset = graph.addNode("Mesh Cull Reset", graph::NodeType::Transfer);
-  commands = reset.write(commands, Access::TransferDst);
-  stats = reset.write(stats, Access::TransferDst);
-  reset.setJob([templ = scene.commandTemplate, commands, stats, commandBytes](graph::JobContext& context) {
+  out.commands = reset.write(out.commands, Access::TransferDst);
+  out.stats = reset.write(out.stats, Access::TransferDst);
+  reset.setJob([templ = scene.commandTemplate, commands = out.commands, stats = out.stats,
+                commandBytes](graph::JobContext& context) {
     auto& ctx = rhi::rhiContext(context);
     ctx.cmd().copyBuffer(templ, ctx.buffer(commands), commandBytes);
     ctx.cmd().fillBuffer(ctx.buffer(stats), 0, kStatsBytes, 0);
   });
 
   auto cull = graph.addNode("Mesh Frustum Cull", graph::NodeType::Compute);
-  commands = cull.write(commands, Access::StorageReadWrite);
-  visible = cull.write(visible, Access::StorageWrite);
-  stats = cull.write(stats, Access::StorageReadWrite);
+  out.commands = cull.write(out.commands, Access::StorageReadWrite);
+  out.visible = cull.write(out.visible, Access::StorageWrite);
+  out.stats = cull.write(out.stats, Access::StorageReadWrite);
   CullPush push{};
   const auto frustum = scene::Frustum::fromMatrix(scene.constants.viewProj);
   for (size_t i = 0; i < 6; ++i) push.planes[i] = frustum.planes[i];
   push.instances = device_->storageBufferIndex(scene.instances);
   push.instanceCount = scene.instanceCount;
-  cull.setJob([push, pipeline = pipelines_.cull, commands, visible, stats](graph::JobContext& context) mutable {
+  CompactPush compact{};
+  if (drawCount_) {
+    out.drawList = cull.write(graph.createBuffer("mesh draw list", {commandBytes, {}}), Access::StorageWrite);
+    out.drawCounts = cull.write(graph.createBuffer("mesh draw counts", {uint64_t{4} * kBatchCount, {}}),
+                                Access::StorageWrite);
+    for (uint32_t c = 0; c < kBatchCount; ++c) {
+      const auto [first, count] = scene.groupRange(static_cast<DrawClass>(c));
+      compact.batches[c] = {first, count, 0, 0};
+    }
+  }
+  cull.setJob([push, compact, pipelines = pipelines_, out](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
-    push.commands = ctx.storageBufferIndex(commands);
-    push.visible = ctx.storageBufferIndex(visible);
-    push.stats = ctx.storageBufferIndex(stats);
-    ctx.cmd().bindPipeline(pipeline);
+    push.commands = ctx.storageBufferIndex(out.commands);
+    push.visible = ctx.storageBufferIndex(out.visible);
+    push.stats = ctx.storageBufferIndex(out.stats);
+    ctx.cmd().bindPipeline(pipelines.cull);
     ctx.cmd().push(push);
     ctx.cmd().dispatch((push.instanceCount + 63) / 64);
+    if (!out.drawList.valid()) return;
+    // The packing reads the instance counts every cull workgroup added to.
+    ctx.cmd().computeBarrier();
+    compact.commands = push.commands;
+    compact.drawList = ctx.storageBufferIndex(out.drawList);
+    compact.drawCounts = ctx.storageBufferIndex(out.drawCounts);
+    compact.stats = push.stats;
+    ctx.cmd().bindPipeline(pipelines.compact);
+    ctx.cmd().push(compact);
+    ctx.cmd().dispatch(kBatchCount);
   });
+  return out;
 }
 
 void MeshFeature::declareStatsReadback(graph::FrameGraph& graph, graph::BufferHandle stats) {
@@ -159,21 +231,18 @@ void MeshFeature::declareStatsReadback(graph::FrameGraph& graph, graph::BufferHa
   });
 }
 
-void MeshFeature::declareDraw(graph::FrameGraph& graph, Blackboard& board, DrawClass firstClass, DrawClass lastClass,
-                              std::string_view nodeName, graph::BufferHandle commands, graph::BufferHandle visible) {
+void MeshFeature::declareDraw(graph::FrameGraph& graph, Blackboard& board, std::vector<DrawClass> classes,
+                              std::string_view nodeName, const MeshCullOutputs& cull) {
   const GpuScene& scene = *scene_;
-  const uint32_t firstGroup = scene.groupRange(firstClass).first;
-  const auto [lastFirst, lastCount] = scene.groupRange(lastClass);
-  const uint32_t groupCount = lastFirst + lastCount - firstGroup;
-  const bool transparent = firstClass == DrawClass::Transparent;
+  const bool transparent = classes.front() == DrawClass::Transparent;
 
   auto node = addForwardPass(graph, board.get<FrameTargets>(), nodeName, !transparent);
-  node.read(commands, Access::Indirect);
+  readDrawCommands(node, cull, drawCount_);
   // Storage buffers are visible per descriptor binding, not per stage: both forward shaders read
   // through the read-only binding, so every buffer this node reads is declared for both stages
   // (synchronization validation checks each read against the stages the barriers cover).
   constexpr graph::StageMask kForwardStages = kStageVertexShader | kStageFragmentShader;
-  node.read(visible, Access::StorageRead, kForwardStages);
+  node.read(cull.visible, Access::StorageRead, kForwardStages);
   ForwardPush push{};
   push.frame = device_->storageBufferIndex(scene.frameConstants);
   push.instances = device_->storageBufferIndex(scene.instances);
@@ -189,53 +258,49 @@ void MeshFeature::declareDraw(graph::FrameGraph& graph, Blackboard& board, DrawC
     node.read(clusters.indices, Access::StorageRead, kForwardStages);
   }
   const rhi::PipelineId pipeline = transparent ? pipelines_.transparent : pipelines_.opaque;
-  node.setJob([push, pipeline, clusters, commands, visible, firstGroup, groupCount, &scene](graph::JobContext& context) mutable {
+  node.setJob([push, pipeline, clusters, cull, batches = batchesOf(scene, classes), drawCount = drawCount_,
+               &scene](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
-    push.visible = ctx.storageBufferIndex(visible);
+    push.visible = ctx.storageBufferIndex(cull.visible);
     if (clusters.counts.valid()) {
       push.clusterCounts = ctx.storageBufferIndex(clusters.counts);
       push.clusterIndices = ctx.storageBufferIndex(clusters.indices);
     }
     cmd.bindPipeline(pipeline);
     cmd.push(push);
-    drawGroups(ctx, scene, commands, firstGroup, groupCount);
+    drawBatches(ctx, scene, cull, batches, drawCount);
   });
 }
 
-void MeshFeature::declareDepthPrepass(graph::FrameGraph& graph, Blackboard& board, graph::BufferHandle commands,
-                                      graph::BufferHandle visible) {
+void MeshFeature::declareDepthPrepass(graph::FrameGraph& graph, Blackboard& board, const MeshCullOutputs& cull) {
   const GpuScene& scene = *scene_;
   auto& targets = board.get<FrameTargets>();
   auto node = graph.addNode("Depth Prepass", graph::NodeType::Graphics);
-  node.read(commands, graph::Access::Indirect);
-  node.read(visible, graph::Access::StorageRead, kStageVertexShader);
+  readDrawCommands(node, cull, drawCount_);
+  node.read(cull.visible, graph::Access::StorageRead, kStageVertexShader);
   targets.depth = node.setDepthStencil(targets.depth, graph::LoadOp::Clear);
   targets.depthCleared = true;
   ForwardPush push{};
   push.frame = device_->storageBufferIndex(scene.frameConstants);
   push.instances = device_->storageBufferIndex(scene.instances);
-  const auto [firstGroup, groupCount] = scene.groupRange(DrawClass::Opaque);
-  node.setJob([push, pipeline = pipelines_.depthOnly, commands, visible, first = firstGroup, count = groupCount,
-               &scene](graph::JobContext& context) mutable {
+  node.setJob([push, pipeline = pipelines_.depthOnly, cull, batches = batchesOf(scene, {DrawClass::Opaque}),
+               drawCount = drawCount_, &scene](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
-    push.visible = ctx.storageBufferIndex(visible);
+    push.visible = ctx.storageBufferIndex(cull.visible);
     ctx.cmd().bindPipeline(pipeline);
     ctx.cmd().push(push);
-    drawGroups(ctx, scene, commands, first, count);
+    drawBatches(ctx, scene, cull, batches, drawCount);
   });
 }
 
 void MeshFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
   if (!enabled()) return;
-  graph::BufferHandle commands, visible, stats;
-  declareCull(graph, commands, visible, stats);
-  declareStatsReadback(graph, stats);
-  if (depthPrepass_) declareDepthPrepass(graph, board, commands, visible);
-  declareDraw(graph, board, DrawClass::Opaque, DrawClass::Masked, "Mesh Render", commands, visible);
-  if (hasTransparent_)
-    declareDraw(graph, board, DrawClass::Transparent, DrawClass::Transparent, "Mesh Render Transparent", commands,
-                visible);
+  const MeshCullOutputs cull = declareCull(graph);
+  declareStatsReadback(graph, cull.stats);
+  if (depthPrepass_) declareDepthPrepass(graph, board, cull);
+  declareDraw(graph, board, {DrawClass::Opaque, DrawClass::Masked}, "Mesh Render", cull);
+  if (hasTransparent_) declareDraw(graph, board, {DrawClass::Transparent}, "Mesh Render Transparent", cull);
 }
 
 void MeshFeature::addStats(std::map<std::string, double>& stats) const {
@@ -243,6 +308,7 @@ void MeshFeature::addStats(std::map<std::string, double>& stats) const {
   if (enabled()) std::memcpy(&read, device_->mapped(statsReadback_).data(), sizeof(read));
   stats["instances_visible"] = read.instancesVisible;
   stats["triangles_visible"] = read.trianglesVisible;
+  if (drawCount_) stats["draws_issued"] = read.drawsIssued;
 }
 
 }  // namespace fgb::features

@@ -1,12 +1,18 @@
 // GPU-driven static meshes: "Mesh Frustum Cull" (compute) fills indirect commands grouped per mesh
-// and counts visible instances/triangles; "Mesh Render" issues one indirect multi-draw per
-// pipeline batch (opaque, alpha-masked) and "Mesh Render Transparent" draws blended instances
-// back to front after opaque. With render.depth_prepass=1, "Depth Prepass" lays down the depth of
-// opaque instances first (alpha-masked ones write depth in "Mesh Render"). Command instance counts are reset by their own transfer node
-// ("Mesh Cull Reset") so no shader relies on cross-workgroup ordering.
+// and counts visible instances/triangles, then (second dispatch, after a barrier inside the node)
+// packs the groups that have visible instances into one command list per batch with its count;
+// "Mesh Render" issues one indirect multi-draw per material batch (opaque, alpha-masked) with the
+// GPU-written count (vkCmdDrawIndexedIndirectCount; where the device lacks it, every group's
+// command, empty ones included), and "Mesh Render Transparent" draws blended instances back to
+// front after opaque. With render.depth_prepass=1, "Depth Prepass" lays down the depth of opaque
+// instances first (alpha-masked ones write depth in "Mesh Render"). Command instance counts are
+// reset by their own transfer node ("Mesh Cull Reset") so no shader relies on cross-workgroup
+// ordering.
 #pragma once
 
 #include "../context/render_feature.hpp"
+
+#include <vector>
 
 namespace fgb::features {
 
@@ -14,6 +20,16 @@ namespace fgb::features {
 struct MeshCullStats {
   uint32_t instancesVisible = 0;
   uint32_t trianglesVisible = 0;
+  uint32_t drawsIssued = 0;  // packed commands (groups with visible instances)
+};
+
+// What "Mesh Frustum Cull" writes and the draw nodes read.
+struct MeshCullOutputs {
+  graph::BufferHandle commands;    // per draw group (instance counts of visible instances)
+  graph::BufferHandle drawList;    // packed commands of each batch, from its first group's index
+  graph::BufferHandle drawCounts;  // packed commands per DrawClass
+  graph::BufferHandle visible;     // visible instance ids, grouped by draw group
+  graph::BufferHandle stats;       // MeshCullStats
 };
 
 class MeshFeature final : public IRenderFeature {
@@ -31,18 +47,17 @@ class MeshFeature final : public IRenderFeature {
  private:
   struct Pipelines {
     rhi::PipelineId cull;
+    rhi::PipelineId compact;
     rhi::PipelineId opaque;
     rhi::PipelineId transparent;
     rhi::PipelineId depthOnly;
   };
 
-  void declareCull(graph::FrameGraph& graph, graph::BufferHandle& commands, graph::BufferHandle& visible,
-                   graph::BufferHandle& stats);
-  void declareDepthPrepass(graph::FrameGraph& graph, Blackboard& board, graph::BufferHandle commands,
-                           graph::BufferHandle visible);
+  MeshCullOutputs declareCull(graph::FrameGraph& graph);
+  void declareDepthPrepass(graph::FrameGraph& graph, Blackboard& board, const MeshCullOutputs& cull);
   void declareStatsReadback(graph::FrameGraph& graph, graph::BufferHandle stats);
-  void declareDraw(graph::FrameGraph& graph, Blackboard& board, DrawClass firstClass, DrawClass lastClass,
-                   std::string_view nodeName, graph::BufferHandle commands, graph::BufferHandle visible);
+  void declareDraw(graph::FrameGraph& graph, Blackboard& board, std::vector<DrawClass> batches,
+                   std::string_view nodeName, const MeshCullOutputs& cull);
 
   rhi::Device* device_ = nullptr;
   const GpuScene* scene_ = nullptr;
@@ -51,6 +66,7 @@ class MeshFeature final : public IRenderFeature {
   uint32_t instanceCount_ = 0;
   bool hasTransparent_ = false;
   bool depthPrepass_ = false;
+  bool drawCount_ = false;  // the device has vkCmdDrawIndexedIndirectCount
 };
 
 }  // namespace fgb::features

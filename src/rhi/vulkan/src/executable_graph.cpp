@@ -512,16 +512,18 @@ void VulkanGraph::createScopedSets() {
       if (slot != rhi::kInvalidId) list.push_back(slot);
     };
     for (const graph::Use& use : declaration_.uses(steps_[s].node)) {
-      const bool writes = graph::isWriteAccess(use.access);
+      const bool storage = use.access == graph::Access::StorageRead || use.access == graph::Access::StorageWrite ||
+                           use.access == graph::Access::StorageReadWrite;
       if (buffers_[use.resource].valid()) {
+        // Only what shaders access: a buffer the node reads as indirect arguments, vertices or a
+        // copy source is not in its shaders' tables (the layer would count a shader read of it).
+        if (!storage && use.access != graph::Access::Uniform) continue;
+        const bool writes = graph::isWriteAccess(use.access);
         add(writes ? scope.writtenBuffers : scope.readBuffers, device_.buffer(buffers_[use.resource]).storageIndex);
       } else if (textures_[use.resource].valid()) {
         const TextureRecord& record = device_.texture(textures_[use.resource]);
         if (use.access == graph::Access::Sampled) add(scope.sampled, record.sampledIndex);
-        if (use.access == graph::Access::StorageRead || use.access == graph::Access::StorageWrite ||
-            use.access == graph::Access::StorageReadWrite) {
-          add(scope.storageTextures, record.storageIndex);
-        }
+        if (storage) add(scope.storageTextures, record.storageIndex);
       }
     }
     scopedSets_->fill(s, scope);

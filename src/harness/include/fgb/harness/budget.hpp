@@ -52,8 +52,8 @@ struct MeasuredMedians {
   uint32_t width = 0, height = 0, msaa = 0;
 };
 
-// tolerance < 0 keeps the budget file's tolerance. A budget names a pass, or a group of passes the
-// renderer splits it into ("Bloom" = "Bloom Downsample 1" + ... when no pass is called "Bloom"):
+// tolerance < 0 keeps the budget file's tolerance. A budget names a pass, or a group of passes a
+// renderer splits it into ("X" = "X Downsample 1" + "X Upsample 1" + ... when no pass is called "X"):
 // then the sum of their medians is checked. A line fails when over the limit or not measured; the
 // verdict is "fail" if any line fails.
 BudgetResult checkBudget(const Budget& budget, const MeasuredMedians& measured, double tolerance = -1.0);

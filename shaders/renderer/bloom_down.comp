@@ -1,23 +1,33 @@
 #version 460
-// Bloom downsample (Jimenez, CoD:AW 2014): 13-tap filter as five overlapping 2x2 boxes. The first
-// downsample weights each box by Karis' 1/(1 + luma) against fireflies, then applies the soft
-// threshold prefilter.
+// Bloom downsample (Jimenez, CoD:AW 2014), one level of the "Bloom" node: a 13-tap filter as five
+// overlapping 2x2 boxes. The first downsample (from the HDR image, sampled) weights each box by
+// Karis' 1/(1 + luma) against fireflies, then applies the soft-threshold prefilter; later ones read
+// the previous level (a storage image) with the same bilinear taps.
 #extension GL_GOOGLE_include_directive : require
-#include "include/common.glsl"
+#include "include/bloom.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(push_constant) uniform Push {
-  uint source;
+  uint source;          // sampled texture index (first level) or storage image index
+  uint sourceIsStorage;
   uint linearSampler;
-  vec2 sourceTexel;   // 1 / source size
+  uint target;          // storage image index
+  ivec2 sourceSize;
+  ivec2 targetSize;
   uint firstMip;
   float threshold;
   float knee;
 } pc;
 
-layout(location = 0) in vec2 inUv;
-layout(location = 0) out vec4 outColor;
+vec2 gUv;  // centre of this invocation's target texel
+vec2 gSourceTexel;
 
-vec3 tap(vec2 offset) { return fgbSample(pc.source, pc.linearSampler, inUv + offset * pc.sourceTexel).rgb; }
+vec3 tap(vec2 offset) {
+  const vec2 uv = gUv + offset * gSourceTexel;
+  if (pc.sourceIsStorage != 0u) return bilinearLoad(pc.source, uv, pc.sourceSize);
+  return fgbSample(pc.source, pc.linearSampler, uv).rgb;
+}
 
 float karisWeight(vec3 c) { return 1.0 / (1.0 + luminance(c)); }
 
@@ -30,6 +40,10 @@ vec3 softThreshold(vec3 c) {
 }
 
 void main() {
+  const ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(texel, pc.targetSize))) return;
+  gUv = (vec2(texel) + 0.5) / vec2(pc.targetSize);
+  gSourceTexel = 1.0 / vec2(pc.sourceSize);
   vec3 a = tap(vec2(-2, -2)), b = tap(vec2(0, -2)), c = tap(vec2(2, -2));
   vec3 d = tap(vec2(-1, -1)), e = tap(vec2(1, -1));
   vec3 f = tap(vec2(-2, 0)), g = tap(vec2(0, 0)), h = tap(vec2(2, 0));
@@ -50,5 +64,5 @@ void main() {
   } else {
     for (int n = 0; n < 5; ++n) sum += boxes[n] * weights[n];
   }
-  outColor = vec4(max(sum, vec3(0.0)), 1.0);
+  imageStore(fgbImagesRgba16f[pc.target], texel, vec4(max(sum, vec3(0.0)), 1.0));
 }

@@ -1,0 +1,30 @@
+#version 460
+// Bloom upsample, one level of the "Bloom" node: a 3x3 tent (1 2 1 / 2 4 2 / 1 2 1) / 16 of the
+// smaller level, added onto the next larger one in place (each invocation reads and writes only
+// its own texel of the target).
+#extension GL_GOOGLE_include_directive : require
+#include "include/bloom.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(push_constant) uniform Push {
+  uint source;  // storage image index (smaller level)
+  uint target;  // storage image index (larger level)
+  ivec2 sourceSize;
+  ivec2 targetSize;
+  float radius;  // in source texels
+} pc;
+
+vec2 gUv;
+
+vec3 tap(float x, float y) { return bilinearLoad(pc.source, gUv + vec2(x, y) * pc.radius / vec2(pc.sourceSize), pc.sourceSize); }
+
+void main() {
+  const ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(texel, pc.targetSize))) return;
+  gUv = (vec2(texel) + 0.5) / vec2(pc.targetSize);
+  vec3 sum = tap(-1, -1) + 2.0 * tap(0, -1) + tap(1, -1) + 2.0 * tap(-1, 0) + 4.0 * tap(0, 0) + 2.0 * tap(1, 0) +
+             tap(-1, 1) + 2.0 * tap(0, 1) + tap(1, 1);
+  const vec4 below = imageLoad(fgbImagesRgba16f[pc.target], texel);
+  imageStore(fgbImagesRgba16f[pc.target], texel, vec4(below.rgb + sum / 16.0, 1.0));
+}

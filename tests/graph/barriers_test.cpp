@@ -173,6 +173,9 @@ TEST(Barriers, SharedBuffersChangeFamilyWithoutOwnershipTransfer) {
     textureTransfers += b.resource == texture ? 1 : 0;
   }
   EXPECT_EQ(textureTransfers, 2u);  // release on compute, acquire on graphics
+  // Nor any other barrier: the semaphore made the compute write visible on graphics (and a barrier
+  // there could not name compute stages on a queue of another family).
+  EXPECT_TRUE(barriersAround(c, nodeNamed(g, "Light"), buffer, true).empty());
   EXPECT_EQ(edgeNames(g, c.syncEdges), (NamePairs{{"Cull", "Light"}}));
   expectAllInvariants(g, c, options);
 }

@@ -129,7 +129,8 @@ class SameLayout : public GpuTest, public testing::WithParamInterface<bool> {
     }
     auto readback = g.importBuffer("transfer readback", {kWords * 4 + kSize * kSize * 4}, rhi::external(transfer_),
                                    kHostRead, kHostRead);
-    auto node = g.addNode("Copy transfer results (RAW)", graph::NodeType::Transfer);
+    // On the fills' queue: the RAW must be a same-queue hazard (across queues a semaphore orders it).
+    auto node = g.addNode("Copy transfer results (RAW)", graph::NodeType::Transfer, graph::QueueClass::Compute);
     node.read(words, graph::Access::TransferSrc);
     node.read(image, graph::Access::TransferSrc);
     readback = node.write(readback, graph::Access::TransferDst);

@@ -62,7 +62,7 @@ class BarrierPlanner {
   // The uses that follow are the node's.
   void beginNode(uint32_t node) {
     queue_ = queueOf_[node];
-    step_ = state_.out.nodes[node].step;
+    step_ = state_.stepOf[node];
   }
 
   void planUse(const MergedUse& use, bool firstUse) {
@@ -80,6 +80,8 @@ class BarrierPlanner {
       firstUseBarrier(resource, texture, use, queue, step);
     } else if (ownerChanges) {
       transferOwnership(resource, s, use, queue, step, layout);
+    } else if (s.queue != queue && !texture && buffersShared_) {
+      handOverSharedBuffer(s);
     } else {
       sameQueueHazard(resource, texture, s, use, queue, step, layout);
     }
@@ -104,7 +106,8 @@ class BarrierPlanner {
   // store forwarding, which cost more than all the rest of this planner.
   Barrier& add(uint32_t step, bool after, Barrier::Kind kind, uint32_t resource) {
     const uint32_t slot = step * 2 + (after ? 1u : 0u);
-    inSlotOrder_ = inSlotOrder_ && (slots_.empty() || slots_.back() <= slot);
+    inSlotOrder_ &= lastSlot_ <= slot;
+    lastSlot_ = slot;
     slots_.push_back(slot);
     Barrier& b = found_.emplace_back();
     b.kind = kind;
@@ -198,6 +201,17 @@ class BarrierPlanner {
     b.srcQueue = b.dstQueue = queue;
   }
 
+  // A shared buffer last used on another queue: the semaphore wait that orders the two uses (every
+  // cross-queue hazard is an edge, and waits cover all commands) already made the earlier writes
+  // visible to everything after it on this queue. A barrier here would be redundant, and could not
+  // even name the other queue's stages where the families differ (a transfer-only queue cannot
+  // wait for a compute stage). Nothing is left to wait for on this queue.
+  static void handOverSharedBuffer(TrackedState& s) {
+    s.writeStages = kStageNone;
+    s.writeAccess = kAccessNone;
+    s.readStages = kStageNone;
+  }
+
   static void advance(TrackedState& s, const MergedUse& use, uint32_t queue, uint32_t step, Layout layout,
                       bool transitioned) {
     if (!use.writes && transitioned) {
@@ -261,9 +275,16 @@ class BarrierPlanner {
     if (inSlotOrder_) {
       barriers.swap(found_);  // (the output's old storage goes back to the pool with found_)
     } else {
-      barriers.resize(found_.size());
+      // Where each barrier goes is sorted first (an index is cheaper to scatter than a barrier),
+      // then the barriers are appended in that order: no pass to default-construct them first.
+      const auto count = static_cast<uint32_t>(found_.size());
+      ScratchVector<uint32_t> foundAt;
+      foundAt.resize(count);  // every entry is set below
       ScratchVector<uint32_t> cursor(slotStart.begin(), slotStart.end() - 1);
-      for (uint32_t i = 0; i < found_.size(); ++i) barriers[cursor[slots_[i]]++] = found_[i];
+      for (uint32_t i = 0; i < count; ++i) foundAt[cursor[slots_[i]]++] = i;
+      barriers.clear();
+      barriers.reserve(count);
+      for (const uint32_t i : foundAt) barriers.push_back(found_[i]);
     }
     for (uint32_t s = 0; s < steps.size(); ++s) {
       steps[s].before = {slotStart[2 * s], slotStart[2 * s + 1] - slotStart[2 * s]};
@@ -283,6 +304,7 @@ class BarrierPlanner {
   TrackedState* tracked_ = nullptr;            // ...and its data
   ScratchVector<Barrier> found_;               // barriers in the order found...
   ScratchVector<uint32_t> slots_;              // ...and the slot of each (step * 2, +1: after)
+  uint32_t lastSlot_ = 0;                      // the slot of the last barrier found
   bool inSlotOrder_ = true;
 };
 
@@ -324,10 +346,11 @@ void walkUses(CompileState& state, bool alias) {
   state.stagesOnQueue.assign(size_t{resources} * kQueueClassCount, kStageNone);
   if (state.queueCount > 1) state.lastSigmaOnQueue.assign(size_t{resources} * kQueueClassCount, 0);
   ScratchVector<MergedUse> merged;
-  ScratchVector<uint32_t> lastSeen(resources, kInvalidIndex);
   ScratchVector<uint32_t> mergedAt;  // sized when first needed (see mergeUses)
   ScratchVector<uint32_t> ending;  // resources whose last user is the node being walked
-  for (const uint32_t node : state.out.order) {
+  const auto aliveCount = static_cast<uint32_t>(state.out.order.size());
+  for (uint32_t position = 0; position < aliveCount; ++position) {
+    const uint32_t node = state.out.order[position];
     barriers.beginNode(node);
     const size_t queueSlot = state.queueOf[node];
     const std::span<const Use> uses = state.graph.uses(node);
@@ -346,12 +369,7 @@ void walkUses(CompileState& state, bool alias) {
       endingCount += state.lastUser[r] == node ? 1 : 0;
     };
     // One use per resource: a node that uses one twice (rare) has its uses combined first.
-    bool repeats = false;
-    for (const Use& use : uses) {
-      repeats |= lastSeen[use.resource] == node;
-      lastSeen[use.resource] = node;
-    }
-    if (repeats) {
+    if (state.usesResourceTwice[position] != 0) {
       if (mergedAt.empty()) mergedAt.resize(resources);
       mergeUses(uses, merged, mergedAt);
       for (const MergedUse& use : merged) visit(use);

@@ -2,6 +2,7 @@
 // of them corrupted here: NaN normals, out-of-range indices, truncation, missing textures.
 #include <fgb/core/error.hpp>
 #include <fgb/import/model_importer.hpp>
+#include <fgb/import/module_loader.hpp>
 #include <fgb/scene/cook.hpp>
 #include <fgb/scene/load.hpp>
 #include <fgb/scene/stats.hpp>
@@ -14,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <limits>
@@ -221,4 +223,36 @@ TEST(ImportScenes, EveryModelSceneInScenesLoads) {
     EXPECT_GT(stats(loaded.scene).instancesVisible, 0u);  // the fitted camera sees the model
   }
   EXPECT_GE(modelScenes, 5u);
+}
+
+// fgbench imports through libfgb_import.so, loaded on the first cache miss: a module that cannot
+// be loaded is an input error naming it, and the loaded module cooks exactly what the linked
+// importer cooks (same cache key, same scene).
+TEST(ImportModule, MissingModuleIsAnInputErrorAndTheRealOneMatchesTheLinkedImporter) {
+  TempDir dir;
+  copyBoxGltf(dir.path());
+  std::ofstream(dir.path() / "box.json") << R"({"model": "BoxTextured.gltf", "lights": [{"position": [0, 3, 0]}]})";
+  LoadOptions options;
+  options.cacheDir = dir.path() / "cache-module";
+
+  const std::string missing = (dir.path() / "no-such-module.so").string();
+  ::setenv("FGBENCH_IMPORT_MODULE", missing.c_str(), 1);
+  fgb::import::enableModelImportOnDemand();
+  try {
+    loadScene(dir.path() / "box.json", options);
+    ADD_FAILURE() << "loading with a missing import module did not fail";
+  } catch (const fgb::InputError& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr(missing));
+  }
+
+  ::setenv("FGBENCH_IMPORT_MODULE", FGB_IMPORT_MODULE_PATH, 1);
+  const LoadedScene viaModule = loadScene(dir.path() / "box.json", options);
+  ::unsetenv("FGBENCH_IMPORT_MODULE");
+  EXPECT_EQ(viaModule.parts.at(0).cache, "miss");
+
+  fgb::import::enableModelImport();
+  options.cacheDir = dir.path() / "cache-linked";
+  const LoadedScene linked = loadScene(dir.path() / "box.json", options);
+  EXPECT_EQ(viaModule.hash, linked.hash);
+  EXPECT_EQ(stats(viaModule.scene).triangles, stats(linked.scene).triangles);
 }

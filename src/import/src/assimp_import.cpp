@@ -31,6 +31,7 @@ namespace {
 // tangent generation -- fgb::scene::repairMesh does that, and counts what it fixed.
 constexpr unsigned kPostProcess =
     aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType | aiProcess_FlipUVs;
+static_assert(kPostProcess == kImportPostProcessFlags, "the cache key's flags (import_module.hpp) must match the import's");
 constexpr unsigned kMaxNodeDepth = 256;
 
 // Records every file Assimp opens (the model, .bin buffers, .mtl libraries) for the cache.
@@ -265,10 +266,6 @@ class SceneConverter {
 
 }  // namespace
 
-std::string importerSignature() {
-  return "assimp-" + std::to_string(kPostProcess) + "-oiio-rgba8-v1";
-}
-
 scene::ImportedModel importModel(const std::filesystem::path& model) {
   ScopedWarningCapture capture;
   Assimp::Importer importer;
@@ -288,7 +285,5 @@ scene::ImportedModel importModel(const std::filesystem::path& model) {
   const std::set<std::string> opened = io->opened();
   return SceneConverter(*source, model).convert(opened);
 }
-
-void enableModelImport() { scene::setModelImporter(importerSignature(), importModel); }
 
 }  // namespace fgb::import

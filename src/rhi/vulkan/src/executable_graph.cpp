@@ -431,7 +431,6 @@ void VulkanGraph::orderSubmits() {
 
 void VulkanGraph::createSyncAndSlots() {
   const VkDevice device = device_.device();
-  const VulkanDevice* owner = &device_;
   uint32_t maxSubmits = 0;
   for (uint32_t n : compiled_.submitsPerQueue) maxSubmits = std::max(maxSubmits, n);
   valuesPerExecution_ = maxSubmits + 1;

@@ -8,6 +8,7 @@
 // fgb::InputError naming the file (and the mesh).
 #pragma once
 
+#include <fgb/import/import_module.hpp>  // importerSignature()
 #include <fgb/scene/load.hpp>
 
 #include <filesystem>
@@ -15,13 +16,11 @@
 
 namespace fgb::import {
 
-// Identifies the importer and its settings in cache keys; bump when output changes.
-std::string importerSignature();
-
 fgb::scene::ImportedModel importModel(const std::filesystem::path& model);
 
 // Registers importModel with fgb::scene::loadScene (idempotent). Call once at start-up in every
-// executable that should import models on a cache miss.
+// executable that links fgb_import and should import models on a cache miss; fgbench, which does
+// not, uses enableModelImportOnDemand() (module_loader.hpp) instead.
 void enableModelImport();
 
 }  // namespace fgb::import

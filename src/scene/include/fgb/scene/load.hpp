@@ -6,8 +6,9 @@
 // overrides and the --set knobs are applied (cheap, never cached).
 //
 // Model import (Assimp + OpenImageIO) lives in fgb_import, which registers itself with
-// setModelImporter() (call fgb::import::enableModelImport()). Without it, fgb_scene still loads
-// generators and cached models; a model cache miss is an InputError saying so.
+// setModelImporter() (call fgb::import::enableModelImport(), or enableModelImportOnDemand(), which
+// registers an importer that loads fgb_import as a module on its first call). Without it, fgb_scene
+// still loads generators and cached models; a model cache miss is an InputError saying so.
 #pragma once
 
 #include <fgb/scene/scene.hpp>

@@ -2,8 +2,8 @@
 // SSIS, submits, lifetimes, aliasing, barriers) for 100 / 1,000 / 10,000 nodes in two shapes:
 //   chain   — node i reads node i-1's output and writes a new transient; the last is a side effect;
 //   layered — layers of width 8; each node reads 2 distinct outputs of the previous layer chosen
-//             with std::mt19937(42)() % 8 and writes one new transient; the last layer is a side
-//             effect.
+//             with std::mt19937(42)() % 8 (drawn once, before timing) and writes one new
+//             transient; the last layer is a side effect.
 // Q = 1 (every class on queue 0) and Q = 3 (graphics/compute/transfer on queues 0/1/2). Node types
 // follow a fixed mix (graphics, compute, graphics, transfer, ...) in both cases.
 // Target (issue): the 10,000-node layered DAG declares and compiles in <= 1.5 ms median on one core.
@@ -11,6 +11,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include <array>
 #include <random>
 #include <string>
 #include <vector>
@@ -45,57 +46,68 @@ TextureDesc targetDesc() {
   return desc;
 }
 
-// Names are made once, outside the timed loop: building strings is not the graph's cost.
-struct Names {
-  explicit Names(uint32_t count) {
+// Everything the timed loop declares from, made once outside it: building strings and drawing
+// random numbers are not the graph's cost (the seed is fixed, so every iteration declares the
+// same graph either way).
+struct ShapeInputs {
+  explicit ShapeInputs(uint32_t count) {
     for (uint32_t i = 0; i < count; ++i) {
       nodes.push_back("node" + std::to_string(i));
       resources.push_back("tex" + std::to_string(i));
     }
+    std::mt19937 rng(42);
+    for (uint32_t layer = 1; layer < count / kLayerWidth; ++layer) {
+      for (uint32_t slot = 0; slot < kLayerWidth; ++slot) {
+        const uint32_t first = rng() % kLayerWidth;
+        uint32_t second = rng() % kLayerWidth;
+        while (second == first) second = rng() % kLayerWidth;  // two distinct outputs
+        layeredInputs.push_back({first, second});
+      }
+    }
   }
   std::vector<std::string> nodes;
   std::vector<std::string> resources;
+  // Layered shape: for each node past the first layer, the two slots of the previous layer it reads.
+  std::vector<std::array<uint32_t, 2>> layeredInputs;
 };
 
-// Declares node `i` reading `inputs` and writing a fresh transient; returns what it wrote.
-TextureHandle declareNode(FrameGraph& graph, const Names& names, uint32_t i, const TextureHandle* inputs,
-                          uint32_t inputCount, bool sideEffect) {
-  const TextureHandle target = graph.createTexture(names.resources[i], targetDesc());
+// Declares node `i` reading `reads` and writing a fresh transient; returns what it wrote.
+TextureHandle declareNode(FrameGraph& graph, const ShapeInputs& inputs, uint32_t i, const TextureHandle* reads,
+                          uint32_t readCount, bool sideEffect) {
+  const TextureHandle target = graph.createTexture(inputs.resources[i], targetDesc());
   const NodeType type = typeOf(i);
-  NodeBuilder builder = graph.addNode(names.nodes[i], type);
-  for (uint32_t k = 0; k < inputCount; ++k) builder.read(inputs[k], readAccess(type));
+  NodeBuilder builder = graph.addNode(inputs.nodes[i], type);
+  for (uint32_t k = 0; k < readCount; ++k) builder.read(reads[k], readAccess(type));
   const TextureHandle written = builder.write(target, writeAccess(type));
   if (sideEffect) builder.sideEffect();
   return written;
 }
 
-void declareChain(FrameGraph& graph, const Names& names, uint32_t count) {
+void declareChain(FrameGraph& graph, const ShapeInputs& inputs, uint32_t count) {
   TextureHandle previous{};
   for (uint32_t i = 0; i < count; ++i) {
-    previous = declareNode(graph, names, i, &previous, i == 0 ? 0 : 1, i + 1 == count);
+    previous = declareNode(graph, inputs, i, &previous, i == 0 ? 0 : 1, i + 1 == count);
   }
 }
 
-void declareLayered(FrameGraph& graph, const Names& names, uint32_t count) {
-  std::mt19937 rng(42);
-  std::vector<TextureHandle> previousLayer(kLayerWidth);
-  std::vector<TextureHandle> currentLayer(kLayerWidth);
+void declareLayered(FrameGraph& graph, const ShapeInputs& inputs, uint32_t count) {
+  std::array<TextureHandle, kLayerWidth> previousLayer{};
+  std::array<TextureHandle, kLayerWidth> currentLayer{};
   const uint32_t layers = count / kLayerWidth;
+  const std::array<uint32_t, 2>* chosen = inputs.layeredInputs.data();
   for (uint32_t layer = 0; layer < layers; ++layer) {
     const bool last = layer + 1 == layers;
     for (uint32_t slot = 0; slot < kLayerWidth; ++slot) {
       const uint32_t i = layer * kLayerWidth + slot;
-      TextureHandle inputs[2];
-      uint32_t inputCount = 0;
+      TextureHandle reads[2];
+      uint32_t readCount = 0;
       if (layer > 0) {
-        const uint32_t first = rng() % kLayerWidth;
-        uint32_t second = rng() % kLayerWidth;
-        while (second == first) second = rng() % kLayerWidth;  // two distinct outputs
-        inputs[0] = previousLayer[first];
-        inputs[1] = previousLayer[second];
-        inputCount = 2;
+        reads[0] = previousLayer[(*chosen)[0]];
+        reads[1] = previousLayer[(*chosen)[1]];
+        readCount = 2;
+        ++chosen;
       }
-      currentLayer[slot] = declareNode(graph, names, i, inputs, inputCount, last);
+      currentLayer[slot] = declareNode(graph, inputs, i, reads, readCount, last);
     }
     std::swap(previousLayer, currentLayer);
   }
@@ -108,16 +120,16 @@ CompileOptions optionsFor(uint32_t queues) {
   return options;
 }
 
-template <void (*Declare)(FrameGraph&, const Names&, uint32_t)>
+template <void (*Declare)(FrameGraph&, const ShapeInputs&, uint32_t)>
 void declareAndCompile(benchmark::State& state) {
   const auto count = static_cast<uint32_t>(state.range(0));
   const CompileOptions options = optionsFor(static_cast<uint32_t>(state.range(1)));
-  const Names names(count);
+  const ShapeInputs inputs(count);
   size_t barriers = 0;
   for (auto _ : state) {
     FrameGraph graph;
     graph.reserve(count, count);
-    Declare(graph, names, count);
+    Declare(graph, inputs, count);
     const CompiledGraph compiled = compile(graph, options);
     barriers = compiled.barriers.size();
     benchmark::DoNotOptimize(compiled.steps.data());

@@ -189,7 +189,8 @@ void FrameGraph::noteOldVersionRead(uint32_t node, uint32_t version, uint32_t la
 
 uint32_t FrameGraph::addUse(uint32_t node, uint32_t version, ResourceKind kind, Access access, StageMask stages) {
   NodeDecl& decl = nodes_[node];
-  if (node + 1 != nodes_.size()) throwUseError(decl, ": its NodeBuilder was used after the next node was added");
+  // (useStart_ has one entry more than nodes_, and its size costs no division by sizeof(NodeDecl))
+  if (node + 2 != useStart_.size()) throwUseError(decl, ": its NodeBuilder was used after the next node was added");
   if (version >= versions_.size()) throwUnknownVersion(decl, kind, version);
   const uint32_t resource = versions_[version].resource;
   ResourceDecl& res = resources_[resource];
@@ -206,22 +207,12 @@ uint32_t FrameGraph::addUse(uint32_t node, uint32_t version, ResourceKind kind, 
   if (info.writes) {
     if (version != res.latestVersion) throwStaleWrite(decl, res, version);
     writeVersion = static_cast<uint32_t>(versions_.size());
-    VersionDecl& written = versions_.emplace_back();
-    written.resource = resource;
-    written.producer = node;
-    written.previous = version;
+    versions_.emplace_back(resource, node, version);
     res.latestVersion = writeVersion;
   }
-  // Filled in place: a Use built on the stack and copied in costs a store-forwarding stall.
-  Use& use = allUses_.emplace_back();
-  use.resource = resource;
-  use.readVersion = readVersion;
-  use.writeVersion = writeVersion;
-  use.access = access;
-  use.shaderStages = stages;
-  use.stages = info.stages;
-  use.accessMask = info.access;
-  use.layout = info.layout;
+  // Constructed in place, field by field: a Use built on the stack and copied in costs a
+  // store-forwarding stall, and one default-constructed first is written twice.
+  allUses_.emplace_back(resource, readVersion, writeVersion, access, stages, info.stages, info.access, info.layout);
   ++useStart_.back();
   return info.writes ? writeVersion : version;
 }

@@ -62,7 +62,7 @@ class BarrierPlanner {
   // The uses that follow are the node's.
   void beginNode(uint32_t node) {
     queue_ = queueOf_[node];
-    step_ = state_.stepOf[node];
+    step_ = state_.out.nodes[node].step;
   }
 
   void planUse(const MergedUse& use, bool firstUse) {
@@ -106,7 +106,7 @@ class BarrierPlanner {
   // store forwarding, which cost more than all the rest of this planner.
   Barrier& add(uint32_t step, bool after, Barrier::Kind kind, uint32_t resource) {
     const uint32_t slot = step * 2 + (after ? 1u : 0u);
-    inSlotOrder_ &= lastSlot_ <= slot;
+    inSlotOrder_ &= lastSlot_ <= slot;  // (no branch: whether it still holds is as good as random)
     lastSlot_ = slot;
     slots_.push_back(slot);
     Barrier& b = found_.emplace_back();
@@ -275,8 +275,8 @@ class BarrierPlanner {
     if (inSlotOrder_) {
       barriers.swap(found_);  // (the output's old storage goes back to the pool with found_)
     } else {
-      // Where each barrier goes is sorted first (an index is cheaper to scatter than a barrier),
-      // then the barriers are appended in that order: no pass to default-construct them first.
+      // Where each barrier goes is sorted first, then the barriers are appended in that order:
+      // each is written once, where resizing first would write them all twice.
       const auto count = static_cast<uint32_t>(found_.size());
       ScratchVector<uint32_t> foundAt;
       foundAt.resize(count);  // every entry is set below
@@ -346,11 +346,10 @@ void walkUses(CompileState& state, bool alias) {
   state.stagesOnQueue.assign(size_t{resources} * kQueueClassCount, kStageNone);
   if (state.queueCount > 1) state.lastSigmaOnQueue.assign(size_t{resources} * kQueueClassCount, 0);
   ScratchVector<MergedUse> merged;
+  ScratchVector<uint32_t> lastSeen(resources, kInvalidIndex);
   ScratchVector<uint32_t> mergedAt;  // sized when first needed (see mergeUses)
   ScratchVector<uint32_t> ending;  // resources whose last user is the node being walked
-  const auto aliveCount = static_cast<uint32_t>(state.out.order.size());
-  for (uint32_t position = 0; position < aliveCount; ++position) {
-    const uint32_t node = state.out.order[position];
+  for (const uint32_t node : state.out.order) {
     barriers.beginNode(node);
     const size_t queueSlot = state.queueOf[node];
     const std::span<const Use> uses = state.graph.uses(node);
@@ -369,7 +368,12 @@ void walkUses(CompileState& state, bool alias) {
       endingCount += state.lastUser[r] == node ? 1 : 0;
     };
     // One use per resource: a node that uses one twice (rare) has its uses combined first.
-    if (state.usesResourceTwice[position] != 0) {
+    bool repeats = false;
+    for (const Use& use : uses) {
+      repeats |= lastSeen[use.resource] == node;
+      lastSeen[use.resource] = node;
+    }
+    if (repeats) {
       if (mergedAt.empty()) mergedAt.resize(resources);
       mergeUses(uses, merged, mergedAt);
       for (const MergedUse& use : merged) visit(use);

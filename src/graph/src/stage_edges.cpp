@@ -182,7 +182,8 @@ class DependencyWalk {
     ReaderRuns() {}  // NOLINT(modernize-use-equals-default): leaves the fields unset on purpose
     uint32_t run;
     uint32_t previousRun;
-    uint32_t runKey;  // queue and layout the current run shares
+    uint32_t runKey;      // queue and layout the current run shares
+    uint32_t newestNode;  // the node of the newest read (reads_[newestRead_].node, without the load)
   };
   struct Read {
     uint32_t node;
@@ -200,33 +201,35 @@ class DependencyWalk {
     for (; read != kInvalidIndex; read = reads_[read].*next) dependOn(reads_[read].node);
   }
 
+  // Whether a read is a version's first, whether it repeats the node's last, whether it starts a
+  // new run: all as good as random, so the run bookkeeping is selected rather than branched on.
   void visitRead(const Use& use) {
     const uint32_t version = use.readVersion;
     if (versions_[version].producer != kInvalidIndex) dependOn(versions_[version].producer);  // RAW
     uint32_t& newest = newestRead_[version];
-    // One entry per (node, version), like the node's first use of it (a node may read it twice).
-    if (newest != kInvalidIndex && reads_[newest].node == node_) return;
     ReaderRuns& readers = runs_[version];
-    if (newest == kInvalidIndex) readers.run = readers.previousRun = kInvalidIndex;  // its first read
+    const bool first = newest == kInvalidIndex;  // (`readers` is unset until the first read)
+    // One entry per (node, version), like the node's first use of it (a node may read it twice).
+    if (!first && readers.newestNode == node_) return;
+    uint32_t run = first ? kInvalidIndex : readers.run;
+    uint32_t previousRun = first ? kInvalidIndex : readers.previousRun;
     const auto read = static_cast<uint32_t>(reads_.size());
-    Read& added = reads_.emplace_back();  // filled in place: see add() in stage_barriers.cpp
-    added.node = node_;
-    added.nextOfVersion = newest;
-    added.nextInRun = kInvalidIndex;
+    reads_.emplace_back(node_, newest, kInvalidIndex);  // in place: see add() in stage_barriers.cpp
     newest = read;
-    if (use.writeVersion != kInvalidIndex) return;  // a read-write use is not chained (see above)
-    const bool texture = (state_.resourceTraits[use.resource] & kResourceTexture) != 0;
-    const uint32_t key = state_.queueOf[node_] << 8 | static_cast<uint32_t>(texture ? use.layout : Layout::General);
-    if (readers.run != kInvalidIndex && readers.runKey != key) {  // this reader starts the next run
-      readers.previousRun = readers.run;
-      readers.run = kInvalidIndex;
-      readers.runKey = key;
-    } else if (readers.run == kInvalidIndex) {
+    readers.newestNode = node_;
+    if (use.writeVersion == kInvalidIndex) {  // a read-write use is not chained (see above)
+      const bool texture = (state_.resourceTraits[use.resource] & kResourceTexture) != 0;
+      const uint32_t key = state_.queueOf[node_] << 8 | static_cast<uint32_t>(texture ? use.layout : Layout::General);
+      const uint32_t runKey = run == kInvalidIndex ? key : readers.runKey;
+      const bool startsNextRun = runKey != key;  // (there is a current run, of another key)
+      previousRun = startsNextRun ? run : previousRun;
+      dependOnList(previousRun, &Read::nextInRun);  // after every reader of the run before
+      reads_[read].nextInRun = startsNextRun ? kInvalidIndex : run;
+      run = read;
       readers.runKey = key;
     }
-    dependOnList(readers.previousRun, &Read::nextInRun);  // after every reader of the run before
-    reads_[read].nextInRun = readers.run;
-    readers.run = read;
+    readers.run = run;
+    readers.previousRun = previousRun;
   }
 
   void visitWrite(uint32_t version) {

@@ -36,17 +36,18 @@ void resolveResources(CompileState& state) {
   const auto& decls = state.graph.resources();
   const auto& versions = state.graph.versions();
   auto& resolved = state.out.resources;
-  resolved.resize(decls.size());
+  // Appended from the declarations, not default-constructed first and then overwritten: each is
+  // written once.
+  resolved.clear();
+  resolved.reserve(decls.size());
   state.resourceTraits.resize(decls.size());
   // A dependent field can only name a version that existed when the resource was declared, so
   // its source has a smaller index and is already resolved.
   for (size_t r = 0; r < decls.size(); ++r) {
     const ResourceDecl& decl = decls[r];
-    ResolvedResource& res = resolved[r];
+    ResolvedResource& res = resolved.emplace_back(decl.texture, decl.buffer);
     state.resourceTraits[r] = static_cast<uint8_t>((decl.kind == ResourceKind::Texture ? kResourceTexture : 0) |
                                                    (decl.imported ? kResourceImported : 0));
-    res.texture = decl.texture;
-    res.buffer = decl.buffer;
     if (decl.kind == ResourceKind::Texture && decl.texture.extentFrom.valid()) {
       const TextureDesc& source = resolved[versions[decl.texture.extentFrom.version].resource].texture;
       const uint32_t shift = decl.texture.extentShift;

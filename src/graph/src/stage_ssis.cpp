@@ -34,6 +34,46 @@ uint32_t countNewlyCovered(const QueueArray& required, const QueueArray& candida
   return (newly & 1u) + (newly >> 1 & 1u) + (newly >> 2);  // (no popcnt instruction in a generic build)
 }
 
+// `value` if `condition`, else 0, computed with a mask: the compiler keeps it branchless, where it
+// may turn a conditional expression back into a branch (and whether it holds is as good as random).
+uint32_t valueIf(bool condition, uint32_t value) { return value & (0u - static_cast<uint32_t>(condition)); }
+
+// SSIS_q(u) for every queue q other than u's own: the largest σ of a dependency of u on q (0: none).
+// Kept in registers, not indexed by queue: a store and reload through a variable index per edge
+// would chain every edge's update on the previous one's store.
+QueueArray requiredOnOtherQueues(const Edge* first, const Edge* last, const uint32_t* queueOf, const uint32_t* sigma,
+                                 uint32_t queue) {
+  static_assert(kQueueClassCount == 3);
+  uint32_t required0 = 0;
+  uint32_t required1 = 0;
+  uint32_t required2 = 0;
+  for (const Edge* e = first; e != last; ++e) {
+    const uint32_t q = queueOf[e->from];
+    const uint32_t s = valueIf(q != queue, sigma[e->from]);
+    required0 = std::max(required0, valueIf(q == 0, s));
+    required1 = std::max(required1, valueIf(q == 1, s));
+    required2 = std::max(required2, valueIf(q == 2, s));
+  }
+  return {required0, required1, required2};
+}
+
+// The dependency covering the most `uncovered` queues, ties to the larger σ: the largest
+// (cover, σ) pair, taken without branches. The dependency with the largest σ on an uncovered queue
+// always covers it, so one with a cover wins over every one without (whatever their σ).
+uint32_t bestCover(const Edge* first, const Edge* last, const uint32_t* queueOf, const uint32_t* sigma,
+                   const QueueArray* known, uint32_t queue, const QueueArray& required, uint32_t uncovered) {
+  uint64_t bestScore = 0;
+  uint32_t best = kInvalidIndex;
+  for (const Edge* e = first; e != last; ++e) {
+    const uint32_t v = e->from;
+    const uint32_t cover = valueIf(queueOf[v] != queue, countNewlyCovered(required, known[v], uncovered));
+    const uint64_t score = uint64_t{cover} << 32 | sigma[v];
+    best = valueIf(score > bestScore, v ^ best) ^ best;
+    bestScore = std::max(bestScore, score);
+  }
+  return best;
+}
+
 }  // namespace
 
 void pruneCrossQueueEdges(CompileState& state) {
@@ -47,12 +87,9 @@ void pruneCrossQueueEdges(CompileState& state) {
   const uint32_t* queueOf = state.queueOf.data();
   uint32_t* sigma = state.sigma.data();
   QueueArray* known = state.known.data();
-  // σ - 1 runs over [0, queueCount · V); nodeWithSigma inverts it.
-  ScratchVector<uint32_t> nodeWithSigma(size_t{orderSize} * state.queueCount, kInvalidIndex);
   for (uint32_t position = 0; position < orderSize; ++position) {
     const uint32_t node = order[position];
     sigma[node] = position + queueOf[node] * orderSize + 1;
-    nodeWithSigma[sigma[node] - 1] = node;
   }
 
   // What the last node so far on each queue knew (a wait blocks the rest of its queue).
@@ -63,31 +100,14 @@ void pruneCrossQueueEdges(CompileState& state) {
     have[queue] = sigma[u];
 
     // u's dependencies are edges[edgeStart[u] .. edgeEnd[u]), each one's `from`.
-    const uint32_t first = state.edgeStart[u];
-    const uint32_t last = state.edgeEnd[u];
-    QueueArray required{0, 0, 0};
-    for (uint32_t i = first; i < last; ++i) {
-      const uint32_t v = edges[i].from;
-      const uint32_t q = queueOf[v];
-      required[q] = std::max(required[q], q != queue ? sigma[v] : 0u);
-    }
-
+    const Edge* const first = edges + state.edgeStart[u];
+    const Edge* const last = edges + state.edgeEnd[u];
+    const QueueArray required = requiredOnOtherQueues(first, last, queueOf, sigma, queue);
     for (uint32_t uncovered = uncoveredQueues(required, have); uncovered != 0;
          uncovered = uncoveredQueues(required, have)) {
-      // The dependency covering the most uncovered queues, ties to the larger σ: the largest
-      // (cover, σ) pair, taken without branches (which one wins is as good as random).
-      uint64_t best = 0;
-      for (uint32_t i = first; i < last; ++i) {
-        const uint32_t v = edges[i].from;
-        const uint32_t cover = queueOf[v] == queue ? 0 : countNewlyCovered(required, known[v], uncovered);
-        const uint64_t score = cover == 0 ? 0 : uint64_t{cover} << 32 | sigma[v];
-        best = std::max(best, score);
-      }
-      // The dependency with the largest σ on an uncovered queue always covers it, so one wins;
-      // σ names it (σ is unique per node).
-      const uint32_t bestNode = nodeWithSigma[static_cast<uint32_t>(best) - 1];
-      state.out.syncEdges.push_back({bestNode, u});
-      for (uint32_t q = 0; q < kQueueClassCount; ++q) have[q] = std::max(have[q], known[bestNode][q]);
+      const uint32_t best = bestCover(first, last, queueOf, sigma, known, queue, required, uncovered);
+      state.out.syncEdges.push_back({best, u});
+      for (uint32_t q = 0; q < kQueueClassCount; ++q) have[q] = std::max(have[q], known[best][q]);
     }
     known[u] = have;
     knownOnQueue[queue] = have;

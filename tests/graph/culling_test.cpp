@@ -4,6 +4,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <vector>
+
 namespace fgb::graph::test {
 namespace {
 
@@ -71,6 +73,25 @@ TEST(Culling, CanBeTurnedOff) {
   CompileOptions options;
   options.cull = false;
   expectAllInvariants(p.graph, p.compiled, options);
+}
+
+// Culled nodes sit between alive ones in declaration order and share their levels (Debug and
+// Probe read what Shadow wrote, like Light); the sort sets them aside without a branch. Their
+// NodeInfo must say they have no place in the schedule, even where the compile before (culling
+// off) left one in the pooled storage it reuses.
+TEST(Culling, ACulledNodeHasNoPlaceInTheSchedule) {
+  { const Pipeline everything = declareWithDeadBranches(false); }  // hands its storage to the pool
+  const Pipeline p = declareWithDeadBranches(true);
+  for (const char* name : {"Debug", "Probe"}) {
+    const NodeInfo& info = p.compiled.nodes[nodeNamed(p.graph, name)];
+    EXPECT_EQ(info.level, 0u) << name;
+    EXPECT_EQ(info.orderIndex, kInvalidIndex) << name;
+    EXPECT_EQ(info.step, kInvalidIndex) << name;
+    EXPECT_EQ(info.submit, kInvalidIndex) << name;
+  }
+  EXPECT_EQ(p.compiled.order, (std::vector<uint32_t>{nodeNamed(p.graph, "Shadow"), nodeNamed(p.graph, "Light")}));
+  EXPECT_EQ(p.compiled.nodes[nodeNamed(p.graph, "Light")].orderIndex, 1u);
+  expectAllInvariants(p.graph, p.compiled, {});
 }
 
 TEST(Culling, ACulledConsumerDoesNotKeepItsProducerAlive) {

@@ -133,5 +133,40 @@ TEST(Submits, IndependentQueuesDoNotWaitOnEachOther) {
   EXPECT_TRUE(c.syncEdges.empty());
 }
 
+// No sync edges: each queue's steps are one submit however many levels they span, and a queue
+// with no steps gets none. The submits reuse the storage of an earlier compile whose submits
+// waited (pooled, see ~CompiledGraph): none of those waits may survive.
+TEST(Submits, WithoutSyncEdgesEachQueueIsOneSubmit) {
+  {
+    FrameGraph waiting;
+    const BufferHandle a = stage(waiting, "A", NodeType::Graphics, {});
+    const BufferHandle x = stage(waiting, "X", NodeType::Compute, {a});
+    stage(waiting, "B", NodeType::Graphics, {x}, true);
+    const CompiledGraph c = compile(waiting, queueOptions(2));
+    ASSERT_EQ(c.submits.size(), 3u);  // (as in PlacedAfterSignallingLevelsWithTimelineValues)
+  }
+  FrameGraph g;
+  const BufferHandle g1 = stage(g, "G1", NodeType::Graphics, {});
+  const BufferHandle g2 = stage(g, "G2", NodeType::Graphics, {g1});
+  stage(g, "G3", NodeType::Graphics, {g2}, true);
+  const BufferHandle c1 = stage(g, "C1", NodeType::Compute, {});
+  stage(g, "C2", NodeType::Compute, {c1}, true);
+  const CompiledGraph c = compile(g, queueOptions(3));
+  EXPECT_TRUE(c.syncEdges.empty());
+  ASSERT_EQ(c.submits.size(), 2u);
+  EXPECT_EQ(c.submitsPerQueue, (std::vector<uint32_t>{1, 1, 0}));
+  for (uint32_t i = 0; i < 2; ++i) {
+    const Submit& submit = c.submits[i];
+    EXPECT_EQ(submit.queue, i);
+    EXPECT_EQ(submit.signalValue, 1u);
+    EXPECT_TRUE(submit.waits.empty());
+    EXPECT_EQ(submit.stepCount, i == 0 ? 3u : 2u);
+    for (uint32_t step = submit.firstStep; step < submit.firstStep + submit.stepCount; ++step) {
+      EXPECT_EQ(c.nodes[c.steps[step].node].submit, i);
+    }
+  }
+  expectAllInvariants(g, c, queueOptions(3));
+}
+
 }  // namespace
 }  // namespace fgb::graph::test

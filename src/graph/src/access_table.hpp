@@ -54,31 +54,11 @@ inline constexpr StageMask shaderStagesOf(NodeType type) {
   return kStageAllCommands;
 }
 
-inline constexpr size_t kNodeTypeCount = 3;
-
-// kAccessTable per node type, with the shader stages of that type filled in: declaring a use with
-// no stages of its own (the usual case) is then one load.
-inline constexpr auto kAccessTableByNodeType = [] {
-  std::array<std::array<AccessInfo, kAccessTable.size()>, kNodeTypeCount> tables{};
-  for (size_t type = 0; type < kNodeTypeCount; ++type) {
-    for (size_t row = 0; row < kAccessTable.size(); ++row) {
-      AccessInfo info = kAccessTable[row];
-      if (info.stages == kStageNone) info.stages = shaderStagesOf(static_cast<NodeType>(type));
-      tables[type][row] = info;
-    }
-  }
-  return tables;
-}();
-
 inline AccessInfo lookupAccessInfo(Access access, NodeType nodeType, StageMask shaderStages) {
   const auto row = static_cast<size_t>(access);
   if (row >= kAccessTable.size()) return {true, true, kStageAllCommands, kAccessNone, Layout::General};
-  const bool shaderAccess = kAccessTable[row].stages == kStageNone;
-  const auto type = static_cast<size_t>(nodeType);
-  AccessInfo info = type < kNodeTypeCount ? kAccessTableByNodeType[type][row] : kAccessTable[row];
-  if (shaderAccess && (shaderStages != kStageNone || type >= kNodeTypeCount)) {
-    info.stages = shaderStages != kStageNone ? shaderStages : shaderStagesOf(nodeType);
-  }
+  AccessInfo info = kAccessTable[row];
+  if (info.stages == kStageNone) info.stages = shaderStages != kStageNone ? shaderStages : shaderStagesOf(nodeType);
   return info;
 }
 

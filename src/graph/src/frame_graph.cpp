@@ -47,7 +47,9 @@ const VersionDecl& FrameGraph::versionAt(uint32_t version, std::string_view what
   return versions_[version];
 }
 
-ResourceDecl& FrameGraph::addResource(std::string_view name, ResourceKind kind, bool imported) {
+// Inlined into its callers (createTexture and the like), for the same reason as addUse (below).
+[[gnu::always_inline]] inline ResourceDecl& FrameGraph::addResource(std::string_view name, ResourceKind kind,
+                                                                    bool imported) {
   const auto resource = static_cast<uint32_t>(resources_.size());
   const auto version = static_cast<uint32_t>(versions_.size());
   versions_.emplace_back().resource = resource;  // a first version: no producer, no previous
@@ -187,10 +189,13 @@ void FrameGraph::noteOldVersionRead(uint32_t node, uint32_t version, uint32_t la
   if (newest.previous != version || newest.producer != node) readsOldVersions_ = true;
 }
 
-uint32_t FrameGraph::addUse(uint32_t node, uint32_t version, ResourceKind kind, Access access, StageMask stages) {
+// Inlined into its callers (read, write, the attachments): every use pays for the call to one of
+// those already, and a second call level (saving and restoring registers once more) cost a sixth of
+// declaring a use.
+[[gnu::always_inline]] inline uint32_t FrameGraph::addUse(uint32_t node, uint32_t version, ResourceKind kind,
+                                                          Access access, StageMask stages) {
   NodeDecl& decl = nodes_[node];
-  // (useStart_ has one entry more than nodes_, and its size costs no division by sizeof(NodeDecl))
-  if (node + 2 != useStart_.size()) throwUseError(decl, ": its NodeBuilder was used after the next node was added");
+  if (node + 1 != nodes_.size()) throwUseError(decl, ": its NodeBuilder was used after the next node was added");
   if (version >= versions_.size()) throwUnknownVersion(decl, kind, version);
   const uint32_t resource = versions_[version].resource;
   ResourceDecl& res = resources_[resource];
@@ -207,12 +212,22 @@ uint32_t FrameGraph::addUse(uint32_t node, uint32_t version, ResourceKind kind, 
   if (info.writes) {
     if (version != res.latestVersion) throwStaleWrite(decl, res, version);
     writeVersion = static_cast<uint32_t>(versions_.size());
-    versions_.emplace_back(resource, node, version);
+    VersionDecl& written = versions_.emplace_back();
+    written.resource = resource;
+    written.producer = node;
+    written.previous = version;
     res.latestVersion = writeVersion;
   }
-  // Constructed in place, field by field: a Use built on the stack and copied in costs a
-  // store-forwarding stall, and one default-constructed first is written twice.
-  allUses_.emplace_back(resource, readVersion, writeVersion, access, stages, info.stages, info.access, info.layout);
+  // Filled in place: a Use built on the stack and copied in costs a store-forwarding stall.
+  Use& use = allUses_.emplace_back();
+  use.resource = resource;
+  use.readVersion = readVersion;
+  use.writeVersion = writeVersion;
+  use.access = access;
+  use.shaderStages = stages;
+  use.stages = info.stages;
+  use.accessMask = info.access;
+  use.layout = info.layout;
   ++useStart_.back();
   return info.writes ? writeVersion : version;
 }

@@ -6,21 +6,11 @@
 // queues: by a semaphore wait already in G* (the first user's `known` covers them). That is the
 // lifetime "extended across queues until the consuming queue has waited". Buffers and images never
 // share a heap, and resources share a heap only with identical memory-type bits, so placement
-// needs no granularity or type checks.
+// needs no granularity or type checks. What the walk does per transient (place, release) is in
+// transient_placer.hpp, inline; here is what it does once per heap or per walk.
 #include "transient_placer.hpp"
 
-#include <algorithm>
-
 namespace fgb::graph::detail {
-namespace {
-
-uint64_t alignUp(uint64_t value, uint64_t alignment) {
-  // Device alignments are powers of two: a mask instead of a 64-bit division on the hot path.
-  if ((alignment & (alignment - 1)) == 0) return (value + alignment - 1) & ~(alignment - 1);
-  return (value + alignment - 1) / alignment * alignment;
-}
-
-}  // namespace
 
 TransientPlacer::TransientPlacer(CompileState& state, bool alias)
     : state_(state), plan_(state.out.aliasing), alias_(alias) {
@@ -35,17 +25,6 @@ void TransientPlacer::finish() {
   for (const Heap& heap : plan_.heaps) plan_.peakBytesAliased += heap.size;
 }
 
-uint32_t TransientPlacer::heapFor(uint32_t resource, uint32_t memoryTypeBits) {
-  const ResourceKind kind =
-      (state_.resourceTraits[resource] & kResourceTexture) != 0 ? ResourceKind::Texture : ResourceKind::Buffer;
-  // Neighbours in the walk usually share a heap: try the last one first.
-  if (lastHeap_ < plan_.heaps.size() && plan_.heaps[lastHeap_].kind == kind &&
-      plan_.heaps[lastHeap_].memoryTypeBits == memoryTypeBits) {
-    return lastHeap_;
-  }
-  return findOrAddHeap(kind, memoryTypeBits);
-}
-
 uint32_t TransientPlacer::findOrAddHeap(ResourceKind kind, uint32_t memoryTypeBits) {
   for (lastHeap_ = 0; lastHeap_ < plan_.heaps.size(); ++lastHeap_) {
     const Heap& heap = plan_.heaps[lastHeap_];
@@ -54,95 +33,6 @@ uint32_t TransientPlacer::findOrAddHeap(ResourceKind kind, uint32_t memoryTypeBi
   plan_.heaps.push_back({kind, memoryTypeBits, 0, 1});
   free_.emplace_back();
   return lastHeap_;
-}
-
-// How far each queue is known to have run when `node` starts: a range whose last users on every
-// queue are within that may be reused by a resource `node` uses first. On the node's own queue,
-// queue order (plus the first-use barrier) is enough; other queues need a semaphore wait in G*.
-QueueArray TransientPlacer::reusableUpTo(uint32_t node) const {
-  constexpr uint32_t kAny = ~0u;
-  if (state_.queueCount == 1) return {kAny, kAny, kAny};
-  QueueArray limit = state_.known[node];
-  limit[state_.queueOf[node]] = kAny;
-  for (uint32_t q = state_.queueCount; q < kQueueClassCount; ++q) limit[q] = kAny;
-  return limit;
-}
-
-void TransientPlacer::place(uint32_t resource) {
-  const MemoryRequirements& req = state_.out.resources[resource].requirements;
-  const uint32_t heapIndex = heapFor(resource, req.memoryTypeBits);
-  Heap& heap = plan_.heaps[heapIndex];
-  heap.alignment = std::max(heap.alignment, req.alignment);
-  plan_.peakBytesUnaliased += alignUp(req.size, req.alignment);
-  Placement& placement = plan_.placements[resource];
-  placement.heap = heapIndex;
-  placement.size = req.size;
-  if (alias_ && takeFreeRange(free_[heapIndex], resource, req, placement)) return;
-  placement.offset = alignUp(heap.size, req.alignment);
-  heap.size = placement.offset + req.size;
-}
-
-bool TransientPlacer::takeFreeRange(ScratchVector<FreeRange>& free, uint32_t resource, const MemoryRequirements& req,
-                                    Placement& placement) {
-  const uint32_t user = state_.firstUser[resource];
-  const QueueArray limit = reusableUpTo(user);
-  const uint64_t size = req.size;
-  // The smallest range that fits (the first of equals): none can be smaller than an exact fit.
-  FreeRange* const begin = free.data();
-  FreeRange* const end = begin + free.size();
-  FreeRange* best = nullptr;
-  uint64_t bestSize = ~uint64_t{0};
-  for (FreeRange* range = begin; range != end; ++range) {
-    if (range->size < size || range->size >= bestSize) continue;  // cheap rejections first
-    if (alignUp(range->offset, req.alignment) + size > range->offset + range->size) continue;
-    if (range->lastSigma[0] > limit[0] || range->lastSigma[1] > limit[1] || range->lastSigma[2] > limit[2]) continue;
-    best = range;
-    bestSize = range->size;
-    if (bestSize == size) break;
-  }
-  if (best == nullptr) return false;
-  const uint64_t rangeStart = best->offset;
-  const uint64_t rangeEnd = best->offset + best->size;
-  placement.offset = alignUp(rangeStart, req.alignment);
-  placement.aliasedAfterStages = best->stages[state_.queueOf[user]];
-  // Padding before and the tail after stay free, still tagged with their last users: the chosen
-  // entry becomes one of them (no copies of it on the way: see add() in stage_barriers.cpp).
-  const uint64_t placedEnd = placement.offset + size;
-  const bool head = placement.offset > rangeStart;
-  const bool tail = placedEnd < rangeEnd;
-  if (!head && !tail) {  // used up exactly: the last entry takes its place
-    if (best != end - 1) *best = end[-1];
-    free.pop_back();
-    return true;
-  }
-  if (head) best->size = placement.offset - rangeStart;
-  if (tail) {
-    FreeRange* rest = best;
-    if (head) {
-      const auto index = static_cast<size_t>(best - begin);
-      free.push_back(free[index]);  // (may move the array)
-      rest = &free.back();
-    }
-    rest->offset = placedEnd;
-    rest->size = rangeEnd - placedEnd;
-  }
-  return true;
-}
-
-void TransientPlacer::release(uint32_t resource) {
-  const Placement& placement = plan_.placements[resource];
-  FreeRange& range = free_[placement.heap].emplace_back();  // filled in place
-  range.offset = placement.offset;
-  range.size = placement.size;
-  const size_t slots = size_t{resource} * kQueueClassCount;
-  const StageMask* stages = state_.stagesOnQueue.data() + slots;
-  range.stages = {stages[0], stages[1], stages[2]};
-  if (state_.queueCount > 1) {
-    const uint32_t* sigma = state_.lastSigmaOnQueue.data() + slots;
-    range.lastSigma = {sigma[0], sigma[1], sigma[2]};
-  } else {
-    range.lastSigma = {0, 0, 0};
-  }
 }
 
 }  // namespace fgb::graph::detail

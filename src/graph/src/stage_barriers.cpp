@@ -275,16 +275,9 @@ class BarrierPlanner {
     if (inSlotOrder_) {
       barriers.swap(found_);  // (the output's old storage goes back to the pool with found_)
     } else {
-      // Where each barrier goes is sorted first, then the barriers are appended in that order:
-      // each is written once, where resizing first would write them all twice.
-      const auto count = static_cast<uint32_t>(found_.size());
-      ScratchVector<uint32_t> foundAt;
-      foundAt.resize(count);  // every entry is set below
+      barriers.resize(found_.size());
       ScratchVector<uint32_t> cursor(slotStart.begin(), slotStart.end() - 1);
-      for (uint32_t i = 0; i < count; ++i) foundAt[cursor[slots_[i]]++] = i;
-      barriers.clear();
-      barriers.reserve(count);
-      for (const uint32_t i : foundAt) barriers.push_back(found_[i]);
+      for (uint32_t i = 0; i < found_.size(); ++i) barriers[cursor[slots_[i]]++] = found_[i];
     }
     for (uint32_t s = 0; s < steps.size(); ++s) {
       steps[s].before = {slotStart[2 * s], slotStart[2 * s + 1] - slotStart[2 * s]};

@@ -97,11 +97,25 @@ bool isRoot(const CompileState& state, uint32_t node) {
   return false;
 }
 
-void explainCulled(CompileState& state, const CulledReaders& culledReaders) {
+// Starts loading what describing `node` reads and writes: its diagnostic's storage and the
+// declarations of what it writes. Culled nodes are scattered, so nothing else would fetch these
+// ahead, and the loads would cost more than building the text.
+void prefetchDiagnosticOf(const CompileState& state, uint32_t node) {
+  __builtin_prefetch(state.out.nodes[node].why.data(), 1);
+  for (const Use& use : state.graph.uses(node)) {
+    if (use.writeVersion != kInvalidIndex) __builtin_prefetch(&state.graph.resources()[use.resource]);
+  }
+}
+
+// `culledNodes` in reverse declaration order (as the sweep found them).
+void explainCulled(CompileState& state, const CulledReaders& culledReaders,
+                   const ScratchVector<uint32_t>& culledNodes) {
+  constexpr size_t kLookAhead = 4;
   std::string readerNames;
   ScratchVector<uint32_t> named;
-  for (uint32_t n = 0; n < state.nodeCount; ++n) {
-    if (state.alive[n]) continue;
+  for (size_t i = culledNodes.size(); i-- > 0;) {
+    if (i >= kLookAhead) prefetchDiagnosticOf(state, culledNodes[i - kLookAhead]);
+    const uint32_t n = culledNodes[i];
     NodeInfo& info = state.out.nodes[n];
     info.culled = true;
     bool hasWrites = false;
@@ -125,12 +139,13 @@ void cullNodes(CompileState& state) {
   // A version is only ever read by nodes declared after its producer, so one sweep from the last
   // node backwards has settled every reader of a node before it reaches the node itself.
   CulledReaders culledReaders;
+  ScratchVector<uint32_t> culledNodes;
   for (uint32_t n = count; n-- > 0;) {
     state.queueOf[n] = state.options.queueOfClass[static_cast<size_t>(graph.nodes()[n].queue)];
     resetNodeInfo(state.out.nodes[n], state.queueOf[n]);
     if (!cull) continue;
     if (!state.alive[n] && !isRoot(state, n)) {
-      state.anyCulled = true;
+      culledNodes.push_back(n);
       culledReaders.add(graph, n);
       continue;
     }
@@ -141,7 +156,8 @@ void cullNodes(CompileState& state) {
       if (producer != kInvalidIndex) state.alive[producer] = 1;
     }
   }
-  if (state.anyCulled) explainCulled(state, culledReaders);
+  state.anyCulled = !culledNodes.empty();
+  if (state.anyCulled) explainCulled(state, culledReaders, culledNodes);
 }
 
 }  // namespace fgb::graph::detail

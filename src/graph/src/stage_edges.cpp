@@ -151,8 +151,7 @@ class DependencyWalk {
  public:
   explicit DependencyWalk(CompileState& state)
       : state_(state), graph_(state.graph), versions_(state.graph.versions()),
-        newestRead_(versions_.size(), kInvalidIndex), seenFor_(state.nodeCount, kInvalidIndex) {
-    runs_.resize(versions_.size());  // each entry is set at its version's first read
+        readers_(versions_.size(), VersionReaders{}), seenFor_(state.nodeCount, kInvalidIndex) {
     state.edgeStart.assign(state.nodeCount, 0);
     state.edgeEnd.assign(state.nodeCount, 0);
     state.level.assign(state.nodeCount, 0);
@@ -174,16 +173,17 @@ class DependencyWalk {
   }
 
  private:
-  // What the walk knows about a version's alive readers so far: all of them (newestRead_, a list
+  // What the walk knows about a version's alive readers so far: all of them (`newest`, a list
   // linked through reads_, newest first), and the current and previous run of the reader chain
-  // (lists of the same kind). Set at the version's first read; constructing it does nothing, so
-  // that sizing the per-version array does not write to every entry.
-  struct ReaderRuns {
-    ReaderRuns() {}  // NOLINT(modernize-use-equals-default): leaves the fields unset on purpose
-    uint32_t run;
-    uint32_t previousRun;
-    uint32_t runKey;      // queue and layout the current run shares
-    uint32_t newestNode;  // the node of the newest read (reads_[newestRead_].node, without the load)
+  // (lists of the same kind). Set up for every version before the walk, rather than at its first
+  // read: whether a read is its version's first is as good as random, and a branch on it cost
+  // more than writing the entries.
+  struct VersionReaders {
+    uint32_t newest = kInvalidIndex;
+    uint32_t newestNode = kInvalidIndex;  // reads_[newest].node, without the load
+    uint32_t run = kInvalidIndex;
+    uint32_t previousRun = kInvalidIndex;
+    uint32_t runKey = 0;  // queue and layout the current run shares (while there is one)
   };
   struct Read {
     uint32_t node;
@@ -201,35 +201,29 @@ class DependencyWalk {
     for (; read != kInvalidIndex; read = reads_[read].*next) dependOn(reads_[read].node);
   }
 
-  // Whether a read is a version's first, whether it repeats the node's last, whether it starts a
-  // new run: all as good as random, so the run bookkeeping is selected rather than branched on.
+  // Whether a read starts a new run is as good as random: the run bookkeeping is selected with a
+  // mask rather than branched on (a conditional expression compiles to a branch here).
   void visitRead(const Use& use) {
     const uint32_t version = use.readVersion;
     if (versions_[version].producer != kInvalidIndex) dependOn(versions_[version].producer);  // RAW
-    uint32_t& newest = newestRead_[version];
-    ReaderRuns& readers = runs_[version];
-    const bool first = newest == kInvalidIndex;  // (`readers` is unset until the first read)
+    VersionReaders& readers = readers_[version];
     // One entry per (node, version), like the node's first use of it (a node may read it twice).
-    if (!first && readers.newestNode == node_) return;
-    uint32_t run = first ? kInvalidIndex : readers.run;
-    uint32_t previousRun = first ? kInvalidIndex : readers.previousRun;
+    if (readers.newestNode == node_) return;
     const auto read = static_cast<uint32_t>(reads_.size());
-    reads_.emplace_back(node_, newest, kInvalidIndex);  // in place: see add() in stage_barriers.cpp
-    newest = read;
+    reads_.emplace_back(node_, readers.newest, kInvalidIndex);  // in place: see add() in stage_barriers.cpp
+    readers.newest = read;
     readers.newestNode = node_;
-    if (use.writeVersion == kInvalidIndex) {  // a read-write use is not chained (see above)
-      const bool texture = (state_.resourceTraits[use.resource] & kResourceTexture) != 0;
-      const uint32_t key = state_.queueOf[node_] << 8 | static_cast<uint32_t>(texture ? use.layout : Layout::General);
-      const uint32_t runKey = run == kInvalidIndex ? key : readers.runKey;
-      const bool startsNextRun = runKey != key;  // (there is a current run, of another key)
-      previousRun = startsNextRun ? run : previousRun;
-      dependOnList(previousRun, &Read::nextInRun);  // after every reader of the run before
-      reads_[read].nextInRun = startsNextRun ? kInvalidIndex : run;
-      run = read;
-      readers.runKey = key;
-    }
-    readers.run = run;
-    readers.previousRun = previousRun;
+    if (use.writeVersion != kInvalidIndex) return;  // a read-write use is not chained (see above)
+    const bool texture = (state_.resourceTraits[use.resource] & kResourceTexture) != 0;
+    const uint32_t key = state_.queueOf[node_] << 8 | static_cast<uint32_t>(texture ? use.layout : Layout::General);
+    const uint32_t run = readers.run;
+    // All ones if another key's run is current (this reader starts the next run), else 0.
+    const uint32_t startsNextRun = 0u - static_cast<uint32_t>((run != kInvalidIndex) & (readers.runKey != key));
+    readers.previousRun = (run & startsNextRun) | (readers.previousRun & ~startsNextRun);
+    dependOnList(readers.previousRun, &Read::nextInRun);  // after every reader of the run before
+    reads_[read].nextInRun = run | startsNextRun;  // kInvalidIndex (all ones) when it starts the next run
+    readers.run = read;
+    readers.runKey = key;
   }
 
   void visitWrite(uint32_t version) {
@@ -241,14 +235,13 @@ class DependencyWalk {
     }
     if (previous == kInvalidIndex) return;
     if (versions_[previous].producer != kInvalidIndex) dependOn(versions_[previous].producer);  // WAW
-    dependOnList(newestRead_[previous], &Read::nextOfVersion);                                   // WAR
+    dependOnList(readers_[previous].newest, &Read::nextOfVersion);                               // WAR
   }
 
   CompileState& state_;
   const FrameGraph& graph_;
   const std::vector<VersionDecl>& versions_;
-  ScratchVector<uint32_t> newestRead_;     // per version
-  ScratchVector<ReaderRuns> runs_;         // per version
+  ScratchVector<VersionReaders> readers_;  // per version
   ScratchVector<Read> reads_;
   ScratchVector<uint32_t> seenFor_;        // per node: the last node that depended on it
   uint32_t node_ = kInvalidIndex;          // the node being visited...

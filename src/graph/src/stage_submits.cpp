@@ -29,41 +29,58 @@ ScratchVector<uint32_t> groupStepsByQueue(CompileState& state) {
   return queueStart;
 }
 
-}  // namespace
+// out.submits may hold the submits of an earlier compile (see ~CompiledGraph): they are
+// overwritten one by one, keeping the capacity of their wait lists, and the rest dropped (finish).
+class SubmitList {
+ public:
+  explicit SubmitList(CompiledGraph& out) : out_(out) {}
 
-void placeSubmits(CompileState& state) {
-  CompiledGraph& out = state.out;
-  const uint32_t queues = state.queueCount;
-  ScratchVector<uint8_t> syncRole;
-  if (!out.syncEdges.empty()) {
-    syncRole.assign(state.nodeCount, 0);
-    for (const Edge& e : out.syncEdges) {
-      syncRole[e.from] |= kSyncSource;
-      syncRole[e.to] |= kSyncTarget;
-    }
-  }
-  auto roleOf = [&](uint32_t node) -> uint8_t { return syncRole.empty() ? 0 : syncRole[node]; };
-
-  const ScratchVector<uint32_t> queueStart = groupStepsByQueue(state);
-  out.submitsPerQueue.assign(queues, 0);
-  // out.submits may hold the submits of an earlier compile (see ~CompiledGraph): they are
-  // overwritten one by one, keeping the capacity of their wait lists, and the rest dropped.
-  uint32_t submitCount = 0;
-  auto openSubmit = [&](uint32_t queue, uint32_t firstStep, uint64_t signal) {
-    if (submitCount == out.submits.size()) out.submits.emplace_back();
-    Submit& submit = out.submits[submitCount++];
+  void open(uint32_t queue, uint32_t firstStep, uint64_t signal) {
+    if (count_ == out_.submits.size()) out_.submits.emplace_back();
+    Submit& submit = out_.submits[count_++];
     submit.queue = queue;
     submit.firstStep = firstStep;
     submit.stepCount = 0;
     submit.waits.clear();
     submit.signalValue = signal;
-  };
-  for (uint32_t queue = 0; queue < queues; ++queue) {
+  }
+  [[nodiscard]] Submit& last() { return out_.submits[count_ - 1]; }
+  [[nodiscard]] uint32_t lastIndex() const { return count_ - 1; }
+  void finish() { out_.submits.resize(count_); }
+
+ private:
+  CompiledGraph& out_;
+  uint32_t count_ = 0;
+};
+
+// Without sync edges no queue waits for another, so nothing ends a submit early or starts one late:
+// each queue's steps are one submit. (The general cut below would find the same, level by level.)
+void placeOneSubmitPerQueue(CompileState& state, const ScratchVector<uint32_t>& queueStart, SubmitList& submits) {
+  CompiledGraph& out = state.out;
+  for (uint32_t queue = 0; queue < state.queueCount; ++queue) {
+    const uint32_t begin = queueStart[queue];
+    const uint32_t end = queueStart[queue + 1];
+    if (begin == end) continue;
+    submits.open(queue, begin, 1);
+    submits.last().stepCount = end - begin;
+    for (uint32_t step = begin; step < end; ++step) out.nodes[out.steps[step].node].submit = submits.lastIndex();
+    out.submitsPerQueue[queue] = 1;
+  }
+}
+
+// Each queue's steps cut into submits at level boundaries (see the top of this file).
+void cutSubmitsAtSyncLevels(CompileState& state, const ScratchVector<uint32_t>& queueStart, SubmitList& submits) {
+  CompiledGraph& out = state.out;
+  ScratchVector<uint8_t> syncRole(state.nodeCount, 0);
+  for (const Edge& e : out.syncEdges) {
+    syncRole[e.from] |= kSyncSource;
+    syncRole[e.to] |= kSyncTarget;
+  }
+  for (uint32_t queue = 0; queue < state.queueCount; ++queue) {
     uint64_t signal = 0;
     bool open = false;
     auto closeSubmitAt = [&](uint32_t step) {
-      Submit& last = out.submits[submitCount - 1];
-      if (open) last.stepCount = step - last.firstStep;
+      if (open) submits.last().stepCount = step - submits.last().firstStep;
       open = false;
     };
     const uint32_t queueEnd = queueStart[queue + 1];
@@ -72,23 +89,23 @@ void placeSubmits(CompileState& state) {
       const uint32_t level = state.level[out.steps[begin].node];
       uint32_t end = begin;
       uint8_t roles = 0;
-      for (; end < queueEnd && state.level[out.steps[end].node] == level; ++end) roles |= roleOf(out.steps[end].node);
+      for (; end < queueEnd && state.level[out.steps[end].node] == level; ++end) roles |= syncRole[out.steps[end].node];
       if ((roles & kSyncTarget) != 0) closeSubmitAt(begin);
       if (!open) {
-        openSubmit(queue, begin, ++signal);
+        submits.open(queue, begin, ++signal);
         open = true;
       }
-      const uint32_t submit = submitCount - 1;
-      for (uint32_t step = begin; step < end; ++step) out.nodes[out.steps[step].node].submit = submit;
+      for (uint32_t step = begin; step < end; ++step) out.nodes[out.steps[step].node].submit = submits.lastIndex();
       if ((roles & kSyncSource) != 0) closeSubmitAt(end);
       begin = end;
     }
     closeSubmitAt(queueEnd);
     out.submitsPerQueue[queue] = static_cast<uint32_t>(signal);
   }
-  out.submits.resize(submitCount);
+}
 
-  // Waits: one per (submit, source queue), on the latest submit needed.
+// Waits: one per (submit, source queue), on the latest submit needed.
+void addWaits(CompiledGraph& out) {
   for (const Edge& e : out.syncEdges) {
     Submit& target = out.submits[out.nodes[e.to].submit];
     const Submit& source = out.submits[out.nodes[e.from].submit];
@@ -100,6 +117,21 @@ void placeSubmits(CompileState& state) {
       existing->value = source.signalValue;
     }
   }
+}
+
+}  // namespace
+
+void placeSubmits(CompileState& state) {
+  const ScratchVector<uint32_t> queueStart = groupStepsByQueue(state);
+  state.out.submitsPerQueue.assign(state.queueCount, 0);
+  SubmitList submits(state.out);
+  if (state.out.syncEdges.empty()) {
+    placeOneSubmitPerQueue(state, queueStart, submits);
+  } else {
+    cutSubmitsAtSyncLevels(state, queueStart, submits);
+  }
+  submits.finish();
+  addWaits(state.out);
 }
 
 }  // namespace fgb::graph::detail

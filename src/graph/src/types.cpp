@@ -63,13 +63,4 @@ std::string_view toString(Layout layout) {
   return "?";
 }
 
-QueueClass defaultQueue(NodeType type) {
-  switch (type) {
-    case NodeType::Graphics: return QueueClass::Graphics;
-    case NodeType::Compute: return QueueClass::Compute;
-    case NodeType::Transfer: return QueueClass::Transfer;
-  }
-  return QueueClass::Graphics;
-}
-
 }  // namespace fgb::graph

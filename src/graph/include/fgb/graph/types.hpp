@@ -117,6 +117,15 @@ std::string_view toString(Access access);
 std::string_view toString(NodeType type);
 std::string_view toString(QueueClass queue);
 std::string_view toString(Layout layout);
-QueueClass defaultQueue(NodeType type);
+
+// Inline, like isWriteAccess: declaring a node asks for it.
+constexpr QueueClass defaultQueue(NodeType type) {
+  switch (type) {
+    case NodeType::Graphics: return QueueClass::Graphics;
+    case NodeType::Compute: return QueueClass::Compute;
+    case NodeType::Transfer: return QueueClass::Transfer;
+  }
+  return QueueClass::Graphics;
+}
 
 }  // namespace fgb::graph

@@ -180,6 +180,37 @@ TEST(Barriers, SharedBuffersChangeFamilyWithoutOwnershipTransfer) {
   expectAllInvariants(g, c, options);
 }
 
+// A shared buffer whose final state is on another queue: the barrier after its last use (on a
+// transfer queue here) may name only what that queue has: the host part of the final state, none
+// of the graphics stages the next user on the final queue will wait with.
+TEST(Barriers, SharedBufferEndingOnAnotherQueueKeepsOnlyTheHostPartOfItsFinalState) {
+  for (const bool hostReads : {false, true}) {
+    FrameGraph g;
+    ImportState final{kStageVertexInput, kAccessVertexAttributeRead, Layout::Undefined, QueueClass::Graphics};
+    if (hostReads) {
+      final.stages |= kStageHost;
+      final.access |= kAccessHostRead;
+    }
+    const BufferHandle vertices = g.importBuffer("vertices", bufferDesc(), {}, {}, final);
+    g.addNode("Upload", NodeType::Transfer).write(vertices, Access::TransferDst);
+    CompileOptions options = queueOptions(3);
+    options.buffersShareFamilies = true;
+    const CompiledGraph c = compile(g, options);
+    const auto after = barriersAround(c, nodeNamed(g, "Upload"), g.resourceOf(vertices), false);
+    if (!hostReads) {
+      EXPECT_TRUE(after.empty()) << "the semaphore hands the buffer over; nothing is left for the transfer queue";
+    } else {
+      ASSERT_EQ(after.size(), 1u);
+      EXPECT_EQ(after[0].kind, Barrier::Kind::Transition);
+      EXPECT_EQ(after[0].srcStages, kStageTransfer);
+      EXPECT_EQ(after[0].dstStages, kStageHost);
+      EXPECT_EQ(after[0].dstAccess, kAccessHostRead);
+      EXPECT_EQ(after[0].srcQueue, after[0].dstQueue) << "recorded and completed on the transfer queue";
+    }
+    expectAllInvariants(g, c, options);
+  }
+}
+
 TEST(Barriers, ReadOnlyDepthAfterDepthWrite) {
   FrameGraph g;
   const TextureHandle out = importOutput(g, "out");

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <vector>
+
 namespace fgb::graph::test {
 namespace {
 
@@ -93,12 +95,12 @@ TEST(Declaration, AttachmentsRecordUsesAndAttachmentState) {
   const TextureHandle newResolve = pass.addColorTargetWithResolve(color, resolve, &newColor);
   const TextureHandle newDepth = pass.setDepthStencil(depth);
 
-  const NodeDecl& node = graph.nodes()[0];
-  ASSERT_EQ(node.colorAttachments.size(), 1u);
-  EXPECT_EQ(node.colorAttachments[0].target, newColor);
-  EXPECT_EQ(node.colorAttachments[0].resolveTarget, newResolve);
-  EXPECT_EQ(node.depthAttachment.target, newDepth);
-  EXPECT_FALSE(node.depthAttachment.readOnly);
+  const NodeAttachments& attachments = graph.attachments(0);
+  ASSERT_EQ(attachments.color.size(), 1u);
+  EXPECT_EQ(attachments.color[0].target, newColor);
+  EXPECT_EQ(attachments.color[0].resolveTarget, newResolve);
+  EXPECT_EQ(attachments.depth.target, newDepth);
+  EXPECT_FALSE(attachments.depth.readOnly);
   const auto uses = graph.uses(0);
   ASSERT_EQ(uses.size(), 3u);
   EXPECT_EQ(uses[0].access, Access::ColorAttachmentWrite);
@@ -115,22 +117,27 @@ TEST(Declaration, LoadingAttachmentsReadThePreviousContents) {
   pass.addColorTarget(color, LoadOp::Load);
   pass.setDepthStencil(depth, LoadOp::Load);
   NodeBuilder test = graph.addNode("DepthTest", NodeType::Graphics);
-  const TextureHandle latestDepth = graph.nodes()[0].depthAttachment.target;
+  const TextureHandle latestDepth = graph.attachments(0).depth.target;
   test.setDepthStencilReadOnly(latestDepth);
   EXPECT_EQ(graph.uses(0)[0].access, Access::ColorAttachmentReadWrite);
   EXPECT_EQ(graph.uses(0)[1].access, Access::DepthAttachmentReadWrite);
   EXPECT_EQ(graph.uses(1)[0].access, Access::DepthAttachmentRead);
   EXPECT_EQ(graph.uses(1)[0].writeVersion, kInvalidIndex);
-  EXPECT_TRUE(graph.nodes()[1].depthAttachment.readOnly);
+  EXPECT_TRUE(graph.attachments(1).depth.readOnly);
+  EXPECT_TRUE(graph.attachments(1).color.empty());
 }
 
 TEST(Declaration, SideEffectAndJobAreRecorded) {
   FrameGraph graph;
   int calls = 0;
   graph.addNode("Readback", NodeType::Transfer).sideEffect().setJob([&calls](JobContext&) { ++calls; });
+  graph.addNode("Jobless", NodeType::Compute);
   EXPECT_TRUE(graph.nodes()[0].sideEffect);
+  const std::vector<Job> jobs = graph.takeJobs();
+  ASSERT_EQ(jobs.size(), 2u);  // one per node, empty where none was set
+  EXPECT_FALSE(jobs[1]);
   JobContext context;
-  graph.mutableNodes()[0].job(context);
+  jobs[0](context);
   EXPECT_EQ(calls, 1);
 }
 

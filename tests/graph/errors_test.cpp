@@ -114,6 +114,27 @@ TEST(BadInput, AttachmentsNeedAGraphicsNode) {
   EXPECT_THAT(graphErrorOf([&] { node.addColorTarget(texture); }), HasSubstr("NotRaster"));
 }
 
+TEST(BadInput, ASecondDepthTargetIsAnError) {
+  FrameGraph graph;
+  const TextureHandle depth = graph.createTexture("depth", colorDesc(256, 256, Format::D32Sfloat));
+  NodeBuilder node = graph.addNode("Shadows", NodeType::Graphics);
+  const TextureHandle written = node.setDepthStencil(depth);
+  const std::string message = graphErrorOf([&] { node.setDepthStencilReadOnly(written); });
+  EXPECT_THAT(message, HasSubstr("Shadows"));
+  EXPECT_THAT(message, HasSubstr("two depth targets"));
+}
+
+TEST(BadInput, ABuilderUsedAfterTheNextNodeWasAddedIsAnError) {
+  FrameGraph graph;
+  const TextureHandle out = importOutput(graph, "out");
+  NodeBuilder first = graph.addNode("First", NodeType::Graphics);
+  graph.addNode("Second", NodeType::Graphics);
+  const std::string message = graphErrorOf([&] { first.addColorTarget(out); });
+  EXPECT_THAT(message, HasSubstr("First"));
+  EXPECT_THAT(message, HasSubstr("after the next node was added"));
+  EXPECT_TRUE(graph.attachments(0).color.empty());
+}
+
 TEST(BadInput, AQueueClassMappedPastTheQueueCountIsAnError) {
   FrameGraph graph;
   const TextureHandle out = importOutput(graph, "out");

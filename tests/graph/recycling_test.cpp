@@ -25,12 +25,13 @@ void add(Flattened& f, std::initializer_list<uint64_t> values) {
   for (const uint64_t value : values) f.values.push_back(value);
 }
 
-Flattened flatten(const CompiledGraph& c) {
+Flattened flatten(const FrameGraph& graph, const CompiledGraph& c) {
   Flattened f;
   add(f, {c.queueCount, c.nodes.size(), c.steps.size(), c.barriers.size(), c.submits.size()});
-  for (const NodeInfo& n : c.nodes) {
+  for (uint32_t node = 0; node < c.nodes.size(); ++node) {
+    const NodeInfo& n = c.nodes[node];
     add(f, {n.culled, static_cast<uint64_t>(n.reason), n.level, n.queue, n.orderIndex, n.step, n.submit});
-    f.diagnostics.push_back(n.why);
+    f.diagnostics.push_back(cullDiagnostic(graph, c, node));
   }
   for (const uint32_t node : c.order) add(f, {node});
   for (const Edge& e : c.edges) add(f, {e.from, e.to});
@@ -78,27 +79,28 @@ TEST(Recycling, ACompileGivesTheSameResultWhateverEarlierCompilesLeftInThePool) 
   const Case small = compilableCase(11, 25, 3);
   // On a fresh thread the pools are empty: the reference result.
   Flattened fresh;
-  std::thread([&] { fresh = flatten(compile(*small.random.graph, small.options)); }).join();
+  std::thread([&] { fresh = flatten(*small.random.graph, compile(*small.random.graph, small.options)); }).join();
   // Here, after larger graphs with other shapes, queue counts and culled nodes.
   for (uint32_t queues = 1; queues <= 3; ++queues) {
     const Case large = compilableCase(1000 + queues, 60, queues);
     { const CompiledGraph before = compile(*large.random.graph, large.options); }
-    EXPECT_EQ(flatten(compile(*small.random.graph, small.options)), fresh) << "after a " << queues << "-queue graph";
+    EXPECT_EQ(flatten(*small.random.graph, compile(*small.random.graph, small.options)), fresh)
+        << "after a " << queues << "-queue graph";
   }
 }
 
 TEST(Recycling, MovedAndCopiedGraphsCompileAlikeAndAMovedFromGraphCanBeRedeclared) {
   const Case c = compilableCase(77, 30, 2);
-  const Flattened expected = flatten(compile(*c.random.graph, c.options));
+  const Flattened expected = flatten(*c.random.graph, compile(*c.random.graph, c.options));
   FrameGraph copy = *c.random.graph;
-  EXPECT_EQ(flatten(compile(copy, c.options)), expected);
+  EXPECT_EQ(flatten(copy, compile(copy, c.options)), expected);
   FrameGraph moved = std::move(copy);
-  EXPECT_EQ(flatten(compile(moved, c.options)), expected);
+  EXPECT_EQ(flatten(moved, compile(moved, c.options)), expected);
   CompiledGraph compiled = compile(moved, c.options);
   const CompiledGraph compiledCopy = compiled;
   const CompiledGraph compiledMoved = std::move(compiled);
-  EXPECT_EQ(flatten(compiledCopy), expected);
-  EXPECT_EQ(flatten(compiledMoved), expected);
+  EXPECT_EQ(flatten(moved, compiledCopy), expected);
+  EXPECT_EQ(flatten(moved, compiledMoved), expected);
 
   // `copy` was moved from: it is empty, and declaring into it works like into a new graph.
   ASSERT_TRUE(copy.nodes().empty());

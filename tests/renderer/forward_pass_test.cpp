@@ -28,13 +28,12 @@ TEST(ForwardPass, OnlyTheLastPassResolves) {
   EXPECT_EQ(targets.hdr, hdrBefore);
   addForwardPass(graph, targets, "second", false);
   EXPECT_NE(targets.hdr, hdrBefore);
-  const auto& nodes = graph.nodes();
-  ASSERT_EQ(nodes.size(), 2u);
-  EXPECT_EQ(nodes[0].colorAttachments.at(0).load, graph::LoadOp::Clear);
-  EXPECT_FALSE(nodes[0].colorAttachments.at(0).resolveTarget.valid());
-  EXPECT_EQ(nodes[1].colorAttachments.at(0).load, graph::LoadOp::Load);
-  EXPECT_TRUE(nodes[1].colorAttachments.at(0).resolveTarget.valid());
-  EXPECT_TRUE(nodes[1].depthAttachment.readOnly);
+  ASSERT_EQ(graph.nodes().size(), 2u);
+  EXPECT_EQ(graph.attachments(0).color.at(0).load, graph::LoadOp::Clear);
+  EXPECT_FALSE(graph.attachments(0).color.at(0).resolveTarget.valid());
+  EXPECT_EQ(graph.attachments(1).color.at(0).load, graph::LoadOp::Load);
+  EXPECT_TRUE(graph.attachments(1).color.at(0).resolveTarget.valid());
+  EXPECT_TRUE(graph.attachments(1).depth.readOnly);
   EXPECT_THROW(addForwardPass(graph, targets, "unannounced", true), std::logic_error);
 }
 
@@ -44,7 +43,7 @@ TEST(ForwardPass, SingleSampleWritesTheHdrImageDirectly) {
   addForwardPass(graph, targets, "only", true);
   EXPECT_EQ(targets.hdr, targets.color);
   EXPECT_EQ(graph.resourceOf(targets.hdr), 0u);  // the imported image
-  EXPECT_FALSE(graph.nodes()[0].colorAttachments.at(0).resolveTarget.valid());
+  EXPECT_FALSE(graph.attachments(0).color.at(0).resolveTarget.valid());
 }
 
 }  // namespace

@@ -74,7 +74,7 @@ std::string nodeLabel(const FrameGraph& graph, const CompiledGraph& compiled, ui
   std::ostringstream s;
   s << escape(node.name);
   if (info.culled) {
-    s << "\\nculled: " << escape(info.why);
+    s << "\\nculled: " << escape(cullDiagnostic(graph, compiled, n));
     return s.str();
   }
   if (detail == DotDetail::Brief) return s.str();

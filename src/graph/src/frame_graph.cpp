@@ -3,6 +3,7 @@
 #include "access_table.hpp"
 #include "vector_pool.hpp"
 
+#include <algorithm>
 #include <string>
 
 namespace fgb::graph {
@@ -20,6 +21,8 @@ FrameGraph::FrameGraph() {
   detail::VectorPool<VersionDecl>::take(versions_);
   detail::VectorPool<Use>::take(allUses_);
   detail::VectorPool<uint32_t>::take(useStart_);
+  detail::VectorPool<AttachmentsOf>::take(attachments_);
+  detail::VectorPool<Job>::take(jobs_);
   useStart_.push_back(0);  // node 0's first use
 }
 
@@ -29,6 +32,8 @@ FrameGraph::~FrameGraph() {
   detail::VectorPool<VersionDecl>::give(versions_);
   detail::VectorPool<Use>::give(allUses_);
   detail::VectorPool<uint32_t>::give(useStart_);
+  detail::VectorPool<AttachmentsOf>::give(attachments_);
+  detail::VectorPool<Job>::give(jobs_);
 }
 
 void FrameGraph::reserve(size_t nodes, size_t resources) {
@@ -37,6 +42,25 @@ void FrameGraph::reserve(size_t nodes, size_t resources) {
   versions_.reserve(resources + nodes);
   allUses_.reserve(nodes * 3);
   useStart_.reserve(nodes + 1);
+}
+
+const NodeAttachments& FrameGraph::attachments(uint32_t node) const {
+  const auto found = std::lower_bound(attachments_.begin(), attachments_.end(), node,
+                                      [](const AttachmentsOf& entry, uint32_t n) { return entry.node < n; });
+  static const NodeAttachments kNone{};
+  return found != attachments_.end() && found->node == node ? found->attachments : kNone;
+}
+
+NodeAttachments& FrameGraph::newestNodeAttachments(uint32_t node) {
+  if (attachments_.empty() || attachments_.back().node != node) attachments_.push_back({node, {}});
+  return attachments_.back().attachments;
+}
+
+std::vector<Job> FrameGraph::takeJobs() {
+  std::vector<Job> jobs = std::move(jobs_);
+  jobs.resize(nodes_.size());
+  jobs_.clear();
+  return jobs;
 }
 
 const VersionDecl& FrameGraph::versionAt(uint32_t version, std::string_view what) const {
@@ -49,19 +73,17 @@ const VersionDecl& FrameGraph::versionAt(uint32_t version, std::string_view what
 
 // Inlined into its callers (createTexture and the like), for the same reason as addUse (below).
 [[gnu::always_inline]] inline ResourceDecl& FrameGraph::addResource(std::string_view name, ResourceKind kind,
-                                                                    bool imported) {
+                                                                    bool imported, const TextureDesc& texture,
+                                                                    const BufferDesc& buffer) {
   const auto resource = static_cast<uint32_t>(resources_.size());
   const auto version = static_cast<uint32_t>(versions_.size());
-  versions_.emplace_back().resource = resource;  // a first version: no producer, no previous
-  // Copied from a blank one rather than value-initialised in place: the compiler clears a struct
-  // this large with `rep stos`, which costs several times more per declaration than a copy.
-  static const ResourceDecl kBlank{};
-  ResourceDecl& decl = resources_.emplace_back(kBlank);
-  decl.name = name;  // the caller fills in the description
-  decl.kind = kind;
-  decl.imported = imported;
-  decl.firstVersion = version;
-  decl.latestVersion = version;
+  versions_.emplace_back(resource, kInvalidIndex, kInvalidIndex);  // a first version: no producer, no previous
+  // Every member given: value-initialising a struct this large first clears it with `rep stos`,
+  // which costs several times more per declaration than storing each member once. The name is
+  // copied in place: moving it in from a string just written costs a store-forwarding stall.
+  ResourceDecl& decl = resources_.emplace_back(std::string(), kind, imported, texture, buffer, ExternalResource{},
+                                               ImportState{}, ImportState{}, version, version);
+  decl.name = name;
   return decl;
 }
 
@@ -74,8 +96,7 @@ TextureHandle FrameGraph::importTexture(std::string_view name, const TextureDesc
                        quoted(resources_[source.resource].name));
     }
   }
-  ResourceDecl& decl = addResource(name, ResourceKind::Texture, true);
-  decl.texture = desc;
+  ResourceDecl& decl = addResource(name, ResourceKind::Texture, true, desc, {});
   decl.external = external;
   decl.initialState = initial;
   decl.finalState = final;
@@ -84,8 +105,7 @@ TextureHandle FrameGraph::importTexture(std::string_view name, const TextureDesc
 
 BufferHandle FrameGraph::importBuffer(std::string_view name, const BufferDesc& desc, ExternalResource external,
                                       ImportState initial, ImportState final) {
-  ResourceDecl& decl = addResource(name, ResourceKind::Buffer, true);
-  decl.buffer = desc;
+  ResourceDecl& decl = addResource(name, ResourceKind::Buffer, true, {}, desc);
   decl.external = external;
   decl.initialState = initial;
   decl.finalState = final;
@@ -106,9 +126,7 @@ TextureHandle FrameGraph::createTexture(std::string_view name, const TextureDesc
   } else if (desc.format == Format::Undefined) {
     throw GraphError("texture " + quoted(name) + ": format is UNDEFINED");
   }
-  ResourceDecl& decl = addResource(name, ResourceKind::Texture, false);
-  decl.texture = desc;
-  return {decl.firstVersion};
+  return {addResource(name, ResourceKind::Texture, false, desc, {}).firstVersion};
 }
 
 BufferHandle FrameGraph::createBuffer(std::string_view name, const BufferDesc& desc) {
@@ -125,9 +143,7 @@ BufferHandle FrameGraph::createBuffer(std::string_view name, const BufferDesc& d
   } else if (desc.size == 0) {
     throw GraphError("buffer " + quoted(name) + ": size is 0");
   }
-  ResourceDecl& decl = addResource(name, ResourceKind::Buffer, false);
-  decl.buffer = desc;
-  return {decl.firstVersion};
+  return {addResource(name, ResourceKind::Buffer, false, {}, desc).firstVersion};
 }
 
 NodeBuilder FrameGraph::addNode(std::string_view name, NodeType type) {
@@ -136,12 +152,7 @@ NodeBuilder FrameGraph::addNode(std::string_view name, NodeType type) {
 
 NodeBuilder FrameGraph::addNode(std::string_view name, NodeType type, QueueClass queue) {
   const auto node = static_cast<uint32_t>(nodes_.size());
-  // Copied from a blank one, like a resource (see addResource).
-  static const NodeDecl kBlank{};
-  NodeDecl& decl = nodes_.emplace_back(kBlank);
-  decl.name = name;
-  decl.type = type;
-  decl.queue = queue;
+  nodes_.emplace_back(std::string(), type, queue, false).name = name;  // in place, like a resource's name
   if (useStart_.empty()) useStart_.push_back(0);  // a moved-from graph being reused
   useStart_.push_back(useStart_.back());          // the new node's end, moved on by each of its uses
   return NodeBuilder(*this, node);
@@ -171,6 +182,14 @@ namespace {
 [[noreturn, gnu::cold, gnu::noinline]] void throwUnwrittenRead(const NodeDecl& node, const ResourceDecl& res,
                                                                uint32_t version) {
   throwUseError(node, " reads " + quoted(res.name) + " version " + std::to_string(version) + ", which nobody wrote");
+}
+
+[[noreturn, gnu::cold, gnu::noinline]] void throwReadWithWritingAccess(const NodeDecl& node, Access access) {
+  throwUseError(node, ": read() with a writing access " + std::string(toString(access)) + "; use write()");
+}
+
+[[noreturn, gnu::cold, gnu::noinline]] void throwWriteWithReadOnlyAccess(const NodeDecl& node, Access access) {
+  throwUseError(node, ": write() with a read-only access " + std::string(toString(access)) + "; use read()");
 }
 
 [[noreturn, gnu::cold, gnu::noinline]] void throwStaleWrite(const NodeDecl& node, const ResourceDecl& res,
@@ -212,22 +231,11 @@ void FrameGraph::noteOldVersionRead(uint32_t node, uint32_t version, uint32_t la
   if (info.writes) {
     if (version != res.latestVersion) throwStaleWrite(decl, res, version);
     writeVersion = static_cast<uint32_t>(versions_.size());
-    VersionDecl& written = versions_.emplace_back();
-    written.resource = resource;
-    written.producer = node;
-    written.previous = version;
+    versions_.emplace_back(resource, node, version);
     res.latestVersion = writeVersion;
   }
-  // Filled in place: a Use built on the stack and copied in costs a store-forwarding stall.
-  Use& use = allUses_.emplace_back();
-  use.resource = resource;
-  use.readVersion = readVersion;
-  use.writeVersion = writeVersion;
-  use.access = access;
-  use.shaderStages = stages;
-  use.stages = info.stages;
-  use.accessMask = info.access;
-  use.layout = info.layout;
+  // Constructed in place: a Use built on the stack and copied in costs a store-forwarding stall.
+  allUses_.emplace_back(resource, readVersion, writeVersion, access, stages, info.stages, info.access, info.layout);
   ++useStart_.back();
   return info.writes ? writeVersion : version;
 }
@@ -235,34 +243,22 @@ void FrameGraph::noteOldVersionRead(uint32_t node, uint32_t version, uint32_t la
 // ---- NodeBuilder ------------------------------------------------------------------------------
 
 TextureHandle NodeBuilder::read(TextureHandle texture, Access access, StageMask stages) {
-  if (isWriteAccess(access)) {
-    throw GraphError("node " + quoted(graph_->nodes_[node_].name) + ": read() with a writing access " +
-                     std::string(toString(access)) + "; use write()");
-  }
+  if (isWriteAccess(access)) throwReadWithWritingAccess(graph_->nodes_[node_], access);
   return {graph_->addUse(node_, texture.version, ResourceKind::Texture, access, stages)};
 }
 
 BufferHandle NodeBuilder::read(BufferHandle buffer, Access access, StageMask stages) {
-  if (isWriteAccess(access)) {
-    throw GraphError("node " + quoted(graph_->nodes_[node_].name) + ": read() with a writing access " +
-                     std::string(toString(access)) + "; use write()");
-  }
+  if (isWriteAccess(access)) throwReadWithWritingAccess(graph_->nodes_[node_], access);
   return {graph_->addUse(node_, buffer.version, ResourceKind::Buffer, access, stages)};
 }
 
 TextureHandle NodeBuilder::write(TextureHandle texture, Access access, StageMask stages) {
-  if (!isWriteAccess(access)) {
-    throw GraphError("node " + quoted(graph_->nodes_[node_].name) + ": write() with a read-only access " +
-                     std::string(toString(access)) + "; use read()");
-  }
+  if (!isWriteAccess(access)) throwWriteWithReadOnlyAccess(graph_->nodes_[node_], access);
   return {graph_->addUse(node_, texture.version, ResourceKind::Texture, access, stages)};
 }
 
 BufferHandle NodeBuilder::write(BufferHandle buffer, Access access, StageMask stages) {
-  if (!isWriteAccess(access)) {
-    throw GraphError("node " + quoted(graph_->nodes_[node_].name) + ": write() with a read-only access " +
-                     std::string(toString(access)) + "; use read()");
-  }
+  if (!isWriteAccess(access)) throwWriteWithReadOnlyAccess(graph_->nodes_[node_], access);
   return {graph_->addUse(node_, buffer.version, ResourceKind::Buffer, access, stages)};
 }
 
@@ -275,13 +271,21 @@ void requireGraphicsNode(const NodeDecl& node, std::string_view what) {
   }
 }
 
+void requireNoDepthTarget(const FrameGraph& graph, uint32_t node) {
+  const NodeDecl& decl = graph.nodes()[node];
+  requireGraphicsNode(decl, "a depth target");
+  if (graph.attachments(node).depth.target.valid()) {
+    throw GraphError("node " + quoted(decl.name) + " has two depth targets");
+  }
+}
+
 }  // namespace
 
 TextureHandle NodeBuilder::addColorTarget(TextureHandle target, LoadOp load, ClearValue clear) {
   requireGraphicsNode(graph_->nodes_[node_], "a colour target");
   const Access access = load == LoadOp::Load ? Access::ColorAttachmentReadWrite : Access::ColorAttachmentWrite;
   const TextureHandle written{graph_->addUse(node_, target.version, ResourceKind::Texture, access, kStageNone)};
-  graph_->nodes_[node_].colorAttachments.push_back({written, {}, load, StoreOp::Store, clear});
+  graph_->newestNodeAttachments(node_).color.push_back({written, {}, load, StoreOp::Store, clear});
   return written;
 }
 
@@ -292,26 +296,22 @@ TextureHandle NodeBuilder::addColorTargetWithResolve(TextureHandle target, Textu
   if (newTargetVersion != nullptr) *newTargetVersion = written;
   const TextureHandle resolved{
       graph_->addUse(node_, resolveTarget.version, ResourceKind::Texture, Access::ResolveDst, kStageNone)};
-  graph_->nodes_[node_].colorAttachments.back().resolveTarget = resolved;
+  graph_->newestNodeAttachments(node_).color.back().resolveTarget = resolved;
   return resolved;
 }
 
 TextureHandle NodeBuilder::setDepthStencil(TextureHandle target, LoadOp load, ClearValue clear) {
-  NodeDecl& node = graph_->nodes_[node_];
-  requireGraphicsNode(node, "a depth target");
-  if (node.depthAttachment.target.valid()) throw GraphError("node " + quoted(node.name) + " has two depth targets");
+  requireNoDepthTarget(*graph_, node_);
   const Access access = load == LoadOp::Load ? Access::DepthAttachmentReadWrite : Access::DepthAttachmentWrite;
   const TextureHandle written{graph_->addUse(node_, target.version, ResourceKind::Texture, access, kStageNone)};
-  graph_->nodes_[node_].depthAttachment = {written, load, StoreOp::Store, clear, false};
+  graph_->newestNodeAttachments(node_).depth = {written, load, StoreOp::Store, clear, false};
   return written;
 }
 
 void NodeBuilder::setDepthStencilReadOnly(TextureHandle target) {
-  NodeDecl& node = graph_->nodes_[node_];
-  requireGraphicsNode(node, "a depth target");
-  if (node.depthAttachment.target.valid()) throw GraphError("node " + quoted(node.name) + " has two depth targets");
+  requireNoDepthTarget(*graph_, node_);
   graph_->addUse(node_, target.version, ResourceKind::Texture, Access::DepthAttachmentRead, kStageNone);
-  graph_->nodes_[node_].depthAttachment = {target, LoadOp::Load, StoreOp::Store, {}, true};
+  graph_->newestNodeAttachments(node_).depth = {target, LoadOp::Load, StoreOp::Store, {}, true};
 }
 
 NodeBuilder& NodeBuilder::sideEffect() {
@@ -320,7 +320,9 @@ NodeBuilder& NodeBuilder::sideEffect() {
 }
 
 NodeBuilder& NodeBuilder::setJob(Job job) {
-  graph_->nodes_[node_].job = std::move(job);
+  auto& jobs = graph_->jobs_;
+  if (jobs.size() <= node_) jobs.resize(node_ + 1);
+  jobs[node_] = std::move(job);
   return *this;
 }
 

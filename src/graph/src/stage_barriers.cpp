@@ -43,26 +43,31 @@ struct TrackedState {
 };
 
 // Tracks the state of each resource through its uses, in execution order, and records the
-// barriers each use needs. Barriers are kept as they are found, each with its slot (step * 2, +1
-// for "after the node"); with one queue the slots only grow, and only otherwise (steps grouped by
-// queue, ownership releases recorded on an earlier step) do they need sorting into the steps.
+// barriers each use needs. A step's ranges need only be contiguous, not in step order: barriers
+// before a node are all found while its uses are walked, so they go straight to the output, each
+// step's run where the walk reached it. Barriers after a node (ownership releases, found at a later
+// node's use; final states of imports) are kept apart and appended grouped by step at the end.
 class BarrierPlanner {
  public:
   explicit BarrierPlanner(CompileState& state)
       : state_(state), queueOf_(state.queueOf.data()), traits_(state.resourceTraits.data()),
         familyOfQueue_(state.options.familyOfQueue), buffersShared_(state.options.buffersShareFamilies) {
-    // Most uses get one barrier (transfers two, final states one more): size it once, not by doubling.
+    // Most uses get one barrier (transfers two): size it once, not by doubling.
     const size_t uses = state.graph.allUses().size();
-    found_.reserve(uses + uses / 4);
-    slots_.reserve(found_.capacity());
+    before_.clear();
+    before_.reserve(uses + uses / 4);
     trackedStates_.resize(state.resourceCount);  // each entry is set at its resource's first use
     tracked_ = trackedStates_.data();
   }
 
-  // The uses that follow are the node's.
+  // The uses that follow are the node's; endNode() closes its range of barriers before it.
   void beginNode(uint32_t node) {
     queue_ = queueOf_[node];
     step_ = state_.out.nodes[node].step;
+    firstBefore_ = static_cast<uint32_t>(before_.size());
+  }
+  void endNode() {
+    state_.out.steps[step_].before = {firstBefore_, static_cast<uint32_t>(before_.size()) - firstBefore_};
   }
 
   void planUse(const MergedUse& use, bool firstUse) {
@@ -77,13 +82,13 @@ class BarrierPlanner {
     const bool ownerChanges = changesOwner(s.queue, queue, texture);
     const bool transitioned = s.owned && (ownerChanges || (texture && layout != s.layout));
     if (!s.owned) {
-      firstUseBarrier(resource, texture, use, queue, step);
+      firstUseBarrier(resource, texture, use, queue);
     } else if (ownerChanges) {
-      transferOwnership(resource, s, use, queue, step, layout);
+      transferOwnership(resource, s, use, queue, layout);
     } else if (s.queue != queue && !texture && buffersShared_) {
       handOverSharedBuffer(s);
     } else {
-      sameQueueHazard(resource, texture, s, use, queue, step, layout);
+      sameQueueHazard(resource, texture, s, use, queue, layout);
     }
     advance(s, use, queue, step, layout, transitioned);
   }
@@ -101,15 +106,21 @@ class BarrierPlanner {
   [[nodiscard]] bool isImported(uint32_t resource) const { return (traits_[resource] & kResourceImported) != 0; }
   [[nodiscard]] bool isTexture(uint32_t resource) const { return (traits_[resource] & kResourceTexture) != 0; }
 
-  // Appends a barrier for the slot and returns it to be filled in. Barriers (and tracked states)
-  // are built in place: copying a struct just written field by field on the stack stalls on
-  // store forwarding, which cost more than all the rest of this planner.
-  Barrier& add(uint32_t step, bool after, Barrier::Kind kind, uint32_t resource) {
-    const uint32_t slot = step * 2 + (after ? 1u : 0u);
-    inSlotOrder_ &= lastSlot_ <= slot;  // (no branch: whether it still holds is as good as random)
-    lastSlot_ = slot;
-    slots_.push_back(slot);
-    Barrier& b = found_.emplace_back();
+  // Appends a barrier before the node being walked, or after step `step`, and returns it to be
+  // filled in. Barriers (and tracked states) are built in place: copying a struct just written
+  // field by field on the stack stalls on store forwarding, which cost more than all the rest of
+  // this planner.
+  Barrier& addBefore(Barrier::Kind kind, uint32_t resource) {
+    Barrier& b = before_.emplace_back();
+    b.kind = kind;
+    b.resource = resource;
+    return b;
+  }
+  Barrier& addAfter(uint32_t step, Barrier::Kind kind, uint32_t resource) {
+    afterInStepOrder_ &= lastAfterStep_ <= step;
+    lastAfterStep_ = step;
+    afterStep_.push_back(step);
+    Barrier& b = after_.emplace_back();
     b.kind = kind;
     b.resource = resource;
     return b;
@@ -142,12 +153,12 @@ class BarrierPlanner {
     s.writeAccess = decl.initialState.access;
   }
 
-  void firstUseBarrier(uint32_t resource, bool texture, const MergedUse& use, uint32_t queue, uint32_t step) {
+  void firstUseBarrier(uint32_t resource, bool texture, const MergedUse& use, uint32_t queue) {
     const StageMask aliased = state_.out.aliasing.placements.empty()
                                   ? kStageNone
                                   : state_.out.aliasing.placements[resource].aliasedAfterStages;
     if (!texture && aliased == kStageNone) return;  // a fresh buffer needs no barrier
-    Barrier& b = add(step, false, Barrier::Kind::Transition, resource);
+    Barrier& b = addBefore(Barrier::Kind::Transition, resource);
     b.srcStages = aliased;
     b.dstStages = use.stages;
     b.dstAccess = use.access;
@@ -157,11 +168,11 @@ class BarrierPlanner {
   }
 
   void transferOwnership(uint32_t resource, const TrackedState& s, const MergedUse& use, uint32_t queue,
-                         uint32_t step, Layout layout) {
+                         Layout layout) {
     // An imported resource owned by another family before the graph was released by its owner;
     // only the acquire is ours then.
     if (s.lastStep != kInvalidIndex) {
-      Barrier& release = add(s.lastStep, true, Barrier::Kind::Release, resource);
+      Barrier& release = addAfter(s.lastStep, Barrier::Kind::Release, resource);
       release.srcStages = s.writeStages | s.readStages;
       release.srcAccess = s.writeAccess;
       release.oldLayout = s.layout;
@@ -169,7 +180,7 @@ class BarrierPlanner {
       release.srcQueue = s.queue;
       release.dstQueue = queue;
     }
-    Barrier& acquire = add(step, false, Barrier::Kind::Acquire, resource);
+    Barrier& acquire = addBefore(Barrier::Kind::Acquire, resource);
     acquire.dstStages = use.stages;
     acquire.dstAccess = use.access;
     acquire.oldLayout = s.layout;
@@ -179,7 +190,7 @@ class BarrierPlanner {
   }
 
   void sameQueueHazard(uint32_t resource, bool texture, const TrackedState& s, const MergedUse& use,
-                       uint32_t queue, uint32_t step, Layout layout) {
+                       uint32_t queue, Layout layout) {
     const bool layoutChange = texture && layout != s.layout;
     StageMask srcStages = s.writeStages;
     if (use.writes || layoutChange) {
@@ -191,7 +202,7 @@ class BarrierPlanner {
       const bool visible = (use.stages & ~s.visibleStages) == 0 && (use.access & ~s.visibleAccess) == 0;
       if (s.writeStages == kStageNone || visible) return;
     }
-    Barrier& b = add(step, false, Barrier::Kind::Transition, resource);
+    Barrier& b = addBefore(Barrier::Kind::Transition, resource);
     b.srcStages = srcStages;
     b.srcAccess = s.writeAccess;
     b.dstStages = use.stages;
@@ -250,39 +261,50 @@ class BarrierPlanner {
         s.discardsOnEntry ? s.queue : state_.options.queueOfClass[static_cast<size_t>(final.queue)];
     const Layout finalLayout = (!texture || final.layout == Layout::Undefined) ? s.layout : final.layout;
     const bool queueChange = changesOwner(s.queue, finalQueue, texture);
-    if (!queueChange && finalLayout == s.layout && final.stages == kStageNone) return;
-    Barrier& b = add(s.lastStep, true, queueChange ? Barrier::Kind::Release : Barrier::Kind::Transition, resource);
+    // A shared buffer that ends on another queue is handed over like one between nodes (see
+    // handOverSharedBuffer): whatever uses it next there waits on a semaphore, which makes the
+    // writes visible. Only availability to the host is left to a barrier here, and it must name no
+    // stage of the other queue (a transfer-only family has no vertex or fragment stages).
+    const uint32_t declaredFinalQueue = state_.options.queueOfClass[static_cast<size_t>(final.queue)];
+    const bool handedOver = !texture && buffersShared_ && declaredFinalQueue != s.queue;
+    const StageMask hostStages = kStageHost;
+    const AccessMask hostAccess = kAccessHostRead | kAccessHostWrite;
+    const StageMask dstStages = queueChange ? kStageNone : final.stages & (handedOver ? hostStages : ~0u);
+    const AccessMask dstAccess = queueChange ? kAccessNone : final.access & (handedOver ? hostAccess : ~0u);
+    if (!queueChange && finalLayout == s.layout && dstStages == kStageNone) return;
+    Barrier& b = addAfter(s.lastStep, queueChange ? Barrier::Kind::Release : Barrier::Kind::Transition, resource);
     b.srcStages = s.writeStages | s.readStages;
     b.srcAccess = s.writeAccess;
-    b.dstStages = queueChange ? kStageNone : final.stages;
-    b.dstAccess = queueChange ? kAccessNone : final.access;
+    b.dstStages = dstStages;
+    b.dstAccess = dstAccess;
     b.oldLayout = texture ? s.layout : Layout::Undefined;
     b.newLayout = texture ? finalLayout : Layout::Undefined;
     b.srcQueue = s.queue;
-    b.dstQueue = finalQueue;
+    b.dstQueue = handedOver ? s.queue : finalQueue;
   }
 
  public:
-  // Moves the barriers found into CompiledGraph::barriers in slot order (a stable counting sort,
-  // unless they came in slot order already) and sets each step's before/after ranges.
-  void emitIntoSteps() {
+  // Appends the barriers after steps to the output, grouped by step (a stable counting sort,
+  // unless they came in step order already), and sets each step's after-range.
+  void emitAfterBarriers() {
     auto& steps = state_.out.steps;
-    auto& barriers = state_.out.barriers;
-    const auto slots = static_cast<uint32_t>(steps.size() * 2);
-    ScratchVector<uint32_t> slotStart(slots + 1, 0);
-    for (const uint32_t slot : slots_) ++slotStart[slot + 1];
-    for (uint32_t i = 1; i <= slots; ++i) slotStart[i] += slotStart[i - 1];
-    if (inSlotOrder_) {
-      barriers.swap(found_);  // (the output's old storage goes back to the pool with found_)
+    const auto base = static_cast<uint32_t>(before_.size());
+    const auto stepCount = static_cast<uint32_t>(steps.size());
+    if (after_.empty()) {
+      for (Step& step : steps) step.after = {base, 0};
+      return;
+    }
+    ScratchVector<uint32_t> stepStart(size_t{stepCount} + 1, 0);
+    for (const uint32_t step : afterStep_) ++stepStart[step + 1];
+    for (uint32_t i = 1; i <= stepCount; ++i) stepStart[i] += stepStart[i - 1];
+    if (afterInStepOrder_) {
+      before_.insert(before_.end(), after_.begin(), after_.end());
     } else {
-      barriers.resize(found_.size());
-      ScratchVector<uint32_t> cursor(slotStart.begin(), slotStart.end() - 1);
-      for (uint32_t i = 0; i < found_.size(); ++i) barriers[cursor[slots_[i]]++] = found_[i];
+      before_.resize(size_t{base} + after_.size());
+      ScratchVector<uint32_t> cursor(stepStart.begin(), stepStart.end() - 1);
+      for (uint32_t i = 0; i < after_.size(); ++i) before_[base + cursor[afterStep_[i]]++] = after_[i];
     }
-    for (uint32_t s = 0; s < steps.size(); ++s) {
-      steps[s].before = {slotStart[2 * s], slotStart[2 * s + 1] - slotStart[2 * s]};
-      steps[s].after = {slotStart[2 * s + 1], slotStart[2 * s + 2] - slotStart[2 * s + 1]};
-    }
+    for (uint32_t s = 0; s < stepCount; ++s) steps[s].after = {base + stepStart[s], stepStart[s + 1] - stepStart[s]};
   }
 
  private:
@@ -295,10 +317,12 @@ class BarrierPlanner {
   uint32_t step_ = 0;
   ScratchVector<TrackedState> trackedStates_;  // per resource...
   TrackedState* tracked_ = nullptr;            // ...and its data
-  ScratchVector<Barrier> found_;               // barriers in the order found...
-  ScratchVector<uint32_t> slots_;              // ...and the slot of each (step * 2, +1: after)
-  uint32_t lastSlot_ = 0;                      // the slot of the last barrier found
-  bool inSlotOrder_ = true;
+  std::vector<Barrier>& before_ = state_.out.barriers;  // the output: barriers before steps, then after
+  uint32_t firstBefore_ = 0;                    // where the walked node's barriers before it begin
+  ScratchVector<Barrier> after_;                // barriers after steps, in the order found...
+  ScratchVector<uint32_t> afterStep_;           // ...and the step each follows
+  uint32_t lastAfterStep_ = 0;                  // the step of the last barrier after one
+  bool afterInStepOrder_ = true;
 };
 
 MergedUse mergedUseOf(const Use& use) {
@@ -373,6 +397,7 @@ void walkUses(CompileState& state, bool alias) {
     } else {
       for (const Use& use : uses) visit(mergedUseOf(use));
     }
+    barriers.endNode();
     // After the node: transients give their memory back, imports go to their final state.
     for (uint32_t i = 0; i < endingCount; ++i) {
       const uint32_t r = ending[i];
@@ -384,7 +409,7 @@ void walkUses(CompileState& state, bool alias) {
     }
   }
   placer.finish();
-  barriers.emitIntoSteps();
+  barriers.emitAfterBarriers();
 }
 
 }  // namespace

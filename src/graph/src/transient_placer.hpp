@@ -71,10 +71,13 @@ inline uint32_t TransientPlacer::heapFor(uint32_t resource, uint32_t memoryTypeB
 inline QueueArray TransientPlacer::reusableUpTo(uint32_t node) const {
   constexpr uint32_t kAny = ~0u;
   if (state_.queueCount == 1) return {kAny, kAny, kAny};
-  QueueArray limit = state_.known[node];
-  limit[state_.queueOf[node]] = kAny;
-  for (uint32_t q = state_.queueCount; q < kQueueClassCount; ++q) limit[q] = kAny;
-  return limit;
+  const QueueArray& known = state_.known[node];
+  const uint32_t own = state_.queueOf[node];
+  // Chosen per queue rather than stored through `own` into the array: that store, reloaded at
+  // once, stalled the walk.
+  auto limit = [&](uint32_t q) { return (q == own || q >= state_.queueCount) ? kAny : known[q]; };
+  static_assert(kQueueClassCount == 3);
+  return {limit(0), limit(1), limit(2)};
 }
 
 inline void TransientPlacer::place(uint32_t resource) {

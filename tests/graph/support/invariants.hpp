@@ -31,7 +31,8 @@ class HappensBefore {
 };
 
 Problems checkDeclaration(const GraphModel& expected, const FrameGraph& graph);
-Problems checkCulling(const GraphModel& model, const Reference& ref, const CompiledGraph& compiled);
+Problems checkCulling(const GraphModel& model, const FrameGraph& graph, const Reference& ref,
+                      const CompiledGraph& compiled);
 Problems checkOrderAndLevels(const GraphModel& model, const Reference& ref, const CompiledGraph& compiled);
 Problems checkQueuesAndSync(const GraphModel& model, const Reference& ref, const CompiledGraph& compiled,
                             const CompileOptions& options);

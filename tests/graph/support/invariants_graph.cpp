@@ -116,7 +116,8 @@ Problems checkDeclaration(const GraphModel& expected, const FrameGraph& graph) {
   return problems;
 }
 
-Problems checkCulling(const GraphModel& model, const Reference& ref, const CompiledGraph& compiled) {
+Problems checkCulling(const GraphModel& model, const FrameGraph& graph, const Reference& ref,
+                      const CompiledGraph& compiled) {
   Problems problems;
   for (uint32_t n = 0; n < model.nodeCount(); ++n) {
     const NodeInfo& info = compiled.nodes[n];
@@ -133,11 +134,12 @@ Problems checkCulling(const GraphModel& model, const Reference& ref, const Compi
                                     [n](const ModelUse& u) { return u.node == n && u.writes(); });
     const CullReason expected = writes ? CullReason::OutputsUnread : CullReason::NoOutputs;
     if (info.reason != expected) problems.push_back("'" + model.nodeName[n] + "' culled for the wrong reason");
-    if (info.why.empty()) problems.push_back("culled '" + model.nodeName[n] + "' has no diagnostic");
+    const std::string why = cullDiagnostic(graph, compiled, n);
+    if (why.empty()) problems.push_back("culled '" + model.nodeName[n] + "' has no diagnostic");
     for (const ModelUse& use : model.uses) {  // "writes X, nobody alive reads it" must name X
-      if (use.node == n && use.writes() && info.why.find("'" + model.resourceName[use.resource] + "'") == std::string::npos) {
-        problems.push_back("diagnostic for culled '" + model.nodeName[n] + "' does not name what it writes: " +
-                           info.why);
+      const std::string written = "'" + model.resourceName[use.resource] + "'";
+      if (use.node == n && use.writes() && why.find(written) == std::string::npos) {
+        problems.push_back("diagnostic for culled '" + model.nodeName[n] + "' does not name what it writes: " + why);
       }
     }
   }
@@ -240,7 +242,7 @@ Problems checkEverything(const GraphModel& model, const FrameGraph& graph, const
                          const CompiledGraph& compiled, const CompileOptions& options) {
   Problems all;
   auto append = [&all](const Problems& some) { all.insert(all.end(), some.begin(), some.end()); };
-  append(checkCulling(model, ref, compiled));
+  append(checkCulling(model, graph, ref, compiled));
   if (!all.empty()) return all;  // later checks assume the alive set is right
   append(checkOrderAndLevels(model, ref, compiled));
   if (!all.empty()) return all;

@@ -33,7 +33,7 @@ VulkanGraph::VulkanGraph(VulkanDevice& device, graph::FrameGraph&& graph, const 
   try {
     mapQueues(options.queues, options.separateQueues);
     compiled_ = graph::compile(declaration_, compileOptions());
-    for (auto& node : declaration_.mutableNodes()) jobs_.push_back(std::move(node.job));
+    jobs_ = declaration_.takeJobs();
     createResources();
     translateBarriers();
     translateRendering();
@@ -328,15 +328,17 @@ void VulkanGraph::listTouchedHeaps() {
 void VulkanGraph::translateRendering() {
   // Count first: attachments_ must not reallocate once steps point into it.
   size_t count = 0;
-  for (const auto& node : declaration_.nodes()) count += node.colorAttachments.size() + 2;
+  for (uint32_t n = 0; n < declaration_.nodes().size(); ++n) {
+    count += declaration_.attachments(n).color.size() + 2;
+  }
   attachments_.clear();
   attachments_.reserve(count);
   for (auto& step : steps_) {
-    const graph::NodeDecl& node = declaration_.nodes()[step.node];
-    if (node.type != graph::NodeType::Graphics) continue;
+    if (declaration_.nodes()[step.node].type != graph::NodeType::Graphics) continue;
+    const graph::NodeAttachments& declared = declaration_.attachments(step.node);
     const size_t first = attachments_.size();
     graph::Extent extent{0, 0, 1};
-    for (const auto& color : node.colorAttachments) {
+    for (const auto& color : declared.color) {
       const TextureRecord& target = device_.texture(textureOf(color.target));
       auto info = vkStruct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
       info.imageView = target.view.get();
@@ -356,7 +358,7 @@ void VulkanGraph::translateRendering() {
     }
     step.renderingInfo.colorAttachmentCount = static_cast<uint32_t>(attachments_.size() - first);
     step.renderingInfo.pColorAttachments = step.renderingInfo.colorAttachmentCount ? &attachments_[first] : nullptr;
-    const graph::DepthAttachment& depth = node.depthAttachment;
+    const graph::DepthAttachment& depth = declared.depth;
     if (depth.target.valid()) {
       const TextureRecord& target = device_.texture(textureOf(depth.target));
       auto info = vkStruct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);

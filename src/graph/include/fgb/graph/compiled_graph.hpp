@@ -22,10 +22,11 @@ enum class CullReason : uint8_t {
   NoOutputs,         // declares no writes and no side effect
 };
 
+// The text saying why a node was culled is built on demand by cullDiagnostic() (below): compiling
+// builds none, as most culled nodes of a frame are never described to anyone.
 struct NodeInfo {
   bool culled = false;
   CullReason reason = CullReason::Alive;
-  std::string why;             // human-readable diagnostic for culled nodes
   uint32_t level = 0;          // longest-path dependency level (alive nodes)
   uint32_t queue = 0;          // queue index in [0, queueCount)
   uint32_t orderIndex = kInvalidIndex;  // position in CompiledGraph::order
@@ -152,5 +153,10 @@ struct CompiledGraph {
   std::vector<Lifetime> lifetimes;           // per resource (in step indices)
   AliasingPlan aliasing;
 };
+
+// Why `node` was culled, for a person: "writes 'a' v3, 'b' v5, none imported; nothing reads them",
+// "...; read only by culled nodes 'x', 'y'", or "declares no writes and no side effect". Empty for a
+// node that was not culled. Scans the uses of the nodes declared after `node`.
+std::string cullDiagnostic(const FrameGraph& graph, const CompiledGraph& compiled, uint32_t node);
 
 }  // namespace fgb::graph

@@ -18,6 +18,18 @@
 
 namespace fgb::graph {
 
+// Wall time of each compiler stage, summed over the compiles it was handed to (see
+// CompileOptions::profile). Indexed by CompileStage.
+enum class CompileStage : uint8_t {
+  Resources, Cull, Dependencies, Sort, Ssis, Submits, Lifetimes, Barriers, Count
+};
+const char* toString(CompileStage stage);
+
+struct CompileProfile {
+  std::array<double, static_cast<size_t>(CompileStage::Count)> microseconds{};
+  uint64_t compiles = 0;
+};
+
 struct CompileOptions {
   uint32_t queueCount = 1;
   // Queue index for each QueueClass (Graphics, Compute, Transfer); each must be < queueCount.
@@ -31,6 +43,8 @@ struct CompileOptions {
   bool alias = true;
   // Size/alignment/memory types of a transient resource (backend: vkGet*MemoryRequirements).
   std::function<MemoryRequirements(const ResourceDecl&, const ResolvedResource&)> requirements;
+  // When set, each stage's wall time is added to it (benchmarks; off by default: no clock reads).
+  CompileProfile* profile = nullptr;
 };
 
 // Simple requirements model for tests and when no device is present: tightly packed texels

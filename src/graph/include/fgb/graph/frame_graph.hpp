@@ -143,16 +143,21 @@ struct VersionDecl {
   uint32_t previous = kInvalidIndex;  // version it was written over
 };
 
+// The attachments of a graphics node (FrameGraph::attachments).
+struct NodeAttachments {
+  std::vector<ColorAttachment> color;
+  DepthAttachment depth{};  // target invalid if none
+};
+
 struct NodeDecl {
   std::string name;
   NodeType type = NodeType::Graphics;
   QueueClass queue = QueueClass::Graphics;
   bool sideEffect = false;
-  // The node's uses live in one flat array for all nodes (FrameGraph::uses(node), allUses()):
-  // declaring 10,000 nodes must not cost 10,000 allocations.
-  std::vector<ColorAttachment> colorAttachments;  // graphics nodes only
-  DepthAttachment depthAttachment{};              // graphics nodes only; target invalid if none
-  Job job;
+  // The rest of a node lives in FrameGraph, apart from NodeDecl, which every node declared pays
+  // for: its uses in one flat array for all nodes (FrameGraph::uses, allUses: declaring 10,000
+  // nodes must not cost 10,000 allocations), its attachments (FrameGraph::attachments: most nodes
+  // have none) and its job (FrameGraph::takeJobs: the compiler never looks at it).
 };
 
 class FrameGraph;
@@ -224,12 +229,18 @@ class FrameGraph {
   [[nodiscard]] bool readsOldVersions() const { return readsOldVersions_; }
   [[nodiscard]] uint32_t resourceOf(TextureHandle h) const { return versionAt(h.version, "texture").resource; }
   [[nodiscard]] uint32_t resourceOf(BufferHandle h) const { return versionAt(h.version, "buffer").resource; }
-  // Jobs are moved out by the backend when it builds an executable graph.
-  std::vector<NodeDecl>& mutableNodes() { return nodes_; }
+  // No colour target and an invalid depth target for a node that declared none.
+  [[nodiscard]] const NodeAttachments& attachments(uint32_t node) const;
+  // Moves the jobs out (indexed by node; empty where none was set): the backend keeps them when it
+  // builds an executable graph.
+  std::vector<Job> takeJobs();
 
  private:
   friend class NodeBuilder;
-  ResourceDecl& addResource(std::string_view name, ResourceKind kind, bool imported);
+  // The attachments of `node`, the newest node, created on first use.
+  NodeAttachments& newestNodeAttachments(uint32_t node);
+  ResourceDecl& addResource(std::string_view name, ResourceKind kind, bool imported, const TextureDesc& texture,
+                            const BufferDesc& buffer);
   uint32_t addUse(uint32_t node, uint32_t version, ResourceKind kind, Access access, StageMask stages);
   void noteOldVersionRead(uint32_t node, uint32_t version, uint32_t latest);
   const VersionDecl& versionAt(uint32_t version, std::string_view what) const;
@@ -241,6 +252,14 @@ class FrameGraph {
   // Node n's uses are allUses_[useStart_[n], useStart_[n + 1]). Kept apart from NodeDecl, which
   // is large: the compiler walks uses node by node and should not touch the rest of a node.
   std::vector<uint32_t> useStart_;
+  // Only the nodes that declared attachments, in node order (so a lookup is a binary search).
+  struct AttachmentsOf {
+    uint32_t node;
+    NodeAttachments attachments;
+  };
+  std::vector<AttachmentsOf> attachments_;
+  // Job of node n at jobs_[n]; nodes from jobs_.size() on have none.
+  std::vector<Job> jobs_;
   bool readsOldVersions_ = false;
 };
 

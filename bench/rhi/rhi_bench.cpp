@@ -36,9 +36,12 @@ using namespace fgb::graph;
 
 constexpr uint32_t kLayerWidth = 8;
 
+// Made on first use, destroyed by main() before it returns: as static destructors they would run
+// after the driver's own exit handlers (the NVIDIA driver then crashed the process at exit).
+std::unique_ptr<rhi::Device> benchDevices[2];
+
 rhi::Device& benchDevice(bool labels) {
-  static std::unique_ptr<rhi::Device> devices[2];
-  auto& device = devices[labels ? 1 : 0];
+  auto& device = benchDevices[labels ? 1 : 0];
   if (!device) {
     const char* selector = std::getenv("FGBENCH_BENCH_DEVICE");
     device = vulkan::createDevice({.selector = selector ? selector : "auto", .validation = false, .debugLabels = labels});
@@ -170,4 +173,11 @@ BENCHMARK(executeOnly<layered, true>)
 
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  for (auto& device : benchDevices) device.reset();
+  return 0;
+}

@@ -85,7 +85,7 @@ class BarrierPlanner {
       firstUseBarrier(resource, texture, use, queue);
     } else if (ownerChanges) {
       transferOwnership(resource, s, use, queue, layout);
-    } else if (s.queue != queue && !texture && buffersShared_) {
+    } else if (handsOverSharedBuffer(s.queue, queue, texture)) {
       handOverSharedBuffer(s);
     } else {
       sameQueueHazard(resource, texture, s, use, queue, layout);
@@ -102,6 +102,11 @@ class BarrierPlanner {
   // shared by every family (CompileOptions::buffersShareFamilies) never need one.
   [[nodiscard]] bool changesOwner(uint32_t from, uint32_t to, bool texture) const {
     return (texture || !buffersShared_) && familyOf(from) != familyOf(to);
+  }
+  // Whether moving a resource between these queues hands a shared buffer over (see
+  // handOverSharedBuffer): a semaphore orders and makes visible what crosses, not a barrier.
+  [[nodiscard]] bool handsOverSharedBuffer(uint32_t from, uint32_t to, bool texture) const {
+    return !texture && buffersShared_ && from != to;
   }
   [[nodiscard]] bool isImported(uint32_t resource) const { return (traits_[resource] & kResourceImported) != 0; }
   [[nodiscard]] bool isTexture(uint32_t resource) const { return (traits_[resource] & kResourceTexture) != 0; }
@@ -257,20 +262,19 @@ class BarrierPlanner {
     const ResourceDecl& decl = state_.graph.resources()[resource];
     if (s.lastStep == kInvalidIndex) return;
     const ImportState& final = decl.finalState;
-    const uint32_t finalQueue =
-        s.discardsOnEntry ? s.queue : state_.options.queueOfClass[static_cast<size_t>(final.queue)];
+    const uint32_t declaredFinalQueue = state_.options.queueOfClass[static_cast<size_t>(final.queue)];
+    const uint32_t finalQueue = s.discardsOnEntry ? s.queue : declaredFinalQueue;
     const Layout finalLayout = (!texture || final.layout == Layout::Undefined) ? s.layout : final.layout;
     const bool queueChange = changesOwner(s.queue, finalQueue, texture);
-    // A shared buffer that ends on another queue is handed over like one between nodes (see
-    // handOverSharedBuffer): whatever uses it next there waits on a semaphore, which makes the
-    // writes visible. Only availability to the host is left to a barrier here, and it must name no
-    // stage of the other queue (a transfer-only family has no vertex or fragment stages).
-    const uint32_t declaredFinalQueue = state_.options.queueOfClass[static_cast<size_t>(final.queue)];
-    const bool handedOver = !texture && buffersShared_ && declaredFinalQueue != s.queue;
-    const StageMask hostStages = kStageHost;
-    const AccessMask hostAccess = kAccessHostRead | kAccessHostWrite;
-    const StageMask dstStages = queueChange ? kStageNone : final.stages & (handedOver ? hostStages : ~0u);
-    const AccessMask dstAccess = queueChange ? kAccessNone : final.access & (handedOver ? hostAccess : ~0u);
+    // A shared buffer that ends on another queue is handed over like one between nodes: whatever
+    // uses it next there waits on a semaphore, which makes the writes visible. Only availability to
+    // the host is left to a barrier here, and it must name no stage of the other queue (a
+    // transfer-only family has no vertex or fragment stages).
+    const bool handedOver = handsOverSharedBuffer(s.queue, declaredFinalQueue, texture);
+    const StageMask stagesKept = handedOver ? StageMask{kStageHost} : ~StageMask{0};
+    const AccessMask accessKept = handedOver ? AccessMask{kAccessHostRead | kAccessHostWrite} : ~AccessMask{0};
+    const StageMask dstStages = queueChange ? kStageNone : final.stages & stagesKept;
+    const AccessMask dstAccess = queueChange ? kAccessNone : final.access & accessKept;
     if (!queueChange && finalLayout == s.layout && dstStages == kStageNone) return;
     Barrier& b = addAfter(s.lastStep, queueChange ? Barrier::Kind::Release : Barrier::Kind::Transition, resource);
     b.srcStages = s.writeStages | s.readStages;

@@ -45,20 +45,32 @@ inline constexpr std::array<AccessInfo, 17> kAccessTable = [] {
   return table;
 }();
 
-inline constexpr StageMask shaderStagesOf(NodeType type) {
-  switch (type) {
-    case NodeType::Graphics: return kStageVertexShader | kStageFragmentShader;
-    case NodeType::Compute: return kStageComputeShader;
-    case NodeType::Transfer: return kStageTransfer;
-  }
-  return kStageAllCommands;
+// The shader stages of each node type, by NodeType value.
+inline constexpr std::array<StageMask, 3> kShaderStagesOfType = {
+    kStageVertexShader | kStageFragmentShader,  // Graphics
+    kStageComputeShader,                        // Compute
+    kStageTransfer,                             // Transfer
+};
+
+inline StageMask shaderStagesOf(NodeType type) {
+  const auto index = static_cast<size_t>(type);
+  return index < kShaderStagesOfType.size() ? kShaderStagesOfType[index] : kStageAllCommands;
 }
 
+// `value` where `mask` is all ones, `otherwise` where it is zero.
+inline StageMask selectStages(StageMask mask, StageMask value, StageMask otherwise) {
+  return (value & mask) | (otherwise & ~mask);
+}
+
+// Without branches on what the row or the node type is: node types and accesses of consecutive
+// uses follow no pattern a predictor can learn.
 inline AccessInfo lookupAccessInfo(Access access, NodeType nodeType, StageMask shaderStages) {
   const auto row = static_cast<size_t>(access);
   if (row >= kAccessTable.size()) return {true, true, kStageAllCommands, kAccessNone, Layout::General};
   AccessInfo info = kAccessTable[row];
-  if (info.stages == kStageNone) info.stages = shaderStages != kStageNone ? shaderStages : shaderStagesOf(nodeType);
+  const StageMask declared = 0u - static_cast<StageMask>(shaderStages != kStageNone);  // all ones if given
+  const StageMask shader = selectStages(declared, shaderStages, shaderStagesOf(nodeType));
+  info.stages = selectStages(0u - static_cast<StageMask>(info.stages == kStageNone), shader, info.stages);
   return info;
 }
 

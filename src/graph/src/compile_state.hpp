@@ -49,6 +49,15 @@ enum ResourceTraits : uint8_t {
   kResourceImported = 1u << 1,
 };
 
+// Where a node stands among the queues, for SSIS and placement: σ(u) = order position + queue·V + 1
+// (V alive nodes) numbers each queue's nodes contiguously, so σ alone also tells u's queue; `known`
+// holds, per queue, the largest σ that u is ordered after. One record per node: SSIS reads both
+// for every dependency, which then costs one load.
+struct alignas(16) SyncPoint {
+  QueueArray known;
+  uint32_t sigma;
+};
+
 struct CompileState {
   CompileState(const FrameGraph& g, const CompileOptions& o, CompiledGraph& c)
       : graph(g), options(o), out(c), nodeCount(static_cast<uint32_t>(g.nodes().size())),
@@ -63,6 +72,7 @@ struct CompileState {
 
   ScratchVector<uint8_t> resourceTraits;  // per resource: ResourceTraits bits
   ScratchVector<uint8_t> alive;           // per node
+  ScratchVector<uint32_t> aliveUses;      // per resource: how many uses alive nodes make of it
   bool anyCulled = false;
   ScratchVector<uint32_t> queueOf;        // per node: queue index
   // Per node: its dependencies are out.edges[edgeStart[n] .. edgeEnd[n]) (the edges into n).
@@ -70,23 +80,17 @@ struct CompileState {
   ScratchVector<uint32_t> edgeEnd;
   ScratchVector<uint32_t> level;          // per node: longest-path level (alive nodes)
   uint32_t maxLevel = 0;
-  ScratchVector<uint32_t> sigma;          // per node: SSIS re-index σ(u) = order position + queue·V + 1
-  ScratchVector<QueueArray> known;        // per node: per queue, the largest σ the node is ordered after
-  // Per resource: the first and last alive user in execution order (kInvalidIndex: none).
-  ScratchVector<uint32_t> firstUser;
-  ScratchVector<uint32_t> lastUser;
-  ScratchVector<uint32_t> lastSigmaOnQueue;  // per resource × queue: largest σ of a user on that queue
-  ScratchVector<StageMask> stagesOnQueue;    // per resource × queue: stages used on that queue
+  ScratchVector<SyncPoint> sync;          // per node, with several queues (see SyncPoint)
 };
 
 // Stages, in pipeline order.
 void resolveResources(CompileState& state);      // dependent fields, resourceTraits
-void cullNodes(CompileState& state);             // queues, alive + NodeInfo reasons
+void cullNodes(CompileState& state);             // queues, alive + NodeInfo reasons, aliveUses
 void buildDependencies(CompileState& state);     // RAW/WAR/WAW + reader-chain edges, levels; cycles
 void sortByLevel(CompileState& state);           // order
 void pruneCrossQueueEdges(CompileState& state);  // SSIS → syncEdges, known
 void placeSubmits(CompileState& state);          // steps + submits + waits
-void computeLifetimes(CompileState& state);      // lifetimes, first/last users, requirements
-void placeAndPlanBarriers(CompileState& state);  // aliasing plan + barriers, in one walk
+// Lifetimes, memory requirements, aliasing plan and barriers, in one walk over the order.
+void placeAndPlanBarriers(CompileState& state);
 
 }  // namespace fgb::graph::detail

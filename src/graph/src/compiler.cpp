@@ -58,7 +58,7 @@ class StageRunner {
 
 const char* toString(CompileStage stage) {
   static constexpr const char* kNames[] = {"resources", "cull",      "dependencies", "sort",
-                                           "ssis",      "submits",   "lifetimes",    "barriers"};
+                                           "ssis",      "submits",   "barriers"};
   static_assert(std::size(kNames) == static_cast<size_t>(CompileStage::Count));
   const auto index = static_cast<size_t>(stage);
   return index < std::size(kNames) ? kNames[index] : "?";
@@ -95,7 +95,6 @@ CompiledGraph compile(const FrameGraph& graph, const CompileOptions& options) {
   stages.run(CompileStage::Sort, detail::sortByLevel);
   stages.run(CompileStage::Ssis, detail::pruneCrossQueueEdges);
   stages.run(CompileStage::Submits, detail::placeSubmits);
-  stages.run(CompileStage::Lifetimes, detail::computeLifetimes);
   stages.run(CompileStage::Barriers, detail::placeAndPlanBarriers);
   return out;
 }

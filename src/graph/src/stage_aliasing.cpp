@@ -12,8 +12,8 @@
 
 namespace fgb::graph::detail {
 
-TransientPlacer::TransientPlacer(CompileState& state, bool alias)
-    : state_(state), plan_(state.out.aliasing), alias_(alias) {
+TransientPlacer::TransientPlacer(CompileState& state, bool alias, bool resolveRequirements)
+    : state_(state), plan_(state.out.aliasing), alias_(alias), resolveRequirements_(resolveRequirements) {
   plan_.placements.assign(state.resourceCount, {});
   plan_.heaps.clear();
   plan_.peakBytesAliased = 0;

@@ -26,20 +26,32 @@ struct MergedUse {
   bool writes;
 };
 
-// Set at the resource's first use (setInitialState) and only read after: constructing it does
-// nothing, so that sizing the per-resource array does not write 40 bytes per resource.
+// Set at the resource's first use (setInitialState) and only read after.
 struct TrackedState {
-  TrackedState() {}  // NOLINT(modernize-use-equals-default): leaves the fields unset on purpose
   bool owned;            // false: transient before its first use (contents undefined)
   bool discardsOnEntry;  // imported, but first overwritten without being read (see below)
-  uint32_t queue;
   Layout layout;
+  uint8_t queue;
   StageMask writeStages;
   AccessMask writeAccess;
   StageMask readStages;     // reads since the last write
   StageMask visibleStages;  // the last write was made visible to these stages...
   AccessMask visibleAccess;  // ...and accesses
   uint32_t lastStep;
+};
+static_assert(kQueueClassCount <= 256, "TrackedState::queue is a byte");
+
+// Everything the walk keeps about one resource, in one cache line: a use touches one line rather
+// than one per array (which cost more than the work done with them). Constructing it does nothing:
+// walkUses() sets what must start set, the rest is set at the resource's first use.
+struct alignas(64) ResourceWalk {
+  ResourceWalk() {}  // NOLINT(modernize-use-equals-default): leaves the fields unset on purpose
+  TrackedState tracked;
+  std::array<StageMask, kQueueClassCount> stagesOnQueue;  // stages used on each queue
+  QueueArray lastSigmaOnQueue;                            // largest σ of a user on each queue
+  uint32_t usesLeft;  // alive uses not walked yet: 0 after the last user's
+  uint32_t lastSeen;  // the last node seen using it (to find a node that uses it twice)
+  bool started;       // its first user was walked
 };
 
 // Tracks the state of each resource through its uses, in execution order, and records the
@@ -49,20 +61,18 @@ struct TrackedState {
 // node's use; final states of imports) are kept apart and appended grouped by step at the end.
 class BarrierPlanner {
  public:
-  explicit BarrierPlanner(CompileState& state)
-      : state_(state), queueOf_(state.queueOf.data()), traits_(state.resourceTraits.data()),
+  BarrierPlanner(CompileState& state, ResourceWalk* walk)
+      : state_(state), walk_(walk), traits_(state.resourceTraits.data()),
         familyOfQueue_(state.options.familyOfQueue), buffersShared_(state.options.buffersShareFamilies) {
     // Most uses get one barrier (transfers two): size it once, not by doubling.
     const size_t uses = state.graph.allUses().size();
     before_.clear();
     before_.reserve(uses + uses / 4);
-    trackedStates_.resize(state.resourceCount);  // each entry is set at its resource's first use
-    tracked_ = trackedStates_.data();
   }
 
   // The uses that follow are the node's; endNode() closes its range of barriers before it.
   void beginNode(uint32_t node) {
-    queue_ = queueOf_[node];
+    queue_ = state_.queueOf[node];
     step_ = state_.out.nodes[node].step;
     firstBefore_ = static_cast<uint32_t>(before_.size());
   }
@@ -73,7 +83,7 @@ class BarrierPlanner {
   void planUse(const MergedUse& use, bool firstUse) {
     const uint32_t resource = use.resource;
     const bool texture = isTexture(resource);
-    TrackedState& s = tracked_[resource];
+    TrackedState& s = walk_[resource].tracked;
     if (firstUse) setInitialState(s, use);
     const uint32_t queue = queue_;
     const uint32_t step = step_;
@@ -94,14 +104,16 @@ class BarrierPlanner {
   }
 
   // After an imported resource's last use: back to the state the declaration asked for.
-  void finalState(uint32_t resource) { finalState(resource, isTexture(resource), tracked_[resource]); }
+  void finalState(uint32_t resource) { finalState(resource, isTexture(resource), walk_[resource].tracked); }
 
  private:
   [[nodiscard]] uint32_t familyOf(uint32_t queue) const { return familyOfQueue_[queue]; }
   // Whether moving a resource between these queues is a queue-family ownership transfer. Buffers
   // shared by every family (CompileOptions::buffersShareFamilies) never need one.
   [[nodiscard]] bool changesOwner(uint32_t from, uint32_t to, bool texture) const {
-    return (texture || !buffersShared_) && familyOf(from) != familyOf(to);
+    // Bitwise, not short-circuit: one branch fewer, on data that follows no pattern.
+    return static_cast<bool>(static_cast<unsigned>(texture || !buffersShared_) &
+                             static_cast<unsigned>(familyOf(from) != familyOf(to)));
   }
   // Whether moving a resource between these queues hands a shared buffer over (see
   // handOverSharedBuffer): a semaphore orders and makes visible what crosses, not a barrier.
@@ -150,8 +162,8 @@ class BarrierPlanner {
     const ResourceDecl& decl = state_.graph.resources()[first.resource];
     s.owned = true;
     s.discardsOnEntry = first.writes && !first.reads;
-    s.queue = s.discardsOnEntry ? queue_
-                                : state_.options.queueOfClass[static_cast<size_t>(decl.initialState.queue)];
+    const uint32_t declaredQueue = state_.options.queueOfClass[static_cast<size_t>(decl.initialState.queue)];
+    s.queue = static_cast<uint8_t>(s.discardsOnEntry ? queue_ : declaredQueue);
     s.layout = s.discardsOnEntry ? Layout::Undefined : decl.initialState.layout;
     // What happened before the graph is treated as a write: later uses wait for it.
     s.writeStages = decl.initialState.stages;
@@ -253,7 +265,7 @@ class BarrierPlanner {
       s.visibleAccess |= use.access;
     }
     s.owned = true;
-    s.queue = queue;
+    s.queue = static_cast<uint8_t>(queue);
     s.layout = layout;
     s.lastStep = step;
   }
@@ -313,14 +325,12 @@ class BarrierPlanner {
 
  private:
   CompileState& state_;
-  const uint32_t* queueOf_;  // state_.queueOf
-  const uint8_t* traits_;    // state_.resourceTraits
+  ResourceWalk* walk_;     // per resource
+  const uint8_t* traits_;  // state_.resourceTraits
   const std::array<uint32_t, kQueueClassCount> familyOfQueue_;
   const bool buffersShared_;
   uint32_t queue_ = 0;  // queue and step of the node whose uses are being planned
   uint32_t step_ = 0;
-  ScratchVector<TrackedState> trackedStates_;  // per resource...
-  TrackedState* tracked_ = nullptr;            // ...and its data
   std::vector<Barrier>& before_ = state_.out.barriers;  // the output: barriers before steps, then after
   uint32_t firstBefore_ = 0;                    // where the walked node's barriers before it begin
   ScratchVector<Barrier> after_;                // barriers after steps, in the order found...
@@ -355,44 +365,67 @@ void mergeUses(std::span<const Use> uses, ScratchVector<MergedUse>& merged, Scra
   }
 }
 
-// One walk over the alive uses in execution order: placement (with or without aliasing) and
-// barriers. A transient is placed at its first use and its range goes back to the free list after
-// its last user (so users at one position never share memory); an imported resource goes back to
-// its final state after its last user.
-void walkUses(CompileState& state, bool alias) {
-  TransientPlacer placer(state, alias);
-  BarrierPlanner barriers(state);
+// One walk over the alive uses in execution order: lifetimes, placement (with or without aliasing)
+// and barriers. A transient is placed at its first use and its range goes back to the free list
+// after its last user (so users at one position never share memory); an imported resource goes
+// back to its final state after its last user. A resource's last user is found by counting down its
+// alive uses (counted while culling). The first walk of a compile also resolves each transient's
+// memory requirements.
+void walkUses(CompileState& state, bool alias, bool firstWalk) {
   const uint32_t resources = state.resourceCount;
-  // What placement needs about the users of each resource on each queue (see TransientPlacer).
-  state.stagesOnQueue.assign(size_t{resources} * kQueueClassCount, kStageNone);
-  if (state.queueCount > 1) state.lastSigmaOnQueue.assign(size_t{resources} * kQueueClassCount, 0);
+  ScratchVector<ResourceWalk> walkStates;
+  walkStates.resize(resources);  // constructs nothing (see ResourceWalk)
+  ResourceWalk* const walk = walkStates.data();
+  for (uint32_t r = 0; r < resources; ++r) {
+    walk[r].usesLeft = state.aliveUses[r];
+    walk[r].lastSeen = kInvalidIndex;
+    walk[r].started = false;
+  }
+  TransientPlacer placer(state, alias, firstWalk);
+  BarrierPlanner barriers(state, walk);
+  Lifetime* const lifetimes = state.out.lifetimes.data();
+  std::vector<bool>& resourceAlive = state.out.resourceAlive;
+  const bool severalQueues = state.queueCount > 1;
   ScratchVector<MergedUse> merged;
-  ScratchVector<uint32_t> lastSeen(resources, kInvalidIndex);
   ScratchVector<uint32_t> mergedAt;  // sized when first needed (see mergeUses)
   ScratchVector<uint32_t> ending;  // resources whose last user is the node being walked
-  for (const uint32_t node : state.out.order) {
+  const auto& order = state.out.order;
+  for (uint32_t position = 0; position < order.size(); ++position) {
+    const uint32_t node = order[position];
     barriers.beginNode(node);
-    const size_t queueSlot = state.queueOf[node];
+    const uint32_t queue = state.queueOf[node];
     const std::span<const Use> uses = state.graph.uses(node);
     if (ending.size() < uses.size()) ending.resize(uses.size());
     uint32_t endingCount = 0;
     auto visit = [&](const MergedUse& use) {
       const uint32_t r = use.resource;
-      const bool first = state.firstUser[r] == node;
-      state.stagesOnQueue[size_t{r} * kQueueClassCount + queueSlot] |= use.stages;
+      ResourceWalk& w = walk[r];
+      const bool first = !w.started;
+      if (first) {
+        w.started = true;
+        // What placement needs about the users on each queue (see TransientPlacer).
+        w.stagesOnQueue = {};
+        w.lastSigmaOnQueue = {};
+        lifetimes[r].first = position;
+        resourceAlive[r] = true;
+        if ((state.resourceTraits[r] & kResourceImported) == 0) placer.place(r, node);
+      }
+      w.stagesOnQueue[queue] |= use.stages;
       // Uses come in order, and σ grows with the order position on each queue.
-      if (state.queueCount > 1) state.lastSigmaOnQueue[size_t{r} * kQueueClassCount + queueSlot] = state.sigma[node];
-      if (first && (state.resourceTraits[r] & kResourceImported) == 0) placer.place(r);
+      if (severalQueues) w.lastSigmaOnQueue[queue] = state.sync[node].sigma;
       barriers.planUse(use, first);
       // Noted without a branch: whether a use is its resource's last is as good as random.
       ending[endingCount] = r;
-      endingCount += state.lastUser[r] == node ? 1 : 0;
+      endingCount += w.usesLeft == 0 ? 1 : 0;
     };
-    // One use per resource: a node that uses one twice (rare) has its uses combined first.
+    // One use per resource: a node that uses one twice (rare) has its uses combined first. Every
+    // use of the node is counted off first, so that the combined one sees whether it was the last.
     bool repeats = false;
     for (const Use& use : uses) {
-      repeats |= lastSeen[use.resource] == node;
-      lastSeen[use.resource] = node;
+      ResourceWalk& w = walk[use.resource];
+      repeats |= w.lastSeen == node;
+      w.lastSeen = node;
+      --w.usesLeft;
     }
     if (repeats) {
       if (mergedAt.empty()) mergedAt.resize(resources);
@@ -405,10 +438,11 @@ void walkUses(CompileState& state, bool alias) {
     // After the node: transients give their memory back, imports go to their final state.
     for (uint32_t i = 0; i < endingCount; ++i) {
       const uint32_t r = ending[i];
+      lifetimes[r].last = position;
       if ((state.resourceTraits[r] & kResourceImported) != 0) {
         barriers.finalState(r);
       } else {
-        placer.release(r);
+        placer.release(r, walk[r].lastSigmaOnQueue, walk[r].stagesOnQueue);
       }
     }
   }
@@ -419,7 +453,9 @@ void walkUses(CompileState& state, bool alias) {
 }  // namespace
 
 void placeAndPlanBarriers(CompileState& state) {
-  walkUses(state, state.options.alias);
+  state.out.lifetimes.assign(state.resourceCount, {});
+  state.out.resourceAlive.assign(state.resourceCount, false);
+  walkUses(state, state.options.alias, true);
   // Fragmentation (mixed alignments, ranges that cannot merge) can make a placement worse than
   // none; then keep whichever of the two layouts is smaller (barriers follow the placement).
   AliasingPlan& plan = state.out.aliasing;
@@ -429,7 +465,8 @@ void placeAndPlanBarriers(CompileState& state) {
   const std::vector<Step> aliasedSteps = state.out.steps;
   plan = {};
   state.out.barriers.clear();
-  walkUses(state, false);
+  state.out.lifetimes.assign(state.resourceCount, {});
+  walkUses(state, false, false);
   if (plan.peakBytesAliased > aliased.peakBytesAliased) {
     plan = std::move(aliased);
     state.out.barriers = std::move(aliasedBarriers);

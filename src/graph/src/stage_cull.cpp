@@ -1,7 +1,7 @@
 // Stage: queue assignment and culling (Frostbite's flood fill, run as reverse reachability over
 // versions). A node is kept when it has a side effect, writes an imported resource, or produces a
 // version that a kept node reads. Everything else is culled, with a reason; cullDiagnostic() puts
-// the reason into words a person can act on.
+// the reason into words a person can act on. Also counts the uses alive nodes make of each resource.
 #include "compile_state.hpp"
 
 #include <algorithm>
@@ -48,6 +48,10 @@ void cullNodes(CompileState& state) {
   // out.nodes may hold the elements of an earlier compile (see ~CompiledGraph): each is reset below.
   state.out.nodes.resize(count);
   state.alive.assign(count, cull ? 0 : 1);
+  // Counted here, where each node's uses are walked once it is known to be alive: the barrier walk
+  // counts them down to find each resource's last user without a pass of its own.
+  state.aliveUses.assign(state.resourceCount, 0);
+  uint32_t* const aliveUses = state.aliveUses.data();
   // A version is only ever read by nodes declared after its producer, so one sweep from the last
   // node backwards has settled every reader of a node before it reaches the node itself.
   bool anyCulled = false;
@@ -56,8 +60,7 @@ void cullNodes(CompileState& state) {
     state.queueOf[n] = queue;
     NodeInfo& info = state.out.nodes[n];
     resetNodeInfo(info, queue);
-    if (!cull) continue;
-    if (!state.alive[n]) {
+    if (cull && !state.alive[n]) {
       const CullReason reason = reasonToCull(state, n);
       if (reason != CullReason::Alive) {
         info.culled = true;
@@ -68,6 +71,7 @@ void cullNodes(CompileState& state) {
       state.alive[n] = 1;
     }
     for (const Use& use : graph.uses(n)) {
+      ++aliveUses[use.resource];
       if (use.readVersion == kInvalidIndex) continue;
       const uint32_t producer = versions[use.readVersion].producer;
       if (producer != kInvalidIndex) state.alive[producer] = 1;

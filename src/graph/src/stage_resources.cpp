@@ -1,5 +1,5 @@
-// Stages: resolving resource descriptions (dependent fields → values, memory requirements) and
-// lifetimes (first/last order position of alive uses; the users were found with the dependencies).
+// Stage: resolving resource descriptions (dependent fields → values). The memory requirements of
+// alive transients are asked for where placement needs them (see requirements.hpp).
 #include "compile_state.hpp"
 
 #include <algorithm>
@@ -63,80 +63,8 @@ void resolveResources(CompileState& state) {
   }
 }
 
-namespace {
-
-// estimate() for a run of resources: neighbours often share a description (a chain of
-// same-size targets), and then the previous answer is reused.
-class EstimateCache {
- public:
-  // Sets resolved.requirements (field by field: see add() in stage_barriers.cpp).
-  void set(ResolvedResource& resolved, ResourceKind kind) {
-    if (!valid_ || kind != kind_ || !sameEstimateInputs(resolved)) {
-      kind_ = kind;
-      last_ = resolved;
-      valid_ = true;
-      answer_ = estimate(kind, resolved);
-    }
-    resolved.requirements.size = answer_.size;
-    resolved.requirements.alignment = answer_.alignment;
-    resolved.requirements.memoryTypeBits = answer_.memoryTypeBits;
-  }
-
- private:
-  // Everything estimateRequirements() reads.
-  [[nodiscard]] bool sameEstimateInputs(const ResolvedResource& r) const {
-    if (kind_ == ResourceKind::Buffer) return r.buffer.size == last_.buffer.size;
-    const TextureDesc& a = r.texture;
-    const TextureDesc& b = last_.texture;
-    return a.format == b.format && a.extent.width == b.extent.width && a.extent.height == b.extent.height &&
-           a.extent.depth == b.extent.depth && a.mipLevels == b.mipLevels && a.layers == b.layers &&
-           a.samples == b.samples;
-  }
-
-  bool valid_ = false;
-  ResourceKind kind_ = ResourceKind::Texture;
-  ResolvedResource last_{};
-  MemoryRequirements answer_{};
-};
-
-}  // namespace
-
-void computeLifetimes(CompileState& state) {
-  const auto& decls = state.graph.resources();
-  const uint32_t resources = state.resourceCount;
-  auto& lifetimes = state.out.lifetimes;
-  lifetimes.assign(resources, {});
-  state.firstUser.assign(resources, kInvalidIndex);
-  state.lastUser.assign(resources, kInvalidIndex);
-  // In execution order: a resource's first user is the first seen, its last the last seen.
-  const auto& order = state.out.order;
-  for (uint32_t position = 0; position < order.size(); ++position) {
-    const uint32_t node = order[position];
-    for (const Use& use : state.graph.uses(node)) {
-      const uint32_t r = use.resource;
-      if (state.firstUser[r] == kInvalidIndex) {
-        state.firstUser[r] = node;
-        lifetimes[r].first = position;
-      }
-      state.lastUser[r] = node;
-      lifetimes[r].last = position;
-    }
-  }
-  state.out.resourceAlive.assign(resources, false);
-  EstimateCache estimates;
-  for (uint32_t r = 0; r < resources; ++r) {
-    if (state.firstUser[r] == kInvalidIndex) continue;
-    state.out.resourceAlive[r] = true;
-    if ((state.resourceTraits[r] & kResourceImported) != 0) continue;
-    ResolvedResource& resolved = state.out.resources[r];
-    if (state.options.requirements) {
-      resolved.requirements = state.options.requirements(decls[r], resolved);
-    } else {
-      estimates.set(resolved, (state.resourceTraits[r] & kResourceTexture) != 0 ? ResourceKind::Texture
-                                                                                  : ResourceKind::Buffer);
-    }
-    if (resolved.requirements.alignment == 0) resolved.requirements.alignment = 1;
-  }
+MemoryRequirements estimateFor(ResourceKind kind, const ResolvedResource& resolved) {
+  return estimate(kind, resolved);
 }
 
 }  // namespace detail

@@ -20,9 +20,13 @@ void sortByLevel(CompileState& state) {
   const uint32_t aliveCount = bucketStart[culledBucket];
   auto& order = state.out.order;
   order.resize(state.nodeCount);
+  // With several queues, σ too (see SyncPoint), while the position is at hand.
+  const bool severalQueues = state.queueCount > 1;
+  if (severalQueues) state.sync.resize(state.nodeCount);
   for (uint32_t n = 0; n < state.nodeCount; ++n) {
     const uint32_t position = bucketStart[bucketOf(n)]++;
     order[position] = n;
+    if (severalQueues) state.sync[n].sigma = position + state.queueOf[n] * aliveCount + 1;
     // Culled nodes keep what cullNodes reset them to: level 0, no order position.
     NodeInfo& info = state.out.nodes[n];
     info.level = state.level[n] & aliveMask(n);

@@ -1,7 +1,7 @@
 // Stage: pruning redundant cross-queue edges (thesis Algorithm 3, after P. Muratov, "Organizing GPU
 // Work with Directed Acyclic Graphs", 2020).
 //
-// σ(u) = order position + queue(u)·V + 1 numbers each queue's nodes contiguously. For every node u
+// σ(u) = order position + queue(u)·V + 1 numbers each queue's nodes contiguously (see SyncPoint). For every node u
 // and queue q ≠ queue(u), SSIS_q(u) is the largest σ of a dependency of u on queue q: waiting for
 // a point on q at or after it is sufficient. `known[u]` is what u is already ordered after: its own
 // σ on its queue, everything the previous node on its queue knew (a wait blocks the rest of the
@@ -38,18 +38,25 @@ uint32_t countNewlyCovered(const QueueArray& required, const QueueArray& candida
 // may turn a conditional expression back into a branch (and whether it holds is as good as random).
 uint32_t valueIf(bool condition, uint32_t value) { return value & (0u - static_cast<uint32_t>(condition)); }
 
+// The queue of a node with σ `sigma` (see SyncPoint): σ on queue q lies in [q·V + 1, q·V + V].
+uint32_t queueOfSigma(uint32_t sigma, uint32_t nodes) {
+  static_assert(kQueueClassCount == 3);
+  return static_cast<uint32_t>(sigma > nodes) + static_cast<uint32_t>(sigma > 2 * nodes);
+}
+
 // SSIS_q(u) for every queue q other than u's own: the largest σ of a dependency of u on q (0: none).
 // Kept in registers, not indexed by queue: a store and reload through a variable index per edge
 // would chain every edge's update on the previous one's store.
-QueueArray requiredOnOtherQueues(const Edge* first, const Edge* last, const uint32_t* queueOf, const uint32_t* sigma,
+QueueArray requiredOnOtherQueues(const Edge* first, const Edge* last, const SyncPoint* sync, uint32_t nodes,
                                  uint32_t queue) {
   static_assert(kQueueClassCount == 3);
   uint32_t required0 = 0;
   uint32_t required1 = 0;
   uint32_t required2 = 0;
   for (const Edge* e = first; e != last; ++e) {
-    const uint32_t q = queueOf[e->from];
-    const uint32_t s = valueIf(q != queue, sigma[e->from]);
+    const uint32_t sigma = sync[e->from].sigma;
+    const uint32_t q = queueOfSigma(sigma, nodes);
+    const uint32_t s = valueIf(q != queue, sigma);
     required0 = std::max(required0, valueIf(q == 0, s));
     required1 = std::max(required1, valueIf(q == 1, s));
     required2 = std::max(required2, valueIf(q == 2, s));
@@ -60,14 +67,16 @@ QueueArray requiredOnOtherQueues(const Edge* first, const Edge* last, const uint
 // The dependency covering the most `uncovered` queues, ties to the larger σ: the largest
 // (cover, σ) pair, taken without branches. The dependency with the largest σ on an uncovered queue
 // always covers it, so one with a cover wins over every one without (whatever their σ).
-uint32_t bestCover(const Edge* first, const Edge* last, const uint32_t* queueOf, const uint32_t* sigma,
-                   const QueueArray* known, uint32_t queue, const QueueArray& required, uint32_t uncovered) {
+uint32_t bestCover(const Edge* first, const Edge* last, const SyncPoint* sync, uint32_t nodes, uint32_t queue,
+                   const QueueArray& required, uint32_t uncovered) {
   uint64_t bestScore = 0;
   uint32_t best = kInvalidIndex;
   for (const Edge* e = first; e != last; ++e) {
     const uint32_t v = e->from;
-    const uint32_t cover = valueIf(queueOf[v] != queue, countNewlyCovered(required, known[v], uncovered));
-    const uint64_t score = uint64_t{cover} << 32 | sigma[v];
+    const SyncPoint& point = sync[v];
+    const uint32_t cover =
+        valueIf(queueOfSigma(point.sigma, nodes) != queue, countNewlyCovered(required, point.known, uncovered));
+    const uint64_t score = uint64_t{cover} << 32 | point.sigma;
     best = valueIf(score > bestScore, v ^ best) ^ best;
     bestScore = std::max(bestScore, score);
   }
@@ -79,37 +88,29 @@ uint32_t bestCover(const Edge* first, const Edge* last, const uint32_t* queueOf,
 void pruneCrossQueueEdges(CompileState& state) {
   // One queue has no cross-queue edges: nothing to prune, and nobody asks what σ a node knows.
   if (state.queueCount == 1) return;
-  const auto& order = state.out.order;
   const Edge* edges = state.out.edges.data();
-  const auto orderSize = static_cast<uint32_t>(order.size());
-  state.sigma.assign(state.nodeCount, 0);
-  state.known.assign(state.nodeCount, QueueArray{0, 0, 0});
+  const auto nodes = static_cast<uint32_t>(state.out.order.size());
   const uint32_t* queueOf = state.queueOf.data();
-  uint32_t* sigma = state.sigma.data();
-  QueueArray* known = state.known.data();
-  for (uint32_t position = 0; position < orderSize; ++position) {
-    const uint32_t node = order[position];
-    sigma[node] = position + queueOf[node] * orderSize + 1;
-  }
+  SyncPoint* sync = state.sync.data();  // σ set by sortByLevel
 
   // What the last node so far on each queue knew (a wait blocks the rest of its queue).
   std::array<QueueArray, kQueueClassCount> knownOnQueue{};
-  for (const uint32_t u : order) {
+  for (const uint32_t u : state.out.order) {
     const uint32_t queue = queueOf[u];
     QueueArray have = knownOnQueue[queue];
-    have[queue] = sigma[u];
+    have[queue] = sync[u].sigma;
 
     // u's dependencies are edges[edgeStart[u] .. edgeEnd[u]), each one's `from`.
     const Edge* const first = edges + state.edgeStart[u];
     const Edge* const last = edges + state.edgeEnd[u];
-    const QueueArray required = requiredOnOtherQueues(first, last, queueOf, sigma, queue);
+    const QueueArray required = requiredOnOtherQueues(first, last, sync, nodes, queue);
     for (uint32_t uncovered = uncoveredQueues(required, have); uncovered != 0;
          uncovered = uncoveredQueues(required, have)) {
-      const uint32_t best = bestCover(first, last, queueOf, sigma, known, queue, required, uncovered);
+      const uint32_t best = bestCover(first, last, sync, nodes, queue, required, uncovered);
       state.out.syncEdges.push_back({best, u});
-      for (uint32_t q = 0; q < kQueueClassCount; ++q) have[q] = std::max(have[q], known[best][q]);
+      for (uint32_t q = 0; q < kQueueClassCount; ++q) have[q] = std::max(have[q], sync[best].known[q]);
     }
-    known[u] = have;
+    sync[u].known = have;
     knownOnQueue[queue] = have;
   }
 }

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "compile_state.hpp"
+#include "requirements.hpp"
 
 #include <algorithm>
 #include <array>
@@ -15,13 +16,16 @@ namespace fgb::graph::detail {
 
 class TransientPlacer {
  public:
-  // Starts an empty plan in state.out.aliasing; with `alias` false, nothing shares memory.
-  TransientPlacer(CompileState& state, bool alias);
+  // Starts an empty plan in state.out.aliasing; with `alias` false, nothing shares memory. With
+  // `resolveRequirements`, each transient's memory requirements are resolved as it is placed (a
+  // second walk over the same compile reuses them).
+  TransientPlacer(CompileState& state, bool alias, bool resolveRequirements);
 
-  // Places a transient at its first use (its first user is the node being walked).
-  void place(uint32_t resource);
-  // Hands its range back after its last user; later occupants wait for what the users did.
-  void release(uint32_t resource);
+  // Places a transient at its first use, by `user` (the node being walked).
+  void place(uint32_t resource, uint32_t user);
+  // Hands its range back after its last user; later occupants wait for what the users did (on
+  // each queue: the largest σ of a user, and the stages used).
+  void release(uint32_t resource, const QueueArray& lastSigma, const std::array<StageMask, kQueueClassCount>& stages);
   // Sums the heap sizes into the plan's peak once every transient was placed and released.
   void finish();
 
@@ -38,12 +42,14 @@ class TransientPlacer {
   uint32_t heapFor(uint32_t resource, uint32_t memoryTypeBits);
   uint32_t findOrAddHeap(ResourceKind kind, uint32_t memoryTypeBits);
   [[nodiscard]] QueueArray reusableUpTo(uint32_t node) const;
-  bool takeFreeRange(ScratchVector<FreeRange>& free, uint32_t resource, const MemoryRequirements& req,
+  bool takeFreeRange(ScratchVector<FreeRange>& free, uint32_t user, const MemoryRequirements& req,
                      Placement& placement);
 
   CompileState& state_;
   AliasingPlan& plan_;
   bool alias_;
+  bool resolveRequirements_;
+  RequirementsResolver requirements_;
   uint32_t lastHeap_ = 0;                       // the heap the last transient went to
   std::vector<ScratchVector<FreeRange>> free_;  // per heap
 };
@@ -71,17 +77,22 @@ inline uint32_t TransientPlacer::heapFor(uint32_t resource, uint32_t memoryTypeB
 inline QueueArray TransientPlacer::reusableUpTo(uint32_t node) const {
   constexpr uint32_t kAny = ~0u;
   if (state_.queueCount == 1) return {kAny, kAny, kAny};
-  const QueueArray& known = state_.known[node];
+  const QueueArray& known = state_.sync[node].known;
   const uint32_t own = state_.queueOf[node];
-  // Chosen per queue rather than stored through `own` into the array: that store, reloaded at
-  // once, stalled the walk.
-  auto limit = [&](uint32_t q) { return (q == own || q >= state_.queueCount) ? kAny : known[q]; };
+  // Chosen per queue rather than stored through `own` into the array (that store, reloaded at
+  // once, stalled the walk), with a mask rather than a branch on the node's queue.
+  auto limit = [&](uint32_t q) {
+    const uint32_t any = 0u - static_cast<uint32_t>((q == own) | (q >= state_.queueCount));  // all ones: any
+    return known[q] | any;
+  };
   static_assert(kQueueClassCount == 3);
   return {limit(0), limit(1), limit(2)};
 }
 
-inline void TransientPlacer::place(uint32_t resource) {
-  const MemoryRequirements& req = state_.out.resources[resource].requirements;
+inline void TransientPlacer::place(uint32_t resource, uint32_t user) {
+  ResolvedResource& resolved = state_.out.resources[resource];
+  if (resolveRequirements_) requirements_.resolve(state_, resource, resolved);
+  const MemoryRequirements& req = resolved.requirements;
   const uint32_t heapIndex = heapFor(resource, req.memoryTypeBits);
   Heap& heap = plan_.heaps[heapIndex];
   heap.alignment = std::max(heap.alignment, req.alignment);
@@ -89,14 +100,13 @@ inline void TransientPlacer::place(uint32_t resource) {
   Placement& placement = plan_.placements[resource];
   placement.heap = heapIndex;
   placement.size = req.size;
-  if (alias_ && takeFreeRange(free_[heapIndex], resource, req, placement)) return;
+  if (alias_ && takeFreeRange(free_[heapIndex], user, req, placement)) return;
   placement.offset = alignUp(heap.size, req.alignment);
   heap.size = placement.offset + req.size;
 }
 
-inline bool TransientPlacer::takeFreeRange(ScratchVector<FreeRange>& free, uint32_t resource,
+inline bool TransientPlacer::takeFreeRange(ScratchVector<FreeRange>& free, uint32_t user,
                                            const MemoryRequirements& req, Placement& placement) {
-  const uint32_t user = state_.firstUser[resource];
   const QueueArray limit = reusableUpTo(user);
   const uint64_t size = req.size;
   // The smallest range that fits (the first of equals): none can be smaller than an exact fit.
@@ -141,20 +151,14 @@ inline bool TransientPlacer::takeFreeRange(ScratchVector<FreeRange>& free, uint3
   return true;
 }
 
-inline void TransientPlacer::release(uint32_t resource) {
+inline void TransientPlacer::release(uint32_t resource, const QueueArray& lastSigma,
+                                     const std::array<StageMask, kQueueClassCount>& stages) {
   const Placement& placement = plan_.placements[resource];
   FreeRange& range = free_[placement.heap].emplace_back();  // filled in place
   range.offset = placement.offset;
   range.size = placement.size;
-  const size_t slots = size_t{resource} * kQueueClassCount;
-  const StageMask* stages = state_.stagesOnQueue.data() + slots;
-  range.stages = {stages[0], stages[1], stages[2]};
-  if (state_.queueCount > 1) {
-    const uint32_t* sigma = state_.lastSigmaOnQueue.data() + slots;
-    range.lastSigma = {sigma[0], sigma[1], sigma[2]};
-  } else {
-    range.lastSigma = {0, 0, 0};
-  }
+  range.stages = stages;
+  range.lastSigma = lastSigma;
 }
 
 }  // namespace fgb::graph::detail

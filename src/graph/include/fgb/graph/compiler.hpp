@@ -21,7 +21,7 @@ namespace fgb::graph {
 // Wall time of each compiler stage, summed over the compiles it was handed to (see
 // CompileOptions::profile). Indexed by CompileStage.
 enum class CompileStage : uint8_t {
-  Resources, Cull, Dependencies, Sort, Ssis, Submits, Lifetimes, Barriers, Count
+  Resources, Cull, Dependencies, Sort, Ssis, Submits, Barriers, Count
 };
 const char* toString(CompileStage stage);
 

@@ -45,7 +45,8 @@ static_assert(kQueueClassCount <= 256, "TrackedState::queue is a byte");
 // than one per array (which cost more than the work done with them). Constructing it does nothing:
 // walkUses() sets what must start set, the rest is set at the resource's first use.
 struct alignas(64) ResourceWalk {
-  ResourceWalk() {}  // NOLINT(modernize-use-equals-default): leaves the fields unset on purpose
+  // NOLINTNEXTLINE(modernize-use-equals-default,cppcoreguidelines-pro-type-member-init): unset on purpose
+  ResourceWalk() {}
   TrackedState tracked;
   std::array<StageMask, kQueueClassCount> stagesOnQueue;  // stages used on each queue
   QueueArray lastSigmaOnQueue;                            // largest σ of a user on each queue
@@ -111,9 +112,7 @@ class BarrierPlanner {
   // Whether moving a resource between these queues is a queue-family ownership transfer. Buffers
   // shared by every family (CompileOptions::buffersShareFamilies) never need one.
   [[nodiscard]] bool changesOwner(uint32_t from, uint32_t to, bool texture) const {
-    // Bitwise, not short-circuit: one branch fewer, on data that follows no pattern.
-    return static_cast<bool>(static_cast<unsigned>(texture || !buffersShared_) &
-                             static_cast<unsigned>(familyOf(from) != familyOf(to)));
+    return (texture || !buffersShared_) && familyOf(from) != familyOf(to);
   }
   // Whether moving a resource between these queues hands a shared buffer over (see
   // handOverSharedBuffer): a semaphore orders and makes visible what crosses, not a barrier.
@@ -383,6 +382,9 @@ void walkUses(CompileState& state, bool alias, bool firstWalk) {
   }
   TransientPlacer placer(state, alias, firstWalk);
   BarrierPlanner barriers(state, walk);
+  // Outputs of the walk, written afresh by each (a fallback walk repeats the first one's).
+  state.out.lifetimes.assign(resources, {});
+  state.out.resourceAlive.assign(resources, false);
   Lifetime* const lifetimes = state.out.lifetimes.data();
   std::vector<bool>& resourceAlive = state.out.resourceAlive;
   const bool severalQueues = state.queueCount > 1;
@@ -453,8 +455,6 @@ void walkUses(CompileState& state, bool alias, bool firstWalk) {
 }  // namespace
 
 void placeAndPlanBarriers(CompileState& state) {
-  state.out.lifetimes.assign(state.resourceCount, {});
-  state.out.resourceAlive.assign(state.resourceCount, false);
   walkUses(state, state.options.alias, true);
   // Fragmentation (mixed alignments, ranges that cannot merge) can make a placement worse than
   // none; then keep whichever of the two layouts is smaller (barriers follow the placement).
@@ -465,7 +465,6 @@ void placeAndPlanBarriers(CompileState& state) {
   const std::vector<Step> aliasedSteps = state.out.steps;
   plan = {};
   state.out.barriers.clear();
-  state.out.lifetimes.assign(state.resourceCount, {});
   walkUses(state, false, false);
   if (plan.peakBytesAliased > aliased.peakBytesAliased) {
     plan = std::move(aliased);

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+#include <string_view>
 #include <vector>
 
 namespace fgb::graph::test {
@@ -206,6 +208,79 @@ TEST(AccessInfo, ShaderStagesFollowTheNodeTypeUnlessGiven) {
   EXPECT_EQ(graphics.stages & kStageComputeShader, 0u);
   EXPECT_EQ(accessInfo(Access::Sampled, NodeType::Graphics, kStageVertexShader).stages, kStageVertexShader);
   EXPECT_EQ(accessInfo(Access::Uniform, NodeType::Compute).stages, kStageComputeShader);
+}
+
+TEST(Declaration, EachUseRecordsWhatAccessInfoSaysForItsAccessNodeTypeAndStages) {
+  constexpr NodeType kTypes[] = {NodeType::Graphics, NodeType::Compute, NodeType::Transfer};
+  constexpr StageMask kDeclared[] = {kStageNone, kStageVertexShader, kStageComputeShader | kStageFragmentShader};
+  for (size_t a = 0; a <= static_cast<size_t>(Access::HostRead); ++a) {
+    const auto access = static_cast<Access>(a);
+    for (const NodeType type : kTypes) {
+      for (const StageMask stages : kDeclared) {
+        FrameGraph graph;
+        const BufferHandle buffer = graph.importBuffer("b", bufferDesc(), {1}, {}, {});
+        NodeBuilder node = graph.addNode("N", type);
+        if (isWriteAccess(access)) {
+          node.write(buffer, access, stages);
+        } else {
+          node.read(buffer, access, stages);
+        }
+        const AccessInfo expected = accessInfo(access, type, stages);
+        ASSERT_EQ(graph.uses(0).size(), 1u);
+        const Use& use = graph.uses(0)[0];
+        const std::string what = std::string(toString(access)) + " by a " + std::string(toString(type)) +
+                                 " node, stages " + std::to_string(stages);
+        EXPECT_EQ(use.stages, expected.stages) << what;
+        EXPECT_EQ(use.accessMask, expected.access) << what;
+        EXPECT_EQ(use.layout, expected.layout) << what;
+        EXPECT_EQ(use.shaderStages, stages) << what;
+        EXPECT_EQ(use.readVersion != kInvalidIndex, expected.reads) << what;
+        EXPECT_EQ(use.writeVersion != kInvalidIndex, expected.writes) << what;
+      }
+    }
+  }
+}
+
+// Names are copied into the graph (see NameStore): they outlive the strings they were declared
+// from, survive copies and moves of the graph, and end in a NUL (Vulkan debug labels take them).
+TEST(Declaration, NamesAreTheGraphsOwnCopiesAndSurviveCopiesAndMoves) {
+  constexpr uint32_t kNodes = 20000;  // more names than one block of the store holds
+  auto nameOf = [](uint32_t i) { return "node number " + std::to_string(i); };
+  auto expectNames = [&](const FrameGraph& graph, const std::string& longName) {
+    ASSERT_EQ(graph.nodes().size(), kNodes + 2);
+    for (uint32_t i = 0; i < kNodes; ++i) {
+      const std::string_view name = graph.nodes()[i].name;
+      ASSERT_EQ(name, nameOf(i));
+      ASSERT_EQ(name.data()[name.size()], '\0');
+    }
+    EXPECT_EQ(graph.nodes()[kNodes].name, longName);
+    EXPECT_TRUE(graph.nodes()[kNodes + 1].name.empty());
+    EXPECT_EQ(graph.nodes()[kNodes + 1].name.data()[0], '\0');
+    EXPECT_EQ(graph.resources()[0].name, "the resource");
+  };
+  const std::string longName(100000, 'x');  // longer than a block
+  FrameGraph copy;
+  FrameGraph moved;
+  {
+    FrameGraph original;
+    {
+      std::string resourceName = "the resource";
+      original.createBuffer(resourceName, bufferDesc());
+      resourceName.assign(resourceName.size(), '?');
+    }
+    for (uint32_t i = 0; i < kNodes; ++i) {
+      std::string name = nameOf(i);
+      original.addNode(name, NodeType::Compute);
+      name.assign(name.size(), '?');  // the graph kept its own copy
+    }
+    original.addNode(longName, NodeType::Compute);
+    original.addNode("", NodeType::Compute);
+    expectNames(original, longName);
+    copy = original;
+    moved = std::move(original);
+  }
+  expectNames(copy, longName);
+  expectNames(moved, longName);
 }
 
 TEST(AccessInfo, QueueClassAndNamesAreStable) {

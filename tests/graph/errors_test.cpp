@@ -107,6 +107,25 @@ TEST(BadInput, AccessKindMustMatchReadOrWrite) {
   EXPECT_THAT(graphErrorOf([&] { node.write(texture, Access::Sampled); }), HasSubstr("Mixed"));
 }
 
+TEST(BadInput, AnUnknownAccessIsAnErrorNamingTheNode) {
+  FrameGraph graph;
+  const TextureHandle texture = importOutput(graph, "out");
+  NodeBuilder node = graph.addNode("Odd", NodeType::Compute);
+  const auto unknown = static_cast<Access>(200);
+  EXPECT_THAT(graphErrorOf([&] { node.read(texture, unknown); }), HasSubstr("unknown access 200"));
+  EXPECT_THAT(graphErrorOf([&] { node.write(texture, unknown); }), HasSubstr("Odd"));
+  EXPECT_TRUE(graph.uses(0).empty());
+}
+
+TEST(BadInput, AnUnknownNodeTypeOrQueueClassIsAnErrorNamingTheNode) {
+  FrameGraph graph;
+  EXPECT_THAT(graphErrorOf([&] { graph.addNode("Strange", static_cast<NodeType>(7)); }),
+              HasSubstr("'Strange': unknown node type 7"));
+  EXPECT_THAT(graphErrorOf([&] { graph.addNode("Lost", NodeType::Compute, static_cast<QueueClass>(9)); }),
+              HasSubstr("queue class 9"));
+  EXPECT_TRUE(graph.nodes().empty());
+}
+
 TEST(BadInput, AttachmentsNeedAGraphicsNode) {
   FrameGraph graph;
   const TextureHandle texture = importOutput(graph, "out");

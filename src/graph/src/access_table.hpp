@@ -1,5 +1,5 @@
 // Internal: accessInfo() as an inline table lookup. Declaration looks it up for every use, so it
-// should cost a load, not a call through a switch.
+// should cost a load, not a call through a switch (nor selects on the node type).
 #pragma once
 
 #include <fgb/graph/types.hpp>
@@ -52,25 +52,42 @@ inline constexpr std::array<StageMask, 3> kShaderStagesOfType = {
     kStageTransfer,                             // Transfer
 };
 
-inline StageMask shaderStagesOf(NodeType type) {
-  const auto index = static_cast<size_t>(type);
-  return index < kShaderStagesOfType.size() ? kShaderStagesOfType[index] : kStageAllCommands;
+inline bool isKnownAccess(Access access) { return static_cast<size_t>(access) < kAccessTable.size(); }
+
+// kAccessTable with the stages of each row resolved for each node type (by NodeType value), and
+// whether the row's stages are the node's shader stages (which stages a use declares replace).
+struct UseRow {
+  AccessInfo info;
+  bool shaderStages;
+};
+inline constexpr std::array<std::array<UseRow, kShaderStagesOfType.size()>, kAccessTable.size()> kUseTable = [] {
+  std::array<std::array<UseRow, kShaderStagesOfType.size()>, kAccessTable.size()> table{};
+  for (size_t access = 0; access < kAccessTable.size(); ++access) {
+    for (size_t type = 0; type < kShaderStagesOfType.size(); ++type) {
+      UseRow& row = table[access][type];
+      row.info = kAccessTable[access];
+      row.shaderStages = row.info.stages == kStageNone;
+      if (row.shaderStages) row.info.stages = kShaderStagesOfType[type];
+    }
+  }
+  return table;
+}();
+
+// What a use of a known access (isKnownAccess) by a known node type records (FrameGraph checks both).
+// Uses rarely declare their own shader stages: a branch on it is predicted.
+inline AccessInfo lookupUse(Access access, NodeType nodeType, StageMask shaderStages) {
+  const UseRow& row = kUseTable[static_cast<size_t>(access)][static_cast<size_t>(nodeType)];
+  AccessInfo info = row.info;
+  if (shaderStages != kStageNone && row.shaderStages) info.stages = shaderStages;
+  return info;
 }
 
-// `value` where `mask` is all ones, `otherwise` where it is zero.
-inline StageMask selectStages(StageMask mask, StageMask value, StageMask otherwise) {
-  return (value & mask) | (otherwise & ~mask);
-}
-
-// Without branches on what the row or the node type is: node types and accesses of consecutive
-// uses follow no pattern a predictor can learn.
+// accessInfo(): lookupUse() for any access and node type (unknown ones get every stage).
 inline AccessInfo lookupAccessInfo(Access access, NodeType nodeType, StageMask shaderStages) {
-  const auto row = static_cast<size_t>(access);
-  if (row >= kAccessTable.size()) return {true, true, kStageAllCommands, kAccessNone, Layout::General};
-  AccessInfo info = kAccessTable[row];
-  const StageMask declared = 0u - static_cast<StageMask>(shaderStages != kStageNone);  // all ones if given
-  const StageMask shader = selectStages(declared, shaderStages, shaderStagesOf(nodeType));
-  info.stages = selectStages(0u - static_cast<StageMask>(info.stages == kStageNone), shader, info.stages);
+  if (!isKnownAccess(access)) return {true, true, kStageAllCommands, kAccessNone, Layout::General};
+  if (static_cast<size_t>(nodeType) < kShaderStagesOfType.size()) return lookupUse(access, nodeType, shaderStages);
+  AccessInfo info = kAccessTable[static_cast<size_t>(access)];
+  if (info.stages == kStageNone) info.stages = shaderStages != kStageNone ? shaderStages : kStageAllCommands;
   return info;
 }
 

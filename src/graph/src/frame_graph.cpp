@@ -5,13 +5,77 @@
 
 #include <algorithm>
 #include <string>
+#include <utility>
 
 namespace fgb::graph {
 namespace {
 
 std::string quoted(std::string_view name) { return "'" + std::string(name) + "'"; }
 
+[[noreturn, gnu::cold, gnu::noinline]] void throwUnknownNodeKind(std::string_view name, NodeType type,
+                                                                 QueueClass queue) {
+  throw GraphError("node " + quoted(name) + ": unknown node type " + std::to_string(static_cast<int>(type)) +
+                   " or queue class " + std::to_string(static_cast<int>(queue)));
+}
+
+// Doubles the capacity of `array`: out of line, so that an append inlined into a declaration (below)
+// keeps no registers and code for reallocating.
+template <typename T>
+[[gnu::cold, gnu::noinline]] void grow(std::vector<T>& array) {
+  array.reserve(std::max<size_t>(64, array.capacity() * 2));
+}
+
+// array.emplace_back(args...), with the reallocation kept out of line (see grow).
+template <typename T, typename... Args>
+[[gnu::always_inline]] inline T& append(std::vector<T>& array, Args&&... args) {
+  if (array.size() == array.capacity()) grow(array);
+  if (array.size() == array.capacity()) __builtin_unreachable();  // tells the compiler emplace_back won't grow
+  return array.emplace_back(std::forward<Args>(args)...);
+}
+
 }  // namespace
+
+// ---- NameStore --------------------------------------------------------------------------------
+
+namespace {
+// Room for about 8,000 short names a block: a 10,000-node graph needs three.
+constexpr size_t kNameBlockBytes = 64 * 1024;
+}  // namespace
+
+NameStore::~NameStore() { release(); }
+
+NameStore::NameStore(NameStore&& other) noexcept
+    : blocks_(std::move(other.blocks_)), next_(std::exchange(other.next_, nullptr)),
+      free_(std::exchange(other.free_, 0)) {
+  other.blocks_.clear();
+}
+
+NameStore& NameStore::operator=(NameStore&& other) noexcept {
+  if (this == &other) return *this;
+  release();
+  blocks_ = std::move(other.blocks_);
+  other.blocks_.clear();
+  next_ = std::exchange(other.next_, nullptr);
+  free_ = std::exchange(other.free_, 0);
+  return *this;
+}
+
+void NameStore::newBlock(size_t atLeast) {
+  std::vector<char> block;
+  detail::VectorPool<char>::take(block);
+  block.reserve(std::max(atLeast, kNameBlockBytes));
+  // Filled through next_, up to the capacity: the vector's size stays 0 and nothing reallocates.
+  next_ = block.data();
+  free_ = block.capacity();
+  blocks_.push_back(std::move(block));
+}
+
+void NameStore::release() noexcept {
+  for (std::vector<char>& block : blocks_) detail::VectorPool<char>::give(block);
+  blocks_.clear();
+  next_ = nullptr;
+  free_ = 0;
+}
 
 // ---- FrameGraph -------------------------------------------------------------------------------
 
@@ -34,6 +98,19 @@ FrameGraph::~FrameGraph() {
   detail::VectorPool<uint32_t>::give(useStart_);
   detail::VectorPool<AttachmentsOf>::give(attachments_);
   detail::VectorPool<Job>::give(jobs_);
+}
+
+FrameGraph::FrameGraph(const FrameGraph& other)
+    : nodes_(other.nodes_), resources_(other.resources_), versions_(other.versions_), allUses_(other.allUses_),
+      useStart_(other.useStart_), attachments_(other.attachments_), jobs_(other.jobs_),
+      readsOldVersions_(other.readsOldVersions_) {
+  for (NodeDecl& node : nodes_) node.name = names_.add(node.name);  // still the original's view
+  for (ResourceDecl& resource : resources_) resource.name = names_.add(resource.name);
+}
+
+FrameGraph& FrameGraph::operator=(const FrameGraph& other) {
+  if (this != &other) *this = FrameGraph(other);
+  return *this;
 }
 
 void FrameGraph::reserve(size_t nodes, size_t resources) {
@@ -79,12 +156,9 @@ const VersionDecl& FrameGraph::versionAt(uint32_t version, std::string_view what
   const auto version = static_cast<uint32_t>(versions_.size());
   versions_.emplace_back(resource, kInvalidIndex, kInvalidIndex);  // a first version: no producer, no previous
   // Every member given: value-initialising a struct this large first clears it with `rep stos`,
-  // which costs several times more per declaration than storing each member once. The name is
-  // copied in place: moving it in from a string just written costs a store-forwarding stall.
-  ResourceDecl& decl = resources_.emplace_back(std::string(), kind, imported, texture, buffer, ExternalResource{},
-                                               ImportState{}, ImportState{}, version, version);
-  decl.name = name;
-  return decl;
+  // which costs several times more per declaration than storing each member once.
+  return resources_.emplace_back(names_.add(name), kind, imported, texture, buffer, ExternalResource{},
+                                 ImportState{}, ImportState{}, version, version);
 }
 
 TextureHandle FrameGraph::importTexture(std::string_view name, const TextureDesc& desc, ExternalResource external,
@@ -151,8 +225,13 @@ NodeBuilder FrameGraph::addNode(std::string_view name, NodeType type) {
 }
 
 NodeBuilder FrameGraph::addNode(std::string_view name, NodeType type, QueueClass queue) {
+  // Checked once here, so that every use can index tables by the node's type (and the compiler by its queue).
+  if (static_cast<size_t>(type) >= detail::kShaderStagesOfType.size() ||
+      static_cast<size_t>(queue) >= kQueueClassCount) {
+    throwUnknownNodeKind(name, type, queue);
+  }
   const auto node = static_cast<uint32_t>(nodes_.size());
-  nodes_.emplace_back(std::string(), type, queue, false).name = name;  // in place, like a resource's name
+  nodes_.emplace_back(names_.add(name), type, queue, false);
   if (useStart_.empty()) useStart_.push_back(0);  // a moved-from graph being reused
   useStart_.push_back(useStart_.back());          // the new node's end, moved on by each of its uses
   return NodeBuilder(*this, node);
@@ -192,6 +271,10 @@ namespace {
   throwUseError(node, ": write() with a read-only access " + std::string(toString(access)) + "; use read()");
 }
 
+[[noreturn, gnu::cold, gnu::noinline]] void throwUnknownAccess(const NodeDecl& node, Access access) {
+  throwUseError(node, ": unknown access " + std::to_string(static_cast<int>(access)));
+}
+
 [[noreturn, gnu::cold, gnu::noinline]] void throwStaleWrite(const NodeDecl& node, const ResourceDecl& res,
                                                             uint32_t version) {
   throwUseError(node, " writes a stale version " + std::to_string(version) + " of " + quoted(res.name) +
@@ -208,58 +291,97 @@ void FrameGraph::noteOldVersionRead(uint32_t node, uint32_t version, uint32_t la
   if (newest.previous != version || newest.producer != node) readsOldVersions_ = true;
 }
 
-// Inlined into its callers (read, write, the attachments): every use pays for the call to one of
-// those already, and a second call level (saving and restoring registers once more) cost a sixth of
-// declaring a use.
-[[gnu::always_inline]] inline uint32_t FrameGraph::addUse(uint32_t node, uint32_t version, ResourceKind kind,
-                                                          Access access, StageMask stages) {
+// The checks every use makes (the builder is the newest node's, the version exists, the handle's
+// kind is the resource's) and what every use looks up: the version's resource and, for the
+// node's type, what the access does.
+struct FrameGraph::UseContext {
+  NodeDecl& node;
+  uint32_t resource;
+  ResourceDecl& res;
+  AccessInfo info;
+};
+
+// Inlined into its callers, like addRead and addWrite (below): every use pays for the call to
+// read() or write() already, and a second call level (saving and restoring registers once more)
+// cost a sixth of declaring a use.
+[[gnu::always_inline]] inline FrameGraph::UseContext FrameGraph::beginUse(uint32_t node, uint32_t version,
+                                                                        ResourceKind kind, Access access,
+                                                                        StageMask stages) {
   NodeDecl& decl = nodes_[node];
   if (node + 1 != nodes_.size()) throwUseError(decl, ": its NodeBuilder was used after the next node was added");
   if (version >= versions_.size()) throwUnknownVersion(decl, kind, version);
+  if (!detail::isKnownAccess(access)) throwUnknownAccess(decl, access);
   const uint32_t resource = versions_[version].resource;
   ResourceDecl& res = resources_[resource];
   if (res.kind != kind) throwWrongKind(decl, res, kind);
-  const AccessInfo info = detail::lookupAccessInfo(access, decl.type, stages);
-  uint32_t readVersion = kInvalidIndex;
-  uint32_t writeVersion = kInvalidIndex;
-  if (info.reads) {
-    const bool written = versions_[version].producer != kInvalidIndex || res.imported;
-    if (!written) throwUnwrittenRead(decl, res, version);
-    readVersion = version;
-    if (version != res.latestVersion) noteOldVersionRead(node, version, res.latestVersion);
-  }
-  if (info.writes) {
-    if (version != res.latestVersion) throwStaleWrite(decl, res, version);
-    writeVersion = static_cast<uint32_t>(versions_.size());
-    versions_.emplace_back(resource, node, version);
-    res.latestVersion = writeVersion;
-  }
-  // Constructed in place: a Use built on the stack and copied in costs a store-forwarding stall.
-  allUses_.emplace_back(resource, readVersion, writeVersion, access, stages, info.stages, info.access, info.layout);
+  return {decl, resource, res, detail::lookupUse(access, decl.type, stages)};
+}
+
+// Constructed in place: a Use built on the stack and copied in costs a store-forwarding stall.
+[[gnu::always_inline]] inline void FrameGraph::recordUse(const UseContext& use, uint32_t readVersion,
+                                                         uint32_t writeVersion, Access access, StageMask stages) {
+  append(allUses_, use.resource, readVersion, writeVersion, access, stages, use.info.stages, use.info.access,
+                        use.info.layout);
   ++useStart_.back();
-  return info.writes ? writeVersion : version;
+}
+
+// A read of `version` (which must have been written, or be an import's first version).
+[[gnu::always_inline]] inline void FrameGraph::checkRead(const UseContext& use, uint32_t node, uint32_t version) {
+  const bool written = versions_[version].producer != kInvalidIndex || use.res.imported;
+  if (!written) throwUnwrittenRead(use.node, use.res, version);
+  if (version != use.res.latestVersion) noteOldVersionRead(node, version, use.res.latestVersion);
+}
+
+[[gnu::always_inline]] inline uint32_t FrameGraph::addRead(uint32_t node, uint32_t version, ResourceKind kind,
+                                                           Access access, StageMask stages) {
+  const UseContext use = beginUse(node, version, kind, access, stages);
+  if (use.info.writes) throwReadWithWritingAccess(use.node, access);
+  checkRead(use, node, version);
+  recordUse(use, version, kInvalidIndex, access, stages);
+  return version;
+}
+
+// A write over `version` (which must be the latest); returns the version it creates. A
+// read-modify-write access reads `version` too.
+[[gnu::always_inline]] inline uint32_t FrameGraph::addWrite(uint32_t node, uint32_t version, ResourceKind kind,
+                                                            Access access, StageMask stages) {
+  const UseContext use = beginUse(node, version, kind, access, stages);
+  if (!use.info.writes) throwWriteWithReadOnlyAccess(use.node, access);
+  uint32_t readVersion = kInvalidIndex;
+  if (use.info.reads) {
+    checkRead(use, node, version);
+    readVersion = version;
+  }
+  if (version != use.res.latestVersion) throwStaleWrite(use.node, use.res, version);
+  const auto written = static_cast<uint32_t>(versions_.size());
+  append(versions_, use.resource, node, version);
+  use.res.latestVersion = written;
+  recordUse(use, readVersion, written, access, stages);
+  return written;
+}
+
+// For the attachments, whose access is fixed by the call.
+uint32_t FrameGraph::addUse(uint32_t node, uint32_t version, Access access) {
+  return isWriteAccess(access) ? addWrite(node, version, ResourceKind::Texture, access, kStageNone)
+                               : addRead(node, version, ResourceKind::Texture, access, kStageNone);
 }
 
 // ---- NodeBuilder ------------------------------------------------------------------------------
 
 TextureHandle NodeBuilder::read(TextureHandle texture, Access access, StageMask stages) {
-  if (isWriteAccess(access)) throwReadWithWritingAccess(graph_->nodes_[node_], access);
-  return {graph_->addUse(node_, texture.version, ResourceKind::Texture, access, stages)};
+  return {graph_->addRead(node_, texture.version, ResourceKind::Texture, access, stages)};
 }
 
 BufferHandle NodeBuilder::read(BufferHandle buffer, Access access, StageMask stages) {
-  if (isWriteAccess(access)) throwReadWithWritingAccess(graph_->nodes_[node_], access);
-  return {graph_->addUse(node_, buffer.version, ResourceKind::Buffer, access, stages)};
+  return {graph_->addRead(node_, buffer.version, ResourceKind::Buffer, access, stages)};
 }
 
 TextureHandle NodeBuilder::write(TextureHandle texture, Access access, StageMask stages) {
-  if (!isWriteAccess(access)) throwWriteWithReadOnlyAccess(graph_->nodes_[node_], access);
-  return {graph_->addUse(node_, texture.version, ResourceKind::Texture, access, stages)};
+  return {graph_->addWrite(node_, texture.version, ResourceKind::Texture, access, stages)};
 }
 
 BufferHandle NodeBuilder::write(BufferHandle buffer, Access access, StageMask stages) {
-  if (!isWriteAccess(access)) throwWriteWithReadOnlyAccess(graph_->nodes_[node_], access);
-  return {graph_->addUse(node_, buffer.version, ResourceKind::Buffer, access, stages)};
+  return {graph_->addWrite(node_, buffer.version, ResourceKind::Buffer, access, stages)};
 }
 
 namespace {
@@ -284,7 +406,7 @@ void requireNoDepthTarget(const FrameGraph& graph, uint32_t node) {
 TextureHandle NodeBuilder::addColorTarget(TextureHandle target, LoadOp load, ClearValue clear) {
   requireGraphicsNode(graph_->nodes_[node_], "a colour target");
   const Access access = load == LoadOp::Load ? Access::ColorAttachmentReadWrite : Access::ColorAttachmentWrite;
-  const TextureHandle written{graph_->addUse(node_, target.version, ResourceKind::Texture, access, kStageNone)};
+  const TextureHandle written{graph_->addUse(node_, target.version, access)};
   graph_->newestNodeAttachments(node_).color.push_back({written, {}, load, StoreOp::Store, clear});
   return written;
 }
@@ -295,7 +417,7 @@ TextureHandle NodeBuilder::addColorTargetWithResolve(TextureHandle target, Textu
   const TextureHandle written = addColorTarget(target, load, clear);
   if (newTargetVersion != nullptr) *newTargetVersion = written;
   const TextureHandle resolved{
-      graph_->addUse(node_, resolveTarget.version, ResourceKind::Texture, Access::ResolveDst, kStageNone)};
+      graph_->addUse(node_, resolveTarget.version, Access::ResolveDst)};
   graph_->newestNodeAttachments(node_).color.back().resolveTarget = resolved;
   return resolved;
 }
@@ -303,14 +425,14 @@ TextureHandle NodeBuilder::addColorTargetWithResolve(TextureHandle target, Textu
 TextureHandle NodeBuilder::setDepthStencil(TextureHandle target, LoadOp load, ClearValue clear) {
   requireNoDepthTarget(*graph_, node_);
   const Access access = load == LoadOp::Load ? Access::DepthAttachmentReadWrite : Access::DepthAttachmentWrite;
-  const TextureHandle written{graph_->addUse(node_, target.version, ResourceKind::Texture, access, kStageNone)};
+  const TextureHandle written{graph_->addUse(node_, target.version, access)};
   graph_->newestNodeAttachments(node_).depth = {written, load, StoreOp::Store, clear, false};
   return written;
 }
 
 void NodeBuilder::setDepthStencilReadOnly(TextureHandle target) {
   requireNoDepthTarget(*graph_, node_);
-  graph_->addUse(node_, target.version, ResourceKind::Texture, Access::DepthAttachmentRead, kStageNone);
+  graph_->addUse(node_, target.version, Access::DepthAttachmentRead);
   graph_->newestNodeAttachments(node_).depth = {target, LoadOp::Load, StoreOp::Store, {}, true};
 }
 

@@ -84,7 +84,7 @@ void cullNodes(CompileState& state) {
 
 namespace {
 
-void appendQuoted(std::string& out, const std::string& name) {
+void appendQuoted(std::string& out, std::string_view name) {
   out += '\'';
   out += name;
   out += '\'';

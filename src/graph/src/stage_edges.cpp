@@ -105,8 +105,8 @@ Adjacency versionEdgePredecessors(const FrameGraph& graph) {
   std::vector<uint32_t> cycle(walk.begin() + visitedAt[node], walk.end());
   std::reverse(cycle.begin(), cycle.end());  // the walk followed predecessors
   std::string names;
-  for (uint32_t n : cycle) names += "'" + graph.nodes()[n].name + "' -> ";
-  names += "'" + graph.nodes()[cycle.front()].name + "'";
+  for (uint32_t n : cycle) names.append("'").append(graph.nodes()[n].name).append("' -> ");
+  names.append("'").append(graph.nodes()[cycle.front()].name).append("'");
   throw GraphError("frame graph has a cycle: " + names);
 }
 

@@ -209,7 +209,7 @@ class SceneWorkload final : public Workload {
       FrameTiming frame;
       for (uint32_t i = 0; i < nodes.size(); ++i) {
         const bool culled = compiled.nodes[i].culled;
-        frame.passes.push_back({nodes[i].name, std::string(graph::toString(nodes[i].queue)), culled,
+        frame.passes.push_back({std::string(nodes[i].name), std::string(graph::toString(nodes[i].queue)), culled,
                                 culled || i >= timings.nodeMs.size() ? 0.0 : timings.nodeMs[i], -1.0});
       }
       frame.gpuFrameMs = timings.gpuMs;

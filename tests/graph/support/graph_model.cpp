@@ -17,13 +17,13 @@ int chainPosition(const FrameGraph& graph, uint32_t version) {
 GraphModel modelFromGraph(const FrameGraph& graph) {
   GraphModel model;
   for (const ResourceDecl& resource : graph.resources()) {
-    model.resourceName.push_back(resource.name);
+    model.resourceName.emplace_back(resource.name);
     model.kind.push_back(resource.kind);
     model.imported.push_back(resource.imported);
   }
   for (uint32_t node = 0; node < graph.nodes().size(); ++node) {
     const NodeDecl& decl = graph.nodes()[node];
-    model.nodeName.push_back(decl.name);
+    model.nodeName.emplace_back(decl.name);
     model.nodeType.push_back(decl.type);
     model.nodeClass.push_back(decl.queue);
     model.sideEffect.push_back(decl.sideEffect);

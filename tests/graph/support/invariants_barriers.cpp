@@ -148,7 +148,7 @@ void checkLayoutsOn(Replay& r, uint32_t queue, uint32_t texture) {
   bool known = false;
   bool discarded = false;
   Layout current = Layout::Undefined;
-  const std::string what = "texture '" + decl.name + "' on queue " + std::to_string(queue);
+  const std::string what = "texture '" + std::string(decl.name) + "' on queue " + std::to_string(queue);
   for (const Event& e : r.timeline[queue]) {
     if (e.barrier != kInvalidIndex) {
       const Barrier& b = r.compiled.barriers[e.barrier];
@@ -207,7 +207,7 @@ void checkFirstAndFinal(Replay& r, uint32_t texture) {
       const Event& e = r.timeline[queue][p];
       if (e.barrier != kInvalidIndex && r.compiled.barriers[e.barrier].resource == texture) {
         if (r.compiled.barriers[e.barrier].oldLayout != Layout::Undefined) {
-          r.problems.push_back("transient '" + decl.name + "': first transition not from UNDEFINED");
+          r.problems.push_back("transient '" + std::string(decl.name) + "': first transition not from UNDEFINED");
         }
         break;
       }
@@ -223,7 +223,7 @@ void checkFirstAndFinal(Replay& r, uint32_t texture) {
     }
   }
   if (endLayout != decl.finalState.layout) {
-    r.problems.push_back("imported '" + decl.name + "' ends in " + std::string(toString(endLayout)) + ", not " +
+    r.problems.push_back("imported '" + std::string(decl.name) + "' ends in " + std::string(toString(endLayout)) + ", not " +
                          std::string(toString(decl.finalState.layout)));
   }
 }

@@ -107,10 +107,10 @@ Problems checkResolvedFields(const FrameGraph& graph, const CompiledGraph& compi
       const Extent want = expectedExtent(graph, r);
       const Extent got = compiled.resources[r].texture.extent;
       if (got.width != want.width || got.height != want.height || got.depth != want.depth) {
-        problems.push_back("texture '" + decl.name + "': extent not resolved from its dependent field");
+        problems.push_back("texture '" + std::string(decl.name) + "': extent not resolved from its dependent field");
       }
     } else if (compiled.resources[r].buffer.size != expectedSize(graph, r)) {
-      problems.push_back("buffer '" + decl.name + "': size not resolved from its dependent field");
+      problems.push_back("buffer '" + std::string(decl.name) + "': size not resolved from its dependent field");
     }
   }
   return problems;

@@ -208,7 +208,7 @@ CompileOptions randomCompileOptions(uint32_t queueCount) {
   options.queueOfClass = queueOfClassFor(queueCount);
   options.requirements = [](const ResourceDecl& decl, const ResolvedResource& resolved) {
     MemoryRequirements requirements = estimateRequirements(decl, resolved);
-    const size_t hash = std::hash<std::string>{}(decl.name);
+    const size_t hash = std::hash<std::string_view>{}(decl.name);
     requirements.alignment = hash % 3 == 0 ? 4096 : 256;
     if (decl.kind == ResourceKind::Buffer) requirements.memoryTypeBits = 0b0011;
     else requirements.memoryTypeBits = hash % 2 == 0 ? 0b0110 : 0b0100;

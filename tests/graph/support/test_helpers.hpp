@@ -63,7 +63,7 @@ using NamePairs = std::set<std::pair<std::string, std::string>>;
 
 inline NamePairs edgeNames(const FrameGraph& graph, const std::vector<Edge>& edges) {
   NamePairs names;
-  for (const Edge& e : edges) names.insert({graph.nodes()[e.from].name, graph.nodes()[e.to].name});
+  for (const Edge& e : edges) names.emplace(graph.nodes()[e.from].name, graph.nodes()[e.to].name);
   return names;
 }
 

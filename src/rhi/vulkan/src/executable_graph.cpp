@@ -127,12 +127,12 @@ graph::CompileOptions VulkanGraph::compileOptions() {
     const uint32_t r = indexOfFirstVersion->at(decl.firstVersion);
     auto requirements = vkStruct<VkMemoryRequirements2>(VK_STRUCTURE_TYPE_MEMORY_REQUIREMENTS_2);
     if (decl.kind == graph::ResourceKind::Texture) {
-      const VkImageCreateInfo info = VulkanDevice::imageInfo(textureDesc(decl.name, resolved.texture, (*textureUsage)[r]));
+      const VkImageCreateInfo info = VulkanDevice::imageInfo(textureDesc(std::string(decl.name), resolved.texture, (*textureUsage)[r]));
       auto query = vkStruct<VkDeviceImageMemoryRequirements>(VK_STRUCTURE_TYPE_DEVICE_IMAGE_MEMORY_REQUIREMENTS);
       query.pCreateInfo = &info;
       vkGetDeviceImageMemoryRequirements(device, &query, &requirements);
     } else {
-      const VkBufferCreateInfo info = owner->bufferInfo(bufferDesc(decl.name, resolved.buffer, (*bufferUsage)[r]));
+      const VkBufferCreateInfo info = owner->bufferInfo(bufferDesc(std::string(decl.name), resolved.buffer, (*bufferUsage)[r]));
       auto query = vkStruct<VkDeviceBufferMemoryRequirements>(VK_STRUCTURE_TYPE_DEVICE_BUFFER_MEMORY_REQUIREMENTS);
       query.pCreateInfo = &info;
       vkGetDeviceBufferMemoryRequirements(device, &query, &requirements);
@@ -188,7 +188,7 @@ void VulkanGraph::createResources() {
       if (texture) textures_[r] = rhi::externalTexture(decl.external);
       else buffers_[r] = rhi::externalBuffer(decl.external);
       if (!(texture ? textures_[r].valid() : buffers_[r].valid())) {
-        throw InputError("graph '" + options_.name + "': imported " + (texture ? "texture '" : "buffer '") + decl.name +
+        throw InputError("graph '" + options_.name + "': imported " + (texture ? "texture '" : "buffer '") + std::string(decl.name) +
                          "' does not name an RHI " + (texture ? "texture" : "buffer") + " (use rhi::external)");
       }
       continue;
@@ -204,7 +204,7 @@ void VulkanGraph::createResources() {
       if (at.mapped) at.mapped += placement.offset;
       where = &at;
     }
-    const std::string name = options_.name + "/" + decl.name;
+    const std::string name = options_.name + "/" + std::string(decl.name);
     if (texture) {
       textures_[r] = device_.createTextureIn(textureDesc(name, compiled_.resources[r].texture, textureUsage[r]), where);
     } else {

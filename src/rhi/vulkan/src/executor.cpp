@@ -145,7 +145,7 @@ void VulkanGraph::beginStep() {
   const VkCommandBuffer cmd = commandBufferForRecording();
   if (device_.debugLabels()) {
     auto label = vkStruct<VkDebugUtilsLabelEXT>(VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT);
-    label.pLabelName = declaration_.nodes()[step.node].name.c_str();
+    label.pLabelName = declaration_.nodes()[step.node].name.data();  // NUL-terminated
     std::copy(std::begin(kLabelColors[static_cast<int>(step.type)]), std::end(kLabelColors[static_cast<int>(step.type)]),
               label.color);
     vkCmdBeginDebugUtilsLabelEXT(cmd, &label);

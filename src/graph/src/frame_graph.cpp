@@ -321,7 +321,7 @@ struct FrameGraph::UseContext {
 [[gnu::always_inline]] inline void FrameGraph::recordUse(const UseContext& use, uint32_t readVersion,
                                                          uint32_t writeVersion, Access access, StageMask stages) {
   append(allUses_, use.resource, readVersion, writeVersion, access, stages, use.info.stages, use.info.access,
-                        use.info.layout);
+         use.info.layout);
   ++useStart_.back();
 }
 
@@ -416,8 +416,7 @@ TextureHandle NodeBuilder::addColorTargetWithResolve(TextureHandle target, Textu
                                                      ClearValue clear) {
   const TextureHandle written = addColorTarget(target, load, clear);
   if (newTargetVersion != nullptr) *newTargetVersion = written;
-  const TextureHandle resolved{
-      graph_->addUse(node_, resolveTarget.version, Access::ResolveDst)};
+  const TextureHandle resolved{graph_->addUse(node_, resolveTarget.version, Access::ResolveDst)};
   graph_->newestNodeAttachments(node_).color.back().resolveTarget = resolved;
   return resolved;
 }

@@ -223,8 +223,8 @@ void checkFirstAndFinal(Replay& r, uint32_t texture) {
     }
   }
   if (endLayout != decl.finalState.layout) {
-    r.problems.push_back("imported '" + std::string(decl.name) + "' ends in " + std::string(toString(endLayout)) + ", not " +
-                         std::string(toString(decl.finalState.layout)));
+    r.problems.push_back("imported '" + std::string(decl.name) + "' ends in " + std::string(toString(endLayout)) +
+                         ", not " + std::string(toString(decl.finalState.layout)));
   }
 }
 

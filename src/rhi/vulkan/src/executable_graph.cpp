@@ -10,17 +10,19 @@
 
 #include <algorithm>
 #include <queue>
+#include <string>
+#include <string_view>
 #include <unordered_map>
 
 namespace fgb::vulkan {
 namespace {
 
-rhi::TextureDesc textureDesc(const std::string& name, const graph::TextureDesc& t, rhi::TextureUsage usage) {
-  return {name, t.format, t.extent, t.mipLevels, t.layers, t.samples, usage};
+rhi::TextureDesc textureDesc(std::string_view name, const graph::TextureDesc& t, rhi::TextureUsage usage) {
+  return {std::string(name), t.format, t.extent, t.mipLevels, t.layers, t.samples, usage};
 }
 
-rhi::BufferDesc bufferDesc(const std::string& name, const graph::BufferDesc& b, rhi::BufferUsage usage) {
-  return {name, b.size, usage, rhi::MemoryUsage::DeviceLocal};
+rhi::BufferDesc bufferDesc(std::string_view name, const graph::BufferDesc& b, rhi::BufferUsage usage) {
+  return {std::string(name), b.size, usage, rhi::MemoryUsage::DeviceLocal};
 }
 
 uint64_t alignUp(uint64_t value, uint64_t alignment) { return (value + alignment - 1) / alignment * alignment; }
@@ -127,12 +129,12 @@ graph::CompileOptions VulkanGraph::compileOptions() {
     const uint32_t r = indexOfFirstVersion->at(decl.firstVersion);
     auto requirements = vkStruct<VkMemoryRequirements2>(VK_STRUCTURE_TYPE_MEMORY_REQUIREMENTS_2);
     if (decl.kind == graph::ResourceKind::Texture) {
-      const VkImageCreateInfo info = VulkanDevice::imageInfo(textureDesc(std::string(decl.name), resolved.texture, (*textureUsage)[r]));
+      const VkImageCreateInfo info = VulkanDevice::imageInfo(textureDesc(decl.name, resolved.texture, (*textureUsage)[r]));
       auto query = vkStruct<VkDeviceImageMemoryRequirements>(VK_STRUCTURE_TYPE_DEVICE_IMAGE_MEMORY_REQUIREMENTS);
       query.pCreateInfo = &info;
       vkGetDeviceImageMemoryRequirements(device, &query, &requirements);
     } else {
-      const VkBufferCreateInfo info = owner->bufferInfo(bufferDesc(std::string(decl.name), resolved.buffer, (*bufferUsage)[r]));
+      const VkBufferCreateInfo info = owner->bufferInfo(bufferDesc(decl.name, resolved.buffer, (*bufferUsage)[r]));
       auto query = vkStruct<VkDeviceBufferMemoryRequirements>(VK_STRUCTURE_TYPE_DEVICE_BUFFER_MEMORY_REQUIREMENTS);
       query.pCreateInfo = &info;
       vkGetDeviceBufferMemoryRequirements(device, &query, &requirements);
@@ -188,8 +190,9 @@ void VulkanGraph::createResources() {
       if (texture) textures_[r] = rhi::externalTexture(decl.external);
       else buffers_[r] = rhi::externalBuffer(decl.external);
       if (!(texture ? textures_[r].valid() : buffers_[r].valid())) {
-        throw InputError("graph '" + options_.name + "': imported " + (texture ? "texture '" : "buffer '") + std::string(decl.name) +
-                         "' does not name an RHI " + (texture ? "texture" : "buffer") + " (use rhi::external)");
+        throw InputError("graph '" + options_.name + "': imported " + (texture ? "texture '" : "buffer '") +
+                         std::string(decl.name) + "' does not name an RHI " + (texture ? "texture" : "buffer") +
+                         " (use rhi::external)");
       }
       continue;
     }

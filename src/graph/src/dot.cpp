@@ -68,13 +68,14 @@ std::string describeBarrier(const FrameGraph& graph, const Barrier& b) {
   return s.str();
 }
 
-std::string nodeLabel(const FrameGraph& graph, const CompiledGraph& compiled, uint32_t n, DotDetail detail) {
+std::string nodeLabel(const FrameGraph& graph, const CompiledGraph& compiled, const CullDiagnostics& cullReasons,
+                      uint32_t n, DotDetail detail) {
   const NodeDecl& node = graph.nodes()[n];
   const NodeInfo& info = compiled.nodes[n];
   std::ostringstream s;
   s << escape(node.name);
   if (info.culled) {
-    s << "\\nculled: " << escape(cullDiagnostic(graph, compiled, n));
+    s << "\\nculled: " << escape(cullReasons.describe(n));
     return s.str();
   }
   if (detail == DotDetail::Brief) return s.str();
@@ -91,11 +92,13 @@ std::string nodeLabel(const FrameGraph& graph, const CompiledGraph& compiled, ui
 }
 
 void writeNodes(std::ostringstream& s, const FrameGraph& graph, const CompiledGraph& compiled, DotDetail detail) {
+  // One index for the whole dump: cullDiagnostic() per culled node would rescan the graph for each.
+  const CullDiagnostics cullReasons(graph, compiled);
   for (uint32_t n = 0; n < graph.nodes().size(); ++n) {
     const NodeDecl& node = graph.nodes()[n];
     const bool culled = compiled.nodes[n].culled;
     s << "  n" << n << " [shape=box, style=\"" << (culled ? "dashed" : "filled,rounded") << "\", fillcolor=\""
-      << fillColour(node.type) << "\", label=\"" << nodeLabel(graph, compiled, n, detail) << "\"];\n";
+      << fillColour(node.type) << "\", label=\"" << nodeLabel(graph, compiled, cullReasons, n, detail) << "\"];\n";
   }
 }
 

@@ -1,11 +1,13 @@
 // Stage: queue assignment and culling (Frostbite's flood fill, run as reverse reachability over
 // versions). A node is kept when it has a side effect, writes an imported resource, or produces a
-// version that a kept node reads. Everything else is culled, with a reason; cullDiagnostic() puts
-// the reason into words a person can act on. Also counts the uses alive nodes make of each resource.
+// version that a kept node reads. Everything else is culled, with a reason; cullDiagnostic() and
+// CullDiagnostics put the reason into words a person can act on. Also counts the uses alive nodes
+// make of each resource.
 #include "compile_state.hpp"
 
 #include <algorithm>
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 namespace fgb::graph {
@@ -105,21 +107,30 @@ void forEachCulledReader(const FrameGraph& graph, const CompiledGraph& compiled,
   }
 }
 
-}  // namespace
-
-std::string cullDiagnostic(const FrameGraph& graph, const CompiledGraph& compiled, uint32_t node) {
+// The text of cullDiagnostic(), shared by the scan and the index so the two cannot drift apart.
+// `forEachReader(version, visit)` must call `visit` with each culled node declared after `node` that
+// reads `version`, once each, in declaration order.
+template <typename ForEachReader>
+std::string describeCulled(const FrameGraph& graph, const CompiledGraph& compiled, uint32_t node,
+                           ForEachReader&& forEachReader) {
   if (!compiled.nodes[node].culled) return {};
+  const auto uses = graph.uses(node);
+  const auto writes =
+      std::count_if(uses.begin(), uses.end(), [](const Use& use) { return use.writeVersion != kInvalidIndex; });
+  // A node may read several of the outputs, and is named once, where first met. Readers of one
+  // version come once each, so only a node with several writes needs the set (kept off the path
+  // of the common single write).
+  const bool readersMayRepeat = writes > 1;
+  std::unordered_set<uint32_t> named;
   std::string why;
   std::string readerNames;
-  std::vector<uint32_t> named;  // readers already listed (a node may read several outputs)
-  for (const Use& use : graph.uses(node)) {
+  for (const Use& use : uses) {
     if (use.writeVersion == kInvalidIndex) continue;
     why += why.empty() ? "writes " : ", ";
     appendQuoted(why, graph.resources()[use.resource].name);
     why += " v" + std::to_string(use.writeVersion);
-    forEachCulledReader(graph, compiled, node, use.writeVersion, [&](uint32_t reader) {
-      if (std::find(named.begin(), named.end(), reader) != named.end()) return;
-      named.push_back(reader);
+    forEachReader(use.writeVersion, [&](uint32_t reader) {
+      if (readersMayRepeat && !named.insert(reader).second) return;
       if (!readerNames.empty()) readerNames += ", ";
       appendQuoted(readerNames, graph.nodes()[reader].name);
     });
@@ -128,6 +139,58 @@ std::string cullDiagnostic(const FrameGraph& graph, const CompiledGraph& compile
   why += ", none imported; ";
   why += readerNames.empty() ? "nothing reads them" : "read only by culled nodes " + readerNames;
   return why;
+}
+
+}  // namespace
+
+// One description scans the uses of the nodes declared after `node`: no more than building a
+// CullDiagnostics index costs (both O(nodes + uses)), without the index's arrays, so for a single
+// call (a test, a log line) the scan is the cheaper one.
+std::string cullDiagnostic(const FrameGraph& graph, const CompiledGraph& compiled, uint32_t node) {
+  return describeCulled(graph, compiled, node, [&](uint32_t version, auto&& visit) {
+    forEachCulledReader(graph, compiled, node, version, visit);
+  });
+}
+
+CullDiagnostics::CullDiagnostics(const FrameGraph& graph, const CompiledGraph& compiled)
+    : graph_(graph), compiled_(compiled) {
+  const size_t versionCount = graph.versions().size();
+  const auto nodeCount = static_cast<uint32_t>(compiled.nodes.size());
+  // Counting sort by version, in two sweeps over the culled nodes' uses (alive readers are never
+  // named). A node reading one version through several uses counts once: the sweep goes in node
+  // order, so a repeat is always the reader recorded last for that version.
+  std::vector<uint32_t> lastCounted(versionCount, kInvalidIndex);
+  readerStart_.assign(versionCount + 1, 0);
+  for (uint32_t reader = 0; reader < nodeCount; ++reader) {
+    if (!compiled.nodes[reader].culled) continue;
+    for (const Use& use : graph.uses(reader)) {
+      if (use.readVersion == kInvalidIndex || lastCounted[use.readVersion] == reader) continue;
+      lastCounted[use.readVersion] = reader;
+      ++readerStart_[use.readVersion + 1];
+    }
+  }
+  for (size_t v = 0; v < versionCount; ++v) readerStart_[v + 1] += readerStart_[v];
+  culledReaders_.resize(readerStart_[versionCount]);
+  std::vector<uint32_t> fillEnd(readerStart_.begin(), readerStart_.end() - 1);
+  for (uint32_t reader = 0; reader < nodeCount; ++reader) {
+    if (!compiled.nodes[reader].culled) continue;
+    for (const Use& use : graph.uses(reader)) {
+      const uint32_t version = use.readVersion;
+      if (version == kInvalidIndex) continue;
+      uint32_t& end = fillEnd[version];
+      if (end != readerStart_[version] && culledReaders_[end - 1] == reader) continue;
+      culledReaders_[end++] = reader;
+    }
+  }
+}
+
+std::string CullDiagnostics::describe(uint32_t node) const {
+  return describeCulled(graph_, compiled_, node, [&](uint32_t version, auto&& visit) {
+    const auto first = culledReaders_.begin() + readerStart_[version];
+    const auto last = culledReaders_.begin() + readerStart_[version + 1];
+    // As in the scan, only readers declared after `node` count (a version's readers always are).
+    for (auto reader = std::upper_bound(first, last, node); reader != last; ++reader) visit(*reader);
+  });
 }
 
 }  // namespace fgb::graph

@@ -22,8 +22,8 @@ enum class CullReason : uint8_t {
   NoOutputs,         // declares no writes and no side effect
 };
 
-// The text saying why a node was culled is built on demand by cullDiagnostic() (below): compiling
-// builds none, as most culled nodes of a frame are never described to anyone.
+// The text saying why a node was culled is built on demand by cullDiagnostic() or CullDiagnostics
+// (below): compiling builds none, as most culled nodes of a frame are never described to anyone.
 struct NodeInfo {
   bool culled = false;
   CullReason reason = CullReason::Alive;
@@ -156,7 +156,28 @@ struct CompiledGraph {
 
 // Why `node` was culled, for a person: "writes 'a' v3, 'b' v5, none imported; nothing reads them",
 // "...; read only by culled nodes 'x', 'y'", or "declares no writes and no side effect". Empty for a
-// node that was not culled. Scans the uses of the nodes declared after `node`.
+// node that was not culled. Scans the uses of the nodes declared after `node`: to describe many
+// nodes, build one CullDiagnostics instead (calling this for every culled node is quadratic).
 std::string cullDiagnostic(const FrameGraph& graph, const CompiledGraph& compiled, uint32_t node);
+
+// cullDiagnostic() for many nodes of one compiled graph (a Graphviz dump describes every culled
+// node). The constructor indexes, in O(nodes + uses), the culled readers of every version; then
+// describe(node) costs only the uses of `node` and the readers it names. Holds references to
+// `graph` and `compiled`, which must outlive it and stay unchanged.
+class CullDiagnostics {
+ public:
+  CullDiagnostics(const FrameGraph& graph, const CompiledGraph& compiled);
+
+  // Exactly cullDiagnostic(graph, compiled, node).
+  [[nodiscard]] std::string describe(uint32_t node) const;
+
+ private:
+  const FrameGraph& graph_;
+  const CompiledGraph& compiled_;
+  // Compressed adjacency: the culled nodes that read version v are
+  // culledReaders_[readerStart_[v], readerStart_[v + 1]), each once, in declaration order.
+  std::vector<uint32_t> readerStart_;
+  std::vector<uint32_t> culledReaders_;
+};
 
 }  // namespace fgb::graph

@@ -283,6 +283,24 @@ TEST(Declaration, NamesAreTheGraphsOwnCopiesAndSurviveCopiesAndMoves) {
   expectNames(moved, longName);
 }
 
+// Short names are copied without memcpy, in pieces chosen by length (1-3, 4-7, 8-16 bytes; longer
+// ones by memcpy): every length, declared back to back, keeps every byte and its neighbours'.
+TEST(Declaration, NamesOfEveryLengthAreCopiedExactly) {
+  constexpr size_t kLongest = 40;
+  auto nameOf = [](size_t length) {
+    std::string name;
+    for (size_t i = 0; i < length; ++i) name.push_back(static_cast<char>('a' + (length + i) % 26));
+    return name;
+  };
+  FrameGraph graph;
+  for (size_t length = 0; length <= kLongest; ++length) graph.addNode(nameOf(length), NodeType::Compute);
+  for (size_t length = 0; length <= kLongest; ++length) {
+    const std::string_view name = graph.nodes()[length].name;
+    EXPECT_EQ(name, nameOf(length)) << "length " << length;
+    EXPECT_EQ(name.data()[name.size()], '\0') << "length " << length;
+  }
+}
+
 TEST(AccessInfo, QueueClassAndNamesAreStable) {
   EXPECT_EQ(defaultQueue(NodeType::Transfer), QueueClass::Transfer);
   EXPECT_EQ(toString(NodeType::Graphics), "graphics");

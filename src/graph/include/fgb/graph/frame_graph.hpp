@@ -14,6 +14,7 @@
 
 #include <array>
 #include <cstdint>
+#include <cstring>
 #include <functional>
 #include <span>
 #include <stdexcept>
@@ -185,7 +186,7 @@ class NameStore {
     const size_t bytes = name.size() + 1;
     if (bytes > free_) newBlock(bytes);
     char* const at = next_;
-    name.copy(at, name.size());
+    copyName(at, name);
     at[name.size()] = '\0';
     next_ += bytes;
     free_ -= bytes;
@@ -193,6 +194,29 @@ class NameStore {
   }
 
  private:
+  // Names are mostly short ("gbuffer", "node1234"): up to 16 bytes are copied with two
+  // overlapping loads and stores of 8 (or 4, or 1) bytes each, with no call to memcpy.
+  static void copyName(char* to, std::string_view name) {
+    const char* from = name.data();
+    const size_t n = name.size();
+    if (n > 16) {
+      name.copy(to, n);
+    } else if (n >= 8) {
+      copyBytes<8>(to, from);
+      copyBytes<8>(to + n - 8, from + n - 8);
+    } else if (n >= 4) {
+      copyBytes<4>(to, from);
+      copyBytes<4>(to + n - 4, from + n - 4);
+    } else {
+      for (size_t i = 0; i < n; ++i) to[i] = from[i];
+    }
+  }
+  template <size_t Bytes>
+  static void copyBytes(char* to, const char* from) {
+    char chunk[Bytes];
+    std::memcpy(chunk, from, Bytes);  // one unaligned load
+    std::memcpy(to, chunk, Bytes);    // one unaligned store
+  }
   void newBlock(size_t atLeast);
   void release() noexcept;
 

@@ -43,6 +43,12 @@ struct Adjacency {
   [[nodiscard]] uint32_t end(uint32_t i) const { return start[i + 1]; }
 };
 
+// The readers of each version among all declared nodes: readers[start[v] .. start[v + 1]) read
+// version v, in declaration order, a node once per use of it (so one that reads v twice is listed
+// twice, next to itself). Used by the dependency stage (for declarations with old-version reads)
+// and by CullDiagnostics.
+void indexVersionReaders(const FrameGraph& graph, std::vector<uint32_t>& start, std::vector<uint32_t>& readers);
+
 // Per resource, the facts later stages test for every use, packed densely (ResourceDecl is large).
 enum ResourceTraits : uint8_t {
   kResourceTexture = 1u << 0,

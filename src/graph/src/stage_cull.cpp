@@ -154,42 +154,21 @@ std::string cullDiagnostic(const FrameGraph& graph, const CompiledGraph& compile
 
 CullDiagnostics::CullDiagnostics(const FrameGraph& graph, const CompiledGraph& compiled)
     : graph_(graph), compiled_(compiled) {
-  const size_t versionCount = graph.versions().size();
-  const auto nodeCount = static_cast<uint32_t>(compiled.nodes.size());
-  // Counting sort by version, in two sweeps over the culled nodes' uses (alive readers are never
-  // named). A node reading one version through several uses counts once: the sweep goes in node
-  // order, so a repeat is always the reader recorded last for that version.
-  std::vector<uint32_t> lastCounted(versionCount, kInvalidIndex);
-  readerStart_.assign(versionCount + 1, 0);
-  for (uint32_t reader = 0; reader < nodeCount; ++reader) {
-    if (!compiled.nodes[reader].culled) continue;
-    for (const Use& use : graph.uses(reader)) {
-      if (use.readVersion == kInvalidIndex || lastCounted[use.readVersion] == reader) continue;
-      lastCounted[use.readVersion] = reader;
-      ++readerStart_[use.readVersion + 1];
-    }
-  }
-  for (size_t v = 0; v < versionCount; ++v) readerStart_[v + 1] += readerStart_[v];
-  culledReaders_.resize(readerStart_[versionCount]);
-  std::vector<uint32_t> fillEnd(readerStart_.begin(), readerStart_.end() - 1);
-  for (uint32_t reader = 0; reader < nodeCount; ++reader) {
-    if (!compiled.nodes[reader].culled) continue;
-    for (const Use& use : graph.uses(reader)) {
-      const uint32_t version = use.readVersion;
-      if (version == kInvalidIndex) continue;
-      uint32_t& end = fillEnd[version];
-      if (end != readerStart_[version] && culledReaders_[end - 1] == reader) continue;
-      culledReaders_[end++] = reader;
-    }
-  }
+  detail::indexVersionReaders(graph, readerStart_, readers_);
 }
 
 std::string CullDiagnostics::describe(uint32_t node) const {
   return describeCulled(graph_, compiled_, node, [&](uint32_t version, auto&& visit) {
-    const auto first = culledReaders_.begin() + readerStart_[version];
-    const auto last = culledReaders_.begin() + readerStart_[version + 1];
-    // As in the scan, only readers declared after `node` count (a version's readers always are).
-    for (auto reader = std::upper_bound(first, last, node); reader != last; ++reader) visit(*reader);
+    const auto first = readers_.begin() + readerStart_[version];
+    const auto last = readers_.begin() + readerStart_[version + 1];
+    // As in the scan: culled readers declared after `node` (a version's readers always are), each
+    // once (a node that reads the version twice is listed twice, next to itself).
+    uint32_t previous = kInvalidIndex;
+    for (auto reader = std::upper_bound(first, last, node); reader != last; ++reader) {
+      if (*reader == previous || !compiled_.nodes[*reader].culled) continue;
+      previous = *reader;
+      visit(*reader);
+    }
   });
 }
 

@@ -26,33 +26,33 @@
 #include <string>
 
 namespace fgb::graph::detail {
+
+// (Declared in compile_state.hpp: CullDiagnostics indexes the same way.)
+void indexVersionReaders(const FrameGraph& graph, std::vector<uint32_t>& start, std::vector<uint32_t>& readers) {
+  start.assign(graph.versions().size() + 1, 0);
+  for (const Use& use : graph.allUses()) {
+    if (use.readVersion != kInvalidIndex) ++start[use.readVersion + 1];
+  }
+  for (size_t v = 1; v < start.size(); ++v) start[v] += start[v - 1];
+  readers.resize(start.back());
+  ScratchVector<uint32_t> cursor(start.begin(), start.end() - 1);
+  const auto nodeCount = static_cast<uint32_t>(graph.nodes().size());
+  for (uint32_t n = 0; n < nodeCount; ++n) {
+    for (const Use& use : graph.uses(n)) {
+      if (use.readVersion != kInvalidIndex) readers[cursor[use.readVersion]++] = n;
+    }
+  }
+}
+
 namespace {
 
 // ---- Topological order and cycles, for declarations with old-version reads -------------------
 
-// Readers of each version among all declared nodes, in declaration order.
-Adjacency versionReaders(const FrameGraph& graph) {
-  Adjacency readers;
-  readers.start.assign(graph.versions().size() + 1, 0);
-  for (const Use& use : graph.allUses()) {
-    if (use.readVersion != kInvalidIndex) ++readers.start[use.readVersion + 1];
-  }
-  for (size_t v = 1; v < readers.start.size(); ++v) readers.start[v] += readers.start[v - 1];
-  readers.items.resize(readers.start.back());
-  ScratchVector<uint32_t> cursor(readers.start.begin(), readers.start.end() - 1);
-  const auto nodeCount = static_cast<uint32_t>(graph.nodes().size());
-  for (uint32_t n = 0; n < nodeCount; ++n) {
-    for (const Use& use : graph.uses(n)) {
-      if (use.readVersion != kInvalidIndex) readers.items[cursor[use.readVersion]++] = n;
-    }
-  }
-  return readers;
-}
-
 // Predecessor lists of every declared node from the version edges alone (no reader chains, which
 // follow an order that only exists once these are acyclic).
 Adjacency versionEdgePredecessors(const FrameGraph& graph) {
-  const Adjacency readers = versionReaders(graph);
+  Adjacency readers;
+  indexVersionReaders(graph, readers.start, readers.items);
   const auto& versions = graph.versions();
   const auto nodeCount = static_cast<uint32_t>(graph.nodes().size());
   ScratchVector<Edge> edges;

@@ -161,8 +161,8 @@ struct CompiledGraph {
 std::string cullDiagnostic(const FrameGraph& graph, const CompiledGraph& compiled, uint32_t node);
 
 // cullDiagnostic() for many nodes of one compiled graph (a Graphviz dump describes every culled
-// node). The constructor indexes, in O(nodes + uses), the culled readers of every version; then
-// describe(node) costs only the uses of `node` and the readers it names. Holds references to
+// node). The constructor indexes, in O(nodes + uses), the readers of every version; then
+// describe(node) costs only the uses of `node` and the readers of what it writes. Holds references to
 // `graph` and `compiled`, which must outlive it and stay unchanged.
 class CullDiagnostics {
  public:
@@ -174,10 +174,10 @@ class CullDiagnostics {
  private:
   const FrameGraph& graph_;
   const CompiledGraph& compiled_;
-  // Compressed adjacency: the culled nodes that read version v are
-  // culledReaders_[readerStart_[v], readerStart_[v + 1]), each once, in declaration order.
+  // Compressed adjacency: the nodes that read version v are readers_[readerStart_[v],
+  // readerStart_[v + 1]), in declaration order, once per use (see detail::indexVersionReaders).
   std::vector<uint32_t> readerStart_;
-  std::vector<uint32_t> culledReaders_;
+  std::vector<uint32_t> readers_;
 };
 
 }  // namespace fgb::graph

@@ -83,6 +83,10 @@ class BarrierPlanner {
     const uint32_t resource = use.resource;
     const bool texture = isTexture(resource);
     TrackedState& s = walk_[resource].tracked;
+    if (firstUse && !isImported(resource)) {
+      startTransient(s, use, texture);
+      return;
+    }
     if (firstUse) setInitialState(s, use);
     const uint32_t queue = queue_;
     const uint32_t step = step_;
@@ -165,6 +169,25 @@ class BarrierPlanner {
     // What happened before the graph is treated as a write: later uses wait for it.
     s.writeStages = decl.initialState.stages;
     s.writeAccess = decl.initialState.access;
+  }
+
+  // A transient's first use: the barrier from UNDEFINED, and the state after it, set from the use
+  // alone. (Going through setInitialState and advance would store "nothing yet" and read it back at
+  // once, which stalls on store forwarding.) The first use writes (nobody wrote the first version).
+  void startTransient(TrackedState& s, const Use& use, bool texture) {
+    firstUseBarrier(use.resource, texture, use, queue_);
+    const bool write = writes(use);
+    const StageMask readStages = write ? kStageNone : use.stages;
+    s.owned = true;
+    s.discardsOnEntry = false;
+    s.layout = texture ? use.layout : Layout::Undefined;
+    s.queue = static_cast<uint8_t>(queue_);
+    s.writeStages = write ? use.stages : kStageNone;
+    s.writeAccess = write ? use.accessMask & kWriteAccesses : kAccessNone;
+    s.readStages = readStages;
+    s.visibleStages = readStages;
+    s.visibleAccess = write ? kAccessNone : use.accessMask;
+    s.lastStep = step_;
   }
 
   void firstUseBarrier(uint32_t resource, bool texture, const Use& use, uint32_t queue) {

@@ -151,7 +151,15 @@ class DependencyWalk {
  public:
   explicit DependencyWalk(CompileState& state)
       : state_(state), graph_(state.graph), versions_(state.graph.versions()),
-        readers_(versions_.size(), VersionReaders{}), seenFor_(state.nodeCount, kInvalidIndex) {
+        seenFor_(state.nodeCount, kInvalidIndex) {
+    // Reader lists start empty when their version is written (see visitWrite), which is just
+    // before its readers look at them: set up front, every one would have left the cache by then.
+    // Only imports' first versions are read without a write in the graph.
+    readers_.resize(versions_.size());  // constructs nothing (see VersionReaders)
+    const auto& resources = graph_.resources();
+    for (uint32_t r = 0; r < state.resourceCount; ++r) {
+      if ((state.resourceTraits[r] & kResourceImported) != 0) readers_[resources[r].firstVersion] = VersionReaders::none();
+    }
     state.edgeStart.assign(state.nodeCount, 0);
     state.edgeEnd.assign(state.nodeCount, 0);
     state.level.assign(state.nodeCount, 0);
@@ -165,7 +173,7 @@ class DependencyWalk {
     state_.edgeStart[node] = static_cast<uint32_t>(state_.out.edges.size());
     for (const Use& use : graph_.uses(node)) {
       if (use.readVersion != kInvalidIndex) visitRead(use);
-      if (use.writeVersion != kInvalidIndex) visitWrite(use.writeVersion);
+      if (use.writeVersion != kInvalidIndex) visitWrite(use);
     }
     state_.edgeEnd[node] = static_cast<uint32_t>(state_.out.edges.size());
     state_.level[node] = level_;
@@ -179,11 +187,19 @@ class DependencyWalk {
   // read: whether a read is its version's first is as good as random, and a branch on it cost
   // more than writing the entries.
   struct VersionReaders {
-    uint32_t newest = kInvalidIndex;
-    uint32_t newestNode = kInvalidIndex;  // reads_[newest].node, without the load
-    uint32_t run = kInvalidIndex;
-    uint32_t previousRun = kInvalidIndex;
-    uint32_t runKey = 0;  // queue and layout the current run shares (while there is one)
+    // NOLINTNEXTLINE(modernize-use-equals-default,cppcoreguidelines-pro-type-member-init): unset on purpose
+    VersionReaders() {}
+    static VersionReaders none() {
+      VersionReaders r;
+      r.newest = r.newestNode = r.run = r.previousRun = kInvalidIndex;
+      r.runKey = 0;
+      return r;
+    }
+    uint32_t newest;
+    uint32_t newestNode;  // reads_[newest].node, without the load
+    uint32_t run;
+    uint32_t previousRun;
+    uint32_t runKey;  // queue and layout the current run shares (while there is one)
   };
   struct Read {
     uint32_t node;
@@ -226,7 +242,9 @@ class DependencyWalk {
     readers.runKey = key;
   }
 
-  void visitWrite(uint32_t version) {
+  void visitWrite(const Use& use) {
+    const uint32_t version = use.writeVersion;
+    readers_[version] = VersionReaders::none();
     // The previous alive version: versions of culled writers have no alive readers; skip them.
     uint32_t previous = versions_[version].previous;
     while (previous != kInvalidIndex && versions_[previous].producer != kInvalidIndex &&
@@ -234,8 +252,12 @@ class DependencyWalk {
       previous = versions_[previous].previous;
     }
     if (previous == kInvalidIndex) return;
-    if (versions_[previous].producer != kInvalidIndex) dependOn(versions_[previous].producer);  // WAW
-    dependOnList(readers_[previous].newest, &Read::nextOfVersion);                               // WAR
+    if (versions_[previous].producer != kInvalidIndex) {
+      dependOn(versions_[previous].producer);  // WAW
+    } else if ((state_.resourceTraits[use.resource] & kResourceImported) == 0) {
+      return;  // a transient's first version: nobody can have read it (reads need a writer)
+    }
+    dependOnList(readers_[previous].newest, &Read::nextOfVersion);  // WAR
   }
 
   CompileState& state_;

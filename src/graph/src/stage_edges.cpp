@@ -183,9 +183,9 @@ class DependencyWalk {
  private:
   // What the walk knows about a version's alive readers so far: all of them (`newest`, a list
   // linked through reads_, newest first), and the current and previous run of the reader chain
-  // (lists of the same kind). Set up for every version before the walk, rather than at its first
-  // read: whether a read is its version's first is as good as random, and a branch on it cost
-  // more than writing the entries.
+  // (lists of the same kind). Set up when the version is written (visitWrite) rather than at its
+  // first read: whether a read is its version's first is as good as random, and a branch on it
+  // cost more than writing the entries.
   struct VersionReaders {
     // NOLINTNEXTLINE(modernize-use-equals-default,cppcoreguidelines-pro-type-member-init): unset on purpose
     VersionReaders() {}

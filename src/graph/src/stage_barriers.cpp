@@ -24,7 +24,8 @@ namespace {
 bool reads(const Use& use) { return use.readVersion != kInvalidIndex; }
 bool writes(const Use& use) { return use.writeVersion != kInvalidIndex; }
 
-// Set at the resource's first use (setInitialState) and only read after.
+// Set at the resource's first use (startTransient for a transient, setInitialState for an import)
+// and only read after.
 struct TrackedState {
   bool owned;            // false: transient before its first use (contents undefined)
   bool discardsOnEntry;  // imported, but first overwritten without being read (see below)
@@ -94,7 +95,7 @@ class BarrierPlanner {
     // An ownership transfer or a layout change is a write in disguise (see advance()).
     const bool ownerChanges = changesOwner(s.queue, queue, texture);
     const bool transitioned = s.owned && (ownerChanges || (texture && layout != s.layout));
-    if (!s.owned) {
+    if (!s.owned) {  // (no longer reached: transients start in startTransient; see the note there)
       firstUseBarrier(resource, texture, use, queue);
     } else if (ownerChanges) {
       transferOwnership(resource, s, use, queue, layout);
@@ -174,6 +175,8 @@ class BarrierPlanner {
   // A transient's first use: the barrier from UNDEFINED, and the state after it, set from the use
   // alone. (Going through setInitialState and advance would store "nothing yet" and read it back at
   // once, which stalls on store forwarding.) The first use writes (nobody wrote the first version).
+  // The general path's handling of an unowned state (and setInitialState's for a transient) is
+  // left in place: removing those dead branches measured slower (code placement), not faster.
   void startTransient(TrackedState& s, const Use& use, bool texture) {
     firstUseBarrier(use.resource, texture, use, queue_);
     const bool write = writes(use);

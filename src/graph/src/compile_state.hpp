@@ -77,6 +77,11 @@ struct CompileState {
   uint32_t queueCount;
 
   ScratchVector<uint8_t> resourceTraits;  // per resource: ResourceTraits bits
+  [[nodiscard]] bool isImported(uint32_t resource) const { return (resourceTraits[resource] & kResourceImported) != 0; }
+  [[nodiscard]] bool isTexture(uint32_t resource) const { return (resourceTraits[resource] & kResourceTexture) != 0; }
+  [[nodiscard]] ResourceKind kindOf(uint32_t resource) const {
+    return isTexture(resource) ? ResourceKind::Texture : ResourceKind::Buffer;
+  }
   ScratchVector<uint8_t> alive;           // per node
   ScratchVector<uint32_t> aliveUses;      // per resource: how many uses alive nodes make of it
   bool anyCulled = false;

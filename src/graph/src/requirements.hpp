@@ -18,8 +18,7 @@ class RequirementsResolver {
     if (state.options.requirements) {
       resolved.requirements = state.options.requirements(state.graph.resources()[resource], resolved);
     } else {
-      setEstimate(resolved, (state.resourceTraits[resource] & kResourceTexture) != 0 ? ResourceKind::Texture
-                                                                                      : ResourceKind::Buffer);
+      setEstimate(resolved, state.kindOf(resource));
     }
     if (resolved.requirements.alignment == 0) resolved.requirements.alignment = 1;
   }

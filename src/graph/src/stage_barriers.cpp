@@ -121,6 +121,7 @@ class BarrierPlanner {
   [[nodiscard]] bool handsOverSharedBuffer(uint32_t from, uint32_t to, bool texture) const {
     return !texture && buffersShared_ && from != to;
   }
+  // CompileState's isImported/isTexture, through a pointer kept here: the planner's hottest loads.
   [[nodiscard]] bool isImported(uint32_t resource) const { return (traits_[resource] & kResourceImported) != 0; }
   [[nodiscard]] bool isTexture(uint32_t resource) const { return (traits_[resource] & kResourceTexture) != 0; }
 
@@ -420,7 +421,7 @@ void walkUses(CompileState& state, bool alias, bool firstWalk) {
         w.lastSigmaOnQueue = {};
         lifetimes[r].first = position;
         resourceAlive[r] = true;
-        if ((state.resourceTraits[r] & kResourceImported) == 0) placer.place(r, node);
+        if (!state.isImported(r)) placer.place(r, node);
       }
       w.stagesOnQueue[queue] |= use.stages;
       // Uses come in order, and σ grows with the order position on each queue.
@@ -451,7 +452,7 @@ void walkUses(CompileState& state, bool alias, bool firstWalk) {
     for (uint32_t i = 0; i < endingCount; ++i) {
       const uint32_t r = ending[i];
       lifetimes[r].last = position;
-      if ((state.resourceTraits[r] & kResourceImported) != 0) {
+      if (state.isImported(r)) {
         barriers.finalState(r);
       } else {
         placer.release(r, walk[r].lastSigmaOnQueue, walk[r].stagesOnQueue);

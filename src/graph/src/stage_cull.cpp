@@ -32,7 +32,7 @@ CullReason reasonToCull(const CompileState& state, uint32_t node) {
   bool writes = false;
   for (const Use& use : state.graph.uses(node)) {
     if (use.writeVersion == kInvalidIndex) continue;
-    if ((state.resourceTraits[use.resource] & kResourceImported) != 0) return CullReason::Alive;
+    if (state.isImported(use.resource)) return CullReason::Alive;
     writes = true;
   }
   return writes ? CullReason::OutputsUnread : CullReason::NoOutputs;

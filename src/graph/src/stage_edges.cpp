@@ -158,7 +158,7 @@ class DependencyWalk {
     readers_.resize(versions_.size());  // constructs nothing (see VersionReaders)
     const auto& resources = graph_.resources();
     for (uint32_t r = 0; r < state.resourceCount; ++r) {
-      if ((state.resourceTraits[r] & kResourceImported) != 0) readers_[resources[r].firstVersion] = VersionReaders::none();
+      if (state.isImported(r)) readers_[resources[r].firstVersion] = VersionReaders::none();
     }
     state.edgeStart.assign(state.nodeCount, 0);
     state.edgeEnd.assign(state.nodeCount, 0);
@@ -230,7 +230,7 @@ class DependencyWalk {
     readers.newest = read;
     readers.newestNode = node_;
     if (use.writeVersion != kInvalidIndex) return;  // a read-write use is not chained (see above)
-    const bool texture = (state_.resourceTraits[use.resource] & kResourceTexture) != 0;
+    const bool texture = state_.isTexture(use.resource);
     const uint32_t key = state_.queueOf[node_] << 8 | static_cast<uint32_t>(texture ? use.layout : Layout::General);
     const uint32_t run = readers.run;
     // All ones if another key's run is current (this reader starts the next run), else 0.
@@ -254,7 +254,7 @@ class DependencyWalk {
     if (previous == kInvalidIndex) return;
     if (versions_[previous].producer != kInvalidIndex) {
       dependOn(versions_[previous].producer);  // WAW
-    } else if ((state_.resourceTraits[use.resource] & kResourceImported) == 0) {
+    } else if (!state_.isImported(use.resource)) {
       return;  // a transient's first version: nobody can have read it (reads need a writer)
     }
     dependOnList(readers_[previous].newest, &Read::nextOfVersion);  // WAR

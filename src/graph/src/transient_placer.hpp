@@ -61,8 +61,7 @@ inline uint64_t alignUp(uint64_t value, uint64_t alignment) {
 }
 
 inline uint32_t TransientPlacer::heapFor(uint32_t resource, uint32_t memoryTypeBits) {
-  const ResourceKind kind =
-      (state_.resourceTraits[resource] & kResourceTexture) != 0 ? ResourceKind::Texture : ResourceKind::Buffer;
+  const ResourceKind kind = state_.kindOf(resource);
   // Neighbours in the walk usually share a heap: try the last one first.
   if (lastHeap_ < plan_.heaps.size() && plan_.heaps[lastHeap_].kind == kind &&
       plan_.heaps[lastHeap_].memoryTypeBits == memoryTypeBits) {

@@ -68,39 +68,46 @@ void placeOneSubmitPerQueue(CompileState& state, const ScratchVector<uint32_t>& 
   }
 }
 
-// Each queue's steps cut into submits at level boundaries (see the top of this file).
+// Each queue's steps cut into submits at level boundaries (see the top of this file). The cut is
+// computed without branches: whether a step starts a submit depends on the graph's shape step by
+// step, and as branches those tests are mispredicted about as often as not.
 void cutSubmitsAtSyncLevels(CompileState& state, const ScratchVector<uint32_t>& queueStart, SubmitList& submits) {
   CompiledGraph& out = state.out;
-  ScratchVector<uint8_t> syncRole(state.nodeCount, 0);
+  // Per (queue, level): the sync roles of the queue's nodes at that level.
+  const uint32_t levels = state.maxLevel + 1;
+  ScratchVector<uint8_t> rolesAt(static_cast<size_t>(state.queueCount) * levels, 0);
   for (const Edge& e : out.syncEdges) {
-    syncRole[e.from] |= kSyncSource;
-    syncRole[e.to] |= kSyncTarget;
+    rolesAt[(state.queueOf[e.from] * levels) + state.level[e.from]] |= kSyncSource;
+    rolesAt[(state.queueOf[e.to] * levels) + state.level[e.to]] |= kSyncTarget;
   }
+  ScratchVector<uint32_t> submitStart(out.steps.size() + 1, 0);  // per submit: its first step
+  uint32_t submitCount = 0;
   for (uint32_t queue = 0; queue < state.queueCount; ++queue) {
-    uint64_t signal = 0;
-    bool open = false;
-    auto closeSubmitAt = [&](uint32_t step) {
-      if (open) submits.last().stepCount = step - submits.last().firstStep;
-      open = false;
-    };
-    const uint32_t queueEnd = queueStart[queue + 1];
-    for (uint32_t begin = queueStart[queue]; begin < queueEnd;) {
-      // One level of this queue: steps [begin, end).
-      const uint32_t level = state.level[out.steps[begin].node];
-      uint32_t end = begin;
-      uint8_t roles = 0;
-      for (; end < queueEnd && state.level[out.steps[end].node] == level; ++end) roles |= syncRole[out.steps[end].node];
-      if ((roles & kSyncTarget) != 0) closeSubmitAt(begin);
-      if (!open) {
-        submits.open(queue, begin, ++signal);
-        open = true;
-      }
-      for (uint32_t step = begin; step < end; ++step) out.nodes[out.steps[step].node].submit = submits.lastIndex();
-      if ((roles & kSyncSource) != 0) closeSubmitAt(end);
-      begin = end;
+    const uint32_t begin = queueStart[queue];
+    const uint32_t end = queueStart[queue + 1];
+    if (begin == end) continue;
+    const uint8_t* roles = &rolesAt[static_cast<size_t>(queue) * levels];
+    const uint32_t firstSubmit = submitCount;
+    submitStart[submitCount++] = begin;
+    uint32_t previousLevel = state.level[out.steps[begin].node];
+    for (uint32_t step = begin; step < end; ++step) {
+      const uint32_t node = out.steps[step].node;
+      const uint32_t level = state.level[node];
+      // A new level starts a submit if the last one held a G* source or this one holds a G* target.
+      const uint32_t sourceBefore = roles[previousLevel] & kSyncSource;
+      const uint32_t targetHere = (roles[level] & kSyncTarget) >> 1;
+      const uint32_t cut = static_cast<uint32_t>(level != previousLevel) & (sourceBefore | targetHere);
+      submitStart[submitCount] = step;
+      submitCount += cut;
+      out.nodes[node].submit = submitCount - 1;
+      previousLevel = level;
     }
-    closeSubmitAt(queueEnd);
-    out.submitsPerQueue[queue] = static_cast<uint32_t>(signal);
+    submitStart[submitCount] = end;
+    for (uint32_t submit = firstSubmit; submit < submitCount; ++submit) {
+      submits.open(queue, submitStart[submit], submit - firstSubmit + 1);
+      submits.last().stepCount = submitStart[submit + 1] - submitStart[submit];
+    }
+    out.submitsPerQueue[queue] = submitCount - firstSubmit;
   }
 }
 

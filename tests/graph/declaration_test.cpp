@@ -53,6 +53,27 @@ TEST(Declaration, ReadWriteRecordsBothVersions) {
   EXPECT_EQ(use.writeVersion, next.version);
 }
 
+// The compiler takes the fast path (one use per resource and node) only when no node repeats one.
+TEST(Declaration, AGraphKnowsWhetherSomeNodeUsesAResourceTwice) {
+  FrameGraph graph;
+  const TextureHandle hdr = graph.createTexture("hdr", colorDesc());
+  const TextureHandle bloom = graph.createTexture("bloom", colorDesc());
+  NodeBuilder first = graph.addNode("First", NodeType::Compute);
+  const TextureHandle lit = first.write(hdr, Access::StorageWrite);
+  const TextureHandle blurred = first.write(bloom, Access::StorageWrite);
+  NodeBuilder second = graph.addNode("Second", NodeType::Compute);
+  second.read(lit, Access::Sampled);  // each resource used again, but by another node
+  second.read(blurred, Access::Sampled);
+  EXPECT_FALSE(graph.someNodeUsesAResourceTwice());
+
+  NodeBuilder third = graph.addNode("Third", NodeType::Compute);
+  third.read(lit, Access::Sampled);
+  EXPECT_FALSE(graph.someNodeUsesAResourceTwice());
+  third.write(lit, Access::StorageWrite);  // read, then written over, in one node
+  EXPECT_TRUE(graph.someNodeUsesAResourceTwice());
+  EXPECT_TRUE(FrameGraph(graph).someNodeUsesAResourceTwice());  // copies keep it
+}
+
 TEST(Declaration, QueueClassDefaultsToTheNodeTypeAndCanBeOverridden) {
   FrameGraph graph;
   graph.addNode("g", NodeType::Graphics);

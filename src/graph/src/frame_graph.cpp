@@ -103,7 +103,7 @@ FrameGraph::~FrameGraph() {
 FrameGraph::FrameGraph(const FrameGraph& other)
     : nodes_(other.nodes_), resources_(other.resources_), versions_(other.versions_), allUses_(other.allUses_),
       useStart_(other.useStart_), attachments_(other.attachments_), jobs_(other.jobs_),
-      readsOldVersions_(other.readsOldVersions_) {
+      readsOldVersions_(other.readsOldVersions_), usesAResourceTwice_(other.usesAResourceTwice_) {
   for (NodeDecl& node : nodes_) node.name = names_.add(node.name);  // still the original's view
   for (ResourceDecl& resource : resources_) resource.name = names_.add(resource.name);
 }
@@ -296,6 +296,7 @@ void FrameGraph::noteOldVersionRead(uint32_t node, uint32_t version, uint32_t la
 // node's type, what the access does.
 struct FrameGraph::UseContext {
   NodeDecl& node;
+  uint32_t nodeIndex;
   uint32_t resource;
   ResourceDecl& res;
   AccessInfo info;
@@ -314,7 +315,7 @@ struct FrameGraph::UseContext {
   const uint32_t resource = versions_[version].resource;
   ResourceDecl& res = resources_[resource];
   if (res.kind != kind) throwWrongKind(decl, res, kind);
-  return {decl, resource, res, detail::lookupUse(access, decl.type, stages)};
+  return {decl, node, resource, res, detail::lookupUse(access, decl.type, stages)};
 }
 
 // Constructed in place: a Use built on the stack and copied in costs a store-forwarding stall.
@@ -323,6 +324,9 @@ struct FrameGraph::UseContext {
   append(allUses_, use.resource, readVersion, writeVersion, access, stages, use.info.stages, use.info.access,
          use.info.layout);
   ++useStart_.back();
+  // A node's uses are declared one after another, so a repeat finds itself as the last user.
+  if (use.res.lastUser == use.nodeIndex) usesAResourceTwice_ = true;
+  use.res.lastUser = use.nodeIndex;
 }
 
 // A read of `version` (which must have been written, or be an import's first version).

@@ -374,6 +374,19 @@ void mergeUses(std::span<const Use> uses, ScratchVector<Use>& merged, ScratchVec
   }
 }
 
+// Counts off each of a node's uses from its resource's uses left; returns whether the node uses
+// some resource more than once.
+bool countOffAndFindRepeats(std::span<const Use> uses, ResourceWalk* walk, uint32_t node) {
+  bool repeats = false;
+  for (const Use& use : uses) {
+    ResourceWalk& w = walk[use.resource];
+    repeats |= w.lastSeen == node;
+    w.lastSeen = node;
+    --w.usesLeft;
+  }
+  return repeats;
+}
+
 // One walk over the alive uses in execution order: lifetimes, placement (with or without aliasing)
 // and barriers. A transient is placed at its first use and its range goes back to the free list
 // after its last user (so users at one position never share memory); an imported resource goes
@@ -385,6 +398,7 @@ void walkUses(CompileState& state, bool alias, bool firstWalk) {
   ScratchVector<ResourceWalk> walkStates;
   walkStates.resize(resources);  // constructs nothing (see ResourceWalk)
   ResourceWalk* const walk = walkStates.data();
+  const bool mayRepeat = state.graph.someNodeUsesAResourceTwice();
   for (uint32_t r = 0; r < resources; ++r) {
     walk[r].usesLeft = state.aliveUses[r];
     walk[r].lastSeen = kInvalidIndex;
@@ -433,14 +447,13 @@ void walkUses(CompileState& state, bool alias, bool firstWalk) {
     };
     // One use per resource: a node that uses one twice (rare) has its uses combined first. Every
     // use of the node is counted off first, so that the combined one sees whether it was the last.
-    bool repeats = false;
-    for (const Use& use : uses) {
-      ResourceWalk& w = walk[use.resource];
-      repeats |= w.lastSeen == node;
-      w.lastSeen = node;
-      --w.usesLeft;
-    }
-    if (repeats) {
+    // Graphs without such a node (most) skip looking for one.
+    if (!mayRepeat) {
+      for (const Use& use : uses) {
+        --walk[use.resource].usesLeft;
+        visit(use);
+      }
+    } else if (countOffAndFindRepeats(uses, walk, node)) {
       if (mergedAt.empty()) mergedAt.resize(resources);
       mergeUses(uses, merged, mergedAt);
       for (const Use& use : merged) visit(use);

@@ -136,6 +136,7 @@ struct ResourceDecl {
   ImportState finalState{};
   uint32_t firstVersion = kInvalidIndex;   // the version created with the resource
   uint32_t latestVersion = kInvalidIndex;  // newest version so far (writes must start from it)
+  uint32_t lastUser = kInvalidIndex;       // the node that used it last, so far
 };
 
 struct VersionDecl {
@@ -291,6 +292,9 @@ class FrameGraph {
   // "old-version" read). Only such a read orders a node before an earlier-declared one (WAR), so
   // without one the declaration order is already a topological order of every dependency.
   [[nodiscard]] bool readsOldVersions() const { return readsOldVersions_; }
+  // True when some node used one resource more than once (e.g. read it and resolved into it):
+  // without one, the compiler takes each use as its node's only use of the resource.
+  [[nodiscard]] bool someNodeUsesAResourceTwice() const { return usesAResourceTwice_; }
   [[nodiscard]] uint32_t resourceOf(TextureHandle h) const { return versionAt(h.version, "texture").resource; }
   [[nodiscard]] uint32_t resourceOf(BufferHandle h) const { return versionAt(h.version, "buffer").resource; }
   // No colour target and an invalid depth target for a node that declared none.
@@ -332,6 +336,7 @@ class FrameGraph {
   // Job of node n at jobs_[n]; nodes from jobs_.size() on have none.
   std::vector<Job> jobs_;
   bool readsOldVersions_ = false;
+  bool usesAResourceTwice_ = false;
   NameStore names_;
 };
 

@@ -101,9 +101,15 @@ FrameGraph::~FrameGraph() {
 }
 
 FrameGraph::FrameGraph(const FrameGraph& other)
-    : nodes_(other.nodes_), resources_(other.resources_), versions_(other.versions_), allUses_(other.allUses_),
-      useStart_(other.useStart_), attachments_(other.attachments_), jobs_(other.jobs_),
-      readsOldVersions_(other.readsOldVersions_), usesAResourceTwice_(other.usesAResourceTwice_) {
+    : nodes_(other.nodes_),
+      resources_(other.resources_),
+      versions_(other.versions_),
+      allUses_(other.allUses_),
+      useStart_(other.useStart_),
+      attachments_(other.attachments_),
+      jobs_(other.jobs_),
+      readsOldVersions_(other.readsOldVersions_),
+      usesAResourceTwice_(other.usesAResourceTwice_) {
   for (NodeDecl& node : nodes_) node.name = names_.add(node.name);  // still the original's view
   for (ResourceDecl& resource : resources_) resource.name = names_.add(resource.name);
 }

@@ -326,28 +326,32 @@ struct FrameGraph::UseContext {
 
 // Constructed in place: a Use built on the stack and copied in costs a store-forwarding stall.
 [[gnu::always_inline]] inline void FrameGraph::recordUse(const UseContext& use, uint32_t readVersion,
-                                                         uint32_t writeVersion, Access access, StageMask stages) {
-  append(allUses_, use.resource, readVersion, writeVersion, access, stages, use.info.stages, use.info.access,
-         use.info.layout);
+                                                         uint32_t readProducer, uint32_t writeVersion, Access access,
+                                                         StageMask stages) {
+  append(allUses_, use.resource, readVersion, writeVersion, readProducer, stages, use.info.stages, use.info.access,
+         access, use.info.layout);
   ++useStart_.back();
   // A node's uses are declared one after another, so a repeat finds itself as the last user.
   if (use.res.lastUser == use.nodeIndex) usesAResourceTwice_ = true;
   use.res.lastUser = use.nodeIndex;
 }
 
-// A read of `version` (which must have been written, or be an import's first version).
-[[gnu::always_inline]] inline void FrameGraph::checkRead(const UseContext& use, uint32_t node, uint32_t version) {
-  const bool written = versions_[version].producer != kInvalidIndex || use.res.imported;
+// A read of `version` (which must have been written, or be an import's first version); returns
+// the version's producer.
+[[gnu::always_inline]] inline uint32_t FrameGraph::checkRead(const UseContext& use, uint32_t node, uint32_t version) {
+  const uint32_t producer = versions_[version].producer;
+  const bool written = producer != kInvalidIndex || use.res.imported;
   if (!written) throwUnwrittenRead(use.node, use.res, version);
   if (version != use.res.latestVersion) noteOldVersionRead(node, version, use.res.latestVersion);
+  return producer;
 }
 
 [[gnu::always_inline]] inline uint32_t FrameGraph::addRead(uint32_t node, uint32_t version, ResourceKind kind,
                                                            Access access, StageMask stages) {
   const UseContext use = beginUse(node, version, kind, access, stages);
   if (use.info.writes) throwReadWithWritingAccess(use.node, access);
-  checkRead(use, node, version);
-  recordUse(use, version, kInvalidIndex, access, stages);
+  const uint32_t producer = checkRead(use, node, version);
+  recordUse(use, version, producer, kInvalidIndex, access, stages);
   return version;
 }
 
@@ -358,15 +362,16 @@ struct FrameGraph::UseContext {
   const UseContext use = beginUse(node, version, kind, access, stages);
   if (!use.info.writes) throwWriteWithReadOnlyAccess(use.node, access);
   uint32_t readVersion = kInvalidIndex;
+  uint32_t readProducer = kInvalidIndex;
   if (use.info.reads) {
-    checkRead(use, node, version);
+    readProducer = checkRead(use, node, version);
     readVersion = version;
   }
   if (version != use.res.latestVersion) throwStaleWrite(use.node, use.res, version);
   const auto written = static_cast<uint32_t>(versions_.size());
   append(versions_, use.resource, node, version);
   use.res.latestVersion = written;
-  recordUse(use, readVersion, written, access, stages);
+  recordUse(use, readVersion, readProducer, written, access, stages);
   return written;
 }
 

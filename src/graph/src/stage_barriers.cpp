@@ -368,7 +368,10 @@ void mergeUses(std::span<const Use> uses, ScratchVector<Use>& merged, ScratchVec
     Use& combined = merged[at];
     combined.stages |= use.stages;
     combined.accessMask |= use.accessMask;
-    if (!reads(combined)) combined.readVersion = use.readVersion;
+    if (!reads(combined)) {
+      combined.readVersion = use.readVersion;
+      combined.readProducer = use.readProducer;
+    }
     if (!writes(combined)) combined.writeVersion = use.writeVersion;
     if (combined.layout != use.layout) combined.layout = Layout::General;
   }

@@ -42,7 +42,6 @@ CullReason reasonToCull(const CompileState& state, uint32_t node) {
 
 void cullNodes(CompileState& state) {
   const FrameGraph& graph = state.graph;
-  const auto& versions = graph.versions();
   const auto& nodes = graph.nodes();
   const uint32_t count = state.nodeCount;
   const bool cull = state.options.cull;
@@ -74,9 +73,7 @@ void cullNodes(CompileState& state) {
     }
     for (const Use& use : graph.uses(n)) {
       ++aliveUses[use.resource];
-      if (use.readVersion == kInvalidIndex) continue;
-      const uint32_t producer = versions[use.readVersion].producer;
-      if (producer != kInvalidIndex) state.alive[producer] = 1;
+      if (use.readProducer != kInvalidIndex) state.alive[use.readProducer] = 1;
     }
   }
   state.anyCulled = anyCulled;

@@ -221,7 +221,7 @@ class DependencyWalk {
   // mask rather than branched on (a conditional expression compiles to a branch here).
   void visitRead(const Use& use) {
     const uint32_t version = use.readVersion;
-    if (versions_[version].producer != kInvalidIndex) dependOn(versions_[version].producer);  // RAW
+    if (use.readProducer != kInvalidIndex) dependOn(use.readProducer);  // RAW
     VersionReaders& readers = readers_[version];
     // One entry per (node, version), like the node's first use of it (a node may read it twice).
     if (readers.newestNode == node_) return;

@@ -109,11 +109,14 @@ struct Use {
   uint32_t resource = kInvalidIndex;
   uint32_t readVersion = kInvalidIndex;   // version read (valid if the access reads)
   uint32_t writeVersion = kInvalidIndex;  // version produced (valid if the access writes)
-  Access access = Access::Sampled;
+  // The node that wrote readVersion (kInvalidIndex if none: no read, or an import's first version),
+  // noted at declaration so that the compiler need not look each read's version up.
+  uint32_t readProducer = kInvalidIndex;
   StageMask shaderStages = kStageNone;    // as declared; 0: derive from node type
   // accessInfo(access, node type, shaderStages), computed once at declaration.
   StageMask stages = kStageNone;
   AccessMask accessMask = kAccessNone;
+  Access access = Access::Sampled;
   Layout layout = Layout::Undefined;
 };
 
@@ -311,9 +314,9 @@ class FrameGraph {
                             const BufferDesc& buffer);
   struct UseContext;
   UseContext beginUse(uint32_t node, uint32_t version, ResourceKind kind, Access access, StageMask stages);
-  void recordUse(const UseContext& use, uint32_t readVersion, uint32_t writeVersion, Access access,
-                 StageMask stages);
-  void checkRead(const UseContext& use, uint32_t node, uint32_t version);
+  void recordUse(const UseContext& use, uint32_t readVersion, uint32_t readProducer, uint32_t writeVersion,
+                 Access access, StageMask stages);
+  uint32_t checkRead(const UseContext& use, uint32_t node, uint32_t version);
   uint32_t addRead(uint32_t node, uint32_t version, ResourceKind kind, Access access, StageMask stages);
   uint32_t addWrite(uint32_t node, uint32_t version, ResourceKind kind, Access access, StageMask stages);
   uint32_t addUse(uint32_t node, uint32_t version, Access access);  // a texture attachment's use

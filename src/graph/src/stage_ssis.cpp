@@ -44,11 +44,12 @@ uint32_t queueOfSigma(uint32_t sigma, uint32_t nodes) {
   return static_cast<uint32_t>(sigma > nodes) + static_cast<uint32_t>(sigma > 2 * nodes);
 }
 
-// SSIS_q(u) for every queue q other than u's own: the largest σ of a dependency of u on q (0: none).
+// SSIS_q(u) for every queue q: the largest σ of a dependency of u on q (0: none). On u's own queue
+// it is below σ(u), which u already knows, so it never counts as uncovered: no need to leave the
+// own queue out edge by edge.
 // Kept in registers, not indexed by queue: a store and reload through a variable index per edge
 // would chain every edge's update on the previous one's store.
-QueueArray requiredOnOtherQueues(const Edge* first, const Edge* last, const SyncPoint* sync, uint32_t nodes,
-                                 uint32_t queue) {
+QueueArray requiredOnEachQueue(const Edge* first, const Edge* last, const SyncPoint* sync, uint32_t nodes) {
   static_assert(kQueueClassCount == 3);
   uint32_t required0 = 0;
   uint32_t required1 = 0;
@@ -56,26 +57,26 @@ QueueArray requiredOnOtherQueues(const Edge* first, const Edge* last, const Sync
   for (const Edge* e = first; e != last; ++e) {
     const uint32_t sigma = sync[e->from].sigma;
     const uint32_t q = queueOfSigma(sigma, nodes);
-    const uint32_t s = valueIf(q != queue, sigma);
-    required0 = std::max(required0, valueIf(q == 0, s));
-    required1 = std::max(required1, valueIf(q == 1, s));
-    required2 = std::max(required2, valueIf(q == 2, s));
+    required0 = std::max(required0, valueIf(q == 0, sigma));
+    required1 = std::max(required1, valueIf(q == 1, sigma));
+    required2 = std::max(required2, valueIf(q == 2, sigma));
   }
   return {required0, required1, required2};
 }
 
 // The dependency covering the most `uncovered` queues, ties to the larger σ: the largest
 // (cover, σ) pair, taken without branches. The dependency with the largest σ on an uncovered queue
-// always covers it, so one with a cover wins over every one without (whatever their σ).
-uint32_t bestCover(const Edge* first, const Edge* last, const SyncPoint* sync, uint32_t nodes, uint32_t queue,
-                   const QueueArray& required, uint32_t uncovered) {
+// always covers it, so one with a cover wins over every one without (whatever their σ). A
+// dependency on u's own queue covers nothing new (what it knew, the node before u on the queue
+// knew too, and u starts from that), so it never wins.
+uint32_t bestCover(const Edge* first, const Edge* last, const SyncPoint* sync, const QueueArray& required,
+                   uint32_t uncovered) {
   uint64_t bestScore = 0;
   uint32_t best = kInvalidIndex;
   for (const Edge* e = first; e != last; ++e) {
     const uint32_t v = e->from;
     const SyncPoint& point = sync[v];
-    const uint32_t cover =
-        valueIf(queueOfSigma(point.sigma, nodes) != queue, countNewlyCovered(required, point.known, uncovered));
+    const uint32_t cover = countNewlyCovered(required, point.known, uncovered);
     const uint64_t score = uint64_t{cover} << 32 | point.sigma;
     best = valueIf(score > bestScore, v ^ best) ^ best;
     bestScore = std::max(bestScore, score);
@@ -103,10 +104,10 @@ void pruneCrossQueueEdges(CompileState& state) {
     // u's dependencies are edges[edgeStart[u] .. edgeEnd[u]), each one's `from`.
     const Edge* const first = edges + state.edgeStart[u];
     const Edge* const last = edges + state.edgeEnd[u];
-    const QueueArray required = requiredOnOtherQueues(first, last, sync, nodes, queue);
+    const QueueArray required = requiredOnEachQueue(first, last, sync, nodes);
     for (uint32_t uncovered = uncoveredQueues(required, have); uncovered != 0;
          uncovered = uncoveredQueues(required, have)) {
-      const uint32_t best = bestCover(first, last, sync, nodes, queue, required, uncovered);
+      const uint32_t best = bestCover(first, last, sync, required, uncovered);
       state.out.syncEdges.push_back({best, u});
       for (uint32_t q = 0; q < kQueueClassCount; ++q) have[q] = std::max(have[q], sync[best].known[q]);
     }

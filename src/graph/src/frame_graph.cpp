@@ -338,11 +338,11 @@ struct FrameGraph::UseContext {
 
 // A read of `version` (which must have been written, or be an import's first version); returns
 // the version's producer.
-[[gnu::always_inline]] inline uint32_t FrameGraph::checkRead(const UseContext& use, uint32_t node, uint32_t version) {
+[[gnu::always_inline]] inline uint32_t FrameGraph::checkRead(const UseContext& use, uint32_t version) {
   const uint32_t producer = versions_[version].producer;
   const bool written = producer != kInvalidIndex || use.res.imported;
   if (!written) throwUnwrittenRead(use.node, use.res, version);
-  if (version != use.res.latestVersion) noteOldVersionRead(node, version, use.res.latestVersion);
+  if (version != use.res.latestVersion) noteOldVersionRead(use.nodeIndex, version, use.res.latestVersion);
   return producer;
 }
 
@@ -350,7 +350,7 @@ struct FrameGraph::UseContext {
                                                            Access access, StageMask stages) {
   const UseContext use = beginUse(node, version, kind, access, stages);
   if (use.info.writes) throwReadWithWritingAccess(use.node, access);
-  const uint32_t producer = checkRead(use, node, version);
+  const uint32_t producer = checkRead(use, version);
   recordUse(use, version, producer, kInvalidIndex, access, stages);
   return version;
 }
@@ -364,7 +364,7 @@ struct FrameGraph::UseContext {
   uint32_t readVersion = kInvalidIndex;
   uint32_t readProducer = kInvalidIndex;
   if (use.info.reads) {
-    readProducer = checkRead(use, node, version);
+    readProducer = checkRead(use, version);
     readVersion = version;
   }
   if (version != use.res.latestVersion) throwStaleWrite(use.node, use.res, version);

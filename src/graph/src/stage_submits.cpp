@@ -35,16 +35,15 @@ class SubmitList {
  public:
   explicit SubmitList(CompiledGraph& out) : out_(out) {}
 
-  void open(uint32_t queue, uint32_t firstStep, uint64_t signal) {
+  void open(uint32_t queue, uint32_t firstStep, uint32_t stepCount, uint64_t signal) {
     if (count_ == out_.submits.size()) out_.submits.emplace_back();
     Submit& submit = out_.submits[count_++];
     submit.queue = queue;
     submit.firstStep = firstStep;
-    submit.stepCount = 0;
+    submit.stepCount = stepCount;
     submit.waits.clear();
     submit.signalValue = signal;
   }
-  [[nodiscard]] Submit& last() { return out_.submits[count_ - 1]; }
   [[nodiscard]] uint32_t lastIndex() const { return count_ - 1; }
   void finish() { out_.submits.resize(count_); }
 
@@ -61,8 +60,7 @@ void placeOneSubmitPerQueue(CompileState& state, const ScratchVector<uint32_t>& 
     const uint32_t begin = queueStart[queue];
     const uint32_t end = queueStart[queue + 1];
     if (begin == end) continue;
-    submits.open(queue, begin, 1);
-    submits.last().stepCount = end - begin;
+    submits.open(queue, begin, end - begin, 1);
     for (uint32_t step = begin; step < end; ++step) out.nodes[out.steps[step].node].submit = submits.lastIndex();
     out.submitsPerQueue[queue] = 1;
   }
@@ -104,8 +102,7 @@ void cutSubmitsAtSyncLevels(CompileState& state, const ScratchVector<uint32_t>& 
     }
     submitStart[submitCount] = end;
     for (uint32_t submit = firstSubmit; submit < submitCount; ++submit) {
-      submits.open(queue, submitStart[submit], submit - firstSubmit + 1);
-      submits.last().stepCount = submitStart[submit + 1] - submitStart[submit];
+      submits.open(queue, submitStart[submit], submitStart[submit + 1] - submitStart[submit], submit - firstSubmit + 1);
     }
     out.submitsPerQueue[queue] = submitCount - firstSubmit;
   }

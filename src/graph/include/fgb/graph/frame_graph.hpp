@@ -316,7 +316,7 @@ class FrameGraph {
   UseContext beginUse(uint32_t node, uint32_t version, ResourceKind kind, Access access, StageMask stages);
   void recordUse(const UseContext& use, uint32_t readVersion, uint32_t readProducer, uint32_t writeVersion,
                  Access access, StageMask stages);
-  uint32_t checkRead(const UseContext& use, uint32_t node, uint32_t version);
+  uint32_t checkRead(const UseContext& use, uint32_t version);
   uint32_t addRead(uint32_t node, uint32_t version, ResourceKind kind, Access access, StageMask stages);
   uint32_t addWrite(uint32_t node, uint32_t version, ResourceKind kind, Access access, StageMask stages);
   uint32_t addUse(uint32_t node, uint32_t version, Access access);  // a texture attachment's use

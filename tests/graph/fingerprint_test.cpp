@@ -2,15 +2,14 @@
 // and cull diagnostic) of a fixed corpus of random declarations. Refactoring the compiler must not
 // change what it produces; a change of behaviour must change kRecordedFingerprint on purpose, in
 // the same commit, saying why.
-#include "flatten.hpp"
-#include "random_graph.hpp"
-
-#include <fgb/graph/compiler.hpp>
-
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <fgb/graph/compiler.hpp>
 #include <string>
+
+#include "flatten.hpp"
+#include "random_graph.hpp"
 
 namespace fgb::graph::test {
 namespace {

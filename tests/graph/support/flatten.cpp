@@ -13,8 +13,8 @@ void add(Flattened& f, std::initializer_list<uint64_t> values) {
 void addResource(Flattened& f, const ResolvedResource& r) {
   const TextureDesc& t = r.texture;
   add(f, {static_cast<uint64_t>(t.format), t.extent.width, t.extent.height, t.extent.depth, t.mipLevels, t.layers,
-          t.samples, t.extentFrom.version, t.extentShift, r.buffer.size, r.buffer.sizeFrom.version,
-          r.requirements.size, r.requirements.alignment, r.requirements.memoryTypeBits});
+          t.samples, t.extentFrom.version, t.extentShift, r.buffer.size, r.buffer.sizeFrom.version, r.requirements.size,
+          r.requirements.alignment, r.requirements.memoryTypeBits});
 }
 
 }  // namespace
@@ -22,8 +22,8 @@ void addResource(Flattened& f, const ResolvedResource& r) {
 Flattened flatten(const FrameGraph& graph, const CompiledGraph& c) {
   Flattened f;
   add(f, {c.queueCount, c.nodes.size(), c.order.size(), c.edges.size(), c.syncEdges.size(), c.steps.size(),
-          c.barriers.size(), c.submits.size(), c.submitsPerQueue.size(), c.resources.size(),
-          c.resourceAlive.size(), c.lifetimes.size(), c.aliasing.placements.size(), c.aliasing.heaps.size()});
+          c.barriers.size(), c.submits.size(), c.submitsPerQueue.size(), c.resources.size(), c.resourceAlive.size(),
+          c.lifetimes.size(), c.aliasing.placements.size(), c.aliasing.heaps.size()});
   const CullDiagnostics diagnostics(graph, c);
   for (uint32_t node = 0; node < c.nodes.size(); ++node) {
     const NodeInfo& n = c.nodes[node];

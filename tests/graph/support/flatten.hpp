@@ -2,9 +2,8 @@
 // so that two compiles compare with == and a corpus of them hashes into one fingerprint.
 #pragma once
 
-#include <fgb/graph/compiled_graph.hpp>
-
 #include <cstdint>
+#include <fgb/graph/compiled_graph.hpp>
 #include <string>
 #include <vector>
 

@@ -22,7 +22,6 @@ void declareAndCompile(benchmark::State& state) {
   size_t barriers = 0;
   for (auto _ : state) {
     FrameGraph graph;
-    graph.reserve(count, count);
     Declare(graph, inputs);
     const CompiledGraph compiled = compile(graph, options);
     barriers = compiled.barriers.size();
@@ -54,7 +53,6 @@ void declareAndCompileByStage(benchmark::State& state) {
   const ShapeInputs inputs(count);
   for (auto _ : state) {
     FrameGraph graph;
-    graph.reserve(count, count);
     Declare(graph, inputs);
     const CompiledGraph compiled = compile(graph, options);
     benchmark::DoNotOptimize(compiled.steps.data());

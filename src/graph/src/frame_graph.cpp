@@ -44,7 +44,8 @@ FrameGraph& FrameGraph::operator=(FrameGraph&& other) noexcept = default;
 
 std::vector<ResourceAccess> FrameGraph::accesses(uint32_t node) const {
   std::vector<ResourceAccess> accesses;
-  for (const Use& use : detail::Declared::uses(*this, node)) accesses.push_back({use.resource, use.access});
+  for (const Use& use : detail::Declared::uses(*this, node))
+    accesses.push_back({use.resource, use.access, use.readVersion, use.writeVersion});
   return accesses;
 }
 

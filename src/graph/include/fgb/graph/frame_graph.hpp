@@ -101,11 +101,14 @@ struct DepthAttachment {
   bool readOnly = false;
 };
 
-// One resource a node uses, and how (FrameGraph::accesses): what a backend needs to choose usage
-// flags and bind resources. The full record of a use (versions, stages, layout) is the library's.
+// One resource a node uses, and how (FrameGraph::accesses): what a backend or a feature needs to
+// choose usage flags, bind resources or follow versions. (The compiler's own record of a use, with
+// its resolved stages and layout, is the library's.)
 struct ResourceAccess {
   uint32_t resource = kInvalidIndex;
   Access access = Access::Sampled;
+  uint32_t readVersion = kInvalidIndex;   // the version read, if the access reads
+  uint32_t writeVersion = kInvalidIndex;  // the version created, if the access writes
 };
 
 class JobContext {

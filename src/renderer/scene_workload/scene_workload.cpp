@@ -91,6 +91,7 @@ class SceneWorkload final : public Workload {
     device_ = vulkan::createDevice(deviceOptions);
     description_ = describe(device_->adapter());
     settings_ = makeSettings(config, loaded_.description, device_->sampleCounts());
+    rhi::checkRenderSize(device_->adapter(), settings_.width, settings_.height);
     startup_.deviceMs = timer.lap();
 
     gpu_ = uploadScene(*device_, loaded_.scene, settings_);

@@ -6,6 +6,8 @@
 
 #include <fgb/graph/barrier_names.hpp>
 
+#include "declaration.hpp"
+
 #include <sstream>
 #include <string>
 
@@ -110,7 +112,7 @@ void writeResources(std::ostringstream& s, const FrameGraph& graph, const Compil
 
 void writeUses(std::ostringstream& s, const FrameGraph& graph, DotDetail detail) {
   for (uint32_t n = 0; n < graph.nodes().size(); ++n) {
-    for (const Use& use : graph.uses(n)) {
+    for (const detail::Use& use : detail::Declared::uses(graph, n)) {
       const std::string label = detail == DotDetail::Full ? std::string(toString(use.access)) : std::string();
       if (use.readVersion != kInvalidIndex) {
         s << "  r" << use.resource << " -> n" << n << " [label=\"" << label << " v" << use.readVersion << "\"];\n";

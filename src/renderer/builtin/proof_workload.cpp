@@ -5,6 +5,7 @@
 #include "pixels.hpp"
 
 #include <fgb/core/error.hpp>
+#include <fgb/renderer/describe_device.hpp>
 #include <fgb/graph/dot.hpp>
 #include <fgb/vulkan/backend.hpp>
 

@@ -12,6 +12,7 @@
 #include <fgb/core/error.hpp>
 #include <fgb/core/stopwatch.hpp>
 #include <fgb/graph/dot.hpp>
+#include <fgb/renderer/describe_device.hpp>
 #include <fgb/renderer/scene_workload.hpp>
 #include <fgb/scene/cache.hpp>
 #include <fgb/scene/load.hpp>
@@ -34,11 +35,6 @@ constexpr graph::ImportState kDisplayFinal{graph::kStageColorAttachmentOutput, g
                                            graph::Layout::ColorAttachment, graph::QueueClass::Graphics};
 constexpr graph::ImportState kDiscard{graph::kStageNone, graph::kAccessNone, graph::Layout::Undefined,
                                       graph::QueueClass::Graphics};
-
-DeviceDescription describe(const rhi::AdapterInfo& adapter) {
-  return {adapter.index, adapter.name, adapter.driver, adapter.type, adapter.apiVersion, adapter.timestampPeriodNs,
-          adapter.hostTimestamps, adapter.queueFamilies};
-}
 
 uint32_t jsonCount(const nlohmann::json& section, const char* key, uint32_t fallback) {
   if (!section.is_object() || !section.contains(key) || !section[key].is_number_unsigned()) return fallback;
@@ -89,7 +85,7 @@ class SceneWorkload final : public Workload {
     deviceOptions.validation = config.validation;
     deviceOptions.pipelineCacheDir = (cacheDir / "pipelines").string();
     device_ = vulkan::createDevice(deviceOptions);
-    description_ = describe(device_->adapter());
+    description_ = describeDevice(device_->adapter());
     settings_ = makeSettings(config, loaded_.description, device_->sampleCounts());
     rhi::checkRenderSize(device_->adapter(), settings_.width, settings_.height);
     startup_.deviceMs = timer.lap();

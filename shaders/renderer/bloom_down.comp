@@ -18,6 +18,7 @@ layout(push_constant) uniform Push {
   uint firstMip;
   float threshold;
   float knee;
+  uint injectNan;       // debug.inject_nan=Bloom: the centre texel of the first level is a NaN
 } pc;
 
 vec2 gUv;  // centre of this invocation's target texel
@@ -64,5 +65,7 @@ void main() {
   } else {
     for (int n = 0; n < 5; ++n) sum += boxes[n] * weights[n];
   }
-  imageStore(fgbImagesRgba16f[pc.target], texel, vec4(max(sum, vec3(0.0)), 1.0));
+  vec4 result = vec4(max(sum, vec3(0.0)), 1.0);
+  if (pc.injectNan != 0u && texel == pc.targetSize / 2) result.r = uintBitsToFloat(0x7fc00000u);
+  imageStore(fgbImagesRgba16f[pc.target], texel, result);
 }

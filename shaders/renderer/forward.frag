@@ -84,6 +84,9 @@ void main() {
     // Light-complexity heat map: lights evaluated per fragment, 0 .. 16+.
     color = heatRamp(float(considered) / 16.0) * 4.0;
   }
+  if ((pc.flags & 4u) != 0u && ivec2(gl_FragCoord.xy) == ivec2(frame.viewport.xy) / 2) {
+    color = vec3(uintBitsToFloat(0x7fc00000u));  // debug.inject_nan: a NaN at the centre pixel
+  }
   float alpha = m.alphaMode == 2u ? base.a : 1.0;
   outColor = vec4(color, alpha);
 }

@@ -36,6 +36,9 @@ void addCommonOptions(CLI::App& command, CommonOptions& options) {
   command.add_flag("--json", options.json, "Machine-readable output on stdout");
   command.add_flag("-v,--verbose", options.verbose, "More output");
   command.add_flag("--quiet", options.quiet, "No progress output");
+  command.add_flag("--check-finite", options.checkFinite,
+                   "After every pass writing float colour data, count NaN, Inf and values above half of R16F's "
+                   "maximum on the GPU (timings.json passes[i].non_finite; the report names the first bad pass)");
   command.add_flag("--validation", options.validation,
                    "Enable Vulkan validation (+ synchronization validation); any message fails with exit 3");
 }
@@ -66,6 +69,7 @@ render::WorkloadConfig workloadConfig(const std::string& scene, const CommonOpti
   config.height = common.height;
   config.msaa = common.msaa;
   config.validation = common.validation;
+  config.checkFinite = common.checkFinite;
   config.knobs = knobs;
   return config;
 }

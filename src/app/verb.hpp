@@ -29,6 +29,7 @@ struct CommonOptions {
   bool verbose = false;
   bool quiet = false;
   bool validation = false;
+  bool checkFinite = false;  // --check-finite
 };
 
 // Adds the common rendering options to a subcommand, bound to `options`.

@@ -90,6 +90,10 @@ void printSummary(const harness::RunResult& run, const std::string& out) {
   }
   std::cout << fmt::format("  {:<28} {:>9.4f} ms GPU, {:.4f} ms CPU\n", "frame", run.frameGpu.median, run.frameCpu.median);
   if (run.device.hostTimestamps) std::cout << "  note: " << harness::timestampSourceNote(run.device) << "\n";
+  if (run.checkedFinite) {
+    const auto* bad = run.firstNonFinite();
+    std::cout << "  non-finite: " << (bad ? "first produced by " + bad->pass : std::string("none")) << "\n";
+  }
   if (run.budget) std::cout << "  budget: " << run.budget->verdict << "\n";
   if (run.golden) std::cout << "  golden: " << run.golden->verdict << "\n";
   std::cout << "  results in " << out << "\n";

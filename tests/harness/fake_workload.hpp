@@ -49,6 +49,8 @@ class FakeWorkload : public render::Workload {
   }
   std::map<std::string, double> stats() const override { return {{"instances", 3}, {"triangles", 36}}; }
   uint64_t validationMessages() const override { return 0; }
+  std::vector<render::NonFiniteCounts> nonFiniteCounts() const override { return nonFinite_; }
+  void setNonFiniteCounts(std::vector<render::NonFiniteCounts> counts) { nonFinite_ = std::move(counts); }
 
   void dropOneTimingOnFinish() { dropOnFinish_ = true; }
   std::size_t rendered() const { return rendered_; }
@@ -67,6 +69,7 @@ class FakeWorkload : public render::Workload {
   std::size_t rendered_ = 0;
   bool dropOnFinish_ = false;
   std::deque<render::FrameTiming> pending_;
+  std::vector<render::NonFiniteCounts> nonFinite_;
 };
 
 }  // namespace fgb::harness::testing

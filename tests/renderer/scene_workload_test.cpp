@@ -306,3 +306,58 @@ TEST(Reference, TwoRendersAreBitIdentical) {
 
 }  // namespace
 }  // namespace fgb::render
+
+// --check-finite: reduction nodes after every pass writing float colour data; the first bad pass.
+namespace fgb::render {
+namespace {
+
+std::string firstBadPass(const std::vector<NonFiniteCounts>& counts) {
+  for (const auto& c : counts)
+    if (c.bad()) return c.pass;
+  return "";
+}
+
+Rendered renderChecked(std::map<std::string, std::string> knobs, uint32_t msaa) {
+  auto config = sized(lavapipeConfig("atrium-small.json", std::move(knobs), true), 160, 90, msaa);
+  config.checkFinite = true;
+  return render(config, 1);
+}
+
+TEST(CheckFinite, OffDeclaresNothing) {
+  const auto plain = render(sized(lavapipeConfig("atrium-small.json", {}), 160, 90, 1), 1);
+  for (const auto& pass : plain.passes) EXPECT_FALSE(pass.name.starts_with("Finite Check")) << pass.name;
+  EXPECT_TRUE(plain.workload->nonFiniteCounts().empty());
+}
+
+TEST(CheckFinite, CleanFrameHasNoBadPass) {
+  const auto checked = renderChecked({}, 1);
+  EXPECT_EQ(checked.workload->validationMessages(), 0u);
+  const auto counts = checked.workload->nonFiniteCounts();
+  std::vector<std::string> names;
+  for (const auto& c : counts) names.push_back(c.pass);
+  // Execution order; every pass writing the HDR image or a bloom level is checked.
+  EXPECT_EQ(names, (std::vector<std::string>{"Mesh Render", "Mesh Render Transparent", "Particle Render", "Bloom"}));
+  EXPECT_EQ(firstBadPass(counts), "");
+  EXPECT_TRUE(aliveNames(checked.passes).count("Finite Check: Bloom"));
+}
+
+// A NaN written by one pass spreads to the passes after it; the report must name the one that wrote
+// it first. MSAA 4 with SSAA 2: the multisampled target, the resolve and the SSAA resolve are checked.
+TEST(CheckFinite, NamesThePassThatInjectedTheNan) {
+  const auto mesh = renderChecked({{"debug.inject_nan", "Mesh Render"}, {"render.ssaa", "2"}}, 4);
+  EXPECT_EQ(mesh.workload->validationMessages(), 0u);
+  const auto meshCounts = mesh.workload->nonFiniteCounts();
+  EXPECT_EQ(firstBadPass(meshCounts), "Mesh Render");
+  for (const auto& c : meshCounts)
+    if (c.pass == "SSAA Resolve") EXPECT_GT(c.nan, 0u);  // it spread through the resolve
+
+  const auto bloom = renderChecked({{"debug.inject_nan", "Bloom"}}, 1);
+  const auto bloomCounts = bloom.workload->nonFiniteCounts();
+  EXPECT_EQ(firstBadPass(bloomCounts), "Bloom");
+  ASSERT_FALSE(bloomCounts.empty());
+  EXPECT_EQ(bloomCounts.back().pass, "Bloom");
+  EXPECT_EQ(bloomCounts.back().nan, 1u);
+}
+
+}  // namespace
+}  // namespace fgb::render

@@ -76,8 +76,14 @@ RunResult runBenchmark(render::Workload& workload, const RunOptions& options) {
   RunResult run;
   run.device = workload.device();
   run.stats = workload.stats();
+  run.nonFinite = workload.nonFiniteCounts();
+  run.checkedFinite = !run.nonFinite.empty();  // --check-finite always checks at least the HDR image
   std::map<std::string, std::size_t> index;
   for (std::size_t i = options.warmup; i < options.warmup + options.frames; ++i) appendFrame(run, index, timings[i]);
+  for (const auto& counts : run.nonFinite) {
+    for (auto& pass : run.passes)
+      if (pass.name == counts.pass) pass.nonFinite = counts;
+  }
   finalizeColumns(run);
   summarizeRun(run, options.unstableSpread);
 

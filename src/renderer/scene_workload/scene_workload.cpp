@@ -4,6 +4,7 @@
 
 #include "../features/bloom/bloom_feature.hpp"
 #include "../features/context/render_feature.hpp"
+#include "../features/finite_check/finite_check_feature.hpp"
 #include "../features/lighting/clustered_lighting.hpp"
 #include "../features/meshes/mesh_feature.hpp"
 #include "../features/particles/particle_feature.hpp"
@@ -19,6 +20,7 @@
 #include <fgb/scene/stats.hpp>
 #include <fgb/vulkan/backend.hpp>
 
+#include <algorithm>
 #include <deque>
 #include <filesystem>
 #include <iostream>
@@ -64,6 +66,7 @@ features::RenderSettings makeSettings(const WorkloadConfig& config, const scene:
   }
   settings.msaa = msaa;
   features::applyRendererKnobs(settings, config.knobs);
+  settings.checkFinite = config.checkFinite;
   return settings;
 }
 
@@ -145,6 +148,19 @@ class SceneWorkload final : public Workload {
   }
 
   uint64_t validationMessages() const override { return device_->validationMessages(); }
+
+  std::vector<NonFiniteCounts> nonFiniteCounts() const override {
+    auto counts = finiteCheck_->counts();
+    // Execution order: the first pass with a bad value is where it was born.
+    const auto& order = graph_->compiled().order;
+    std::vector<size_t> position(graph_->declaration().nodes().size(), order.size());
+    for (size_t i = 0; i < order.size(); ++i) position[order[i]] = i;
+    std::stable_sort(counts.begin(), counts.end(),
+                     [&](const auto& a, const auto& b) { return position[a.node] < position[b.node]; });
+    std::vector<NonFiniteCounts> result;
+    for (const auto& c : counts) result.push_back({c.pass, c.nan, c.inf, c.overHalfMax});
+    return result;
+  }
   StartupTimes startup() const override { return startup_; }
 
   [[nodiscard]] const graph::FrameGraph& declaration() const { return graph_->declaration(); }
@@ -158,6 +174,10 @@ class SceneWorkload final : public Workload {
     features_.push_back(std::make_unique<features::SsaaResolveFeature>());
     features_.push_back(std::make_unique<features::BloomFeature>());
     features_.push_back(std::make_unique<features::TonemapFeature>());
+    // Last: it inspects every node declared before it (see finite_check_feature.hpp).
+    auto finiteCheck = std::make_unique<features::FiniteCheckFeature>();
+    finiteCheck_ = finiteCheck.get();
+    features_.push_back(std::move(finiteCheck));
     features::FeatureInit init{*device_, gpu_, settings_};
     for (auto& feature : features_) feature->initialize(init);
   }
@@ -235,6 +255,7 @@ class SceneWorkload final : public Workload {
   features::RenderSettings settings_;
   features::GpuScene gpu_;
   std::vector<std::unique_ptr<features::IRenderFeature>> features_;
+  features::FiniteCheckFeature* finiteCheck_ = nullptr;  // owned by features_
   rhi::TextureId hdrTexture_;
   rhi::TextureId displayTexture_;
   std::unique_ptr<rhi::ExecutableGraph> graph_;

@@ -23,6 +23,7 @@ struct DownPush {
   uint32_t firstMip;
   float threshold;
   float knee;
+  uint32_t injectNan;
 };
 struct UpPush {
   uint32_t source;
@@ -47,6 +48,7 @@ void dispatchOver(rhi::CommandBuffer& cmd, const graph::Extent& size) {
 
 void BloomFeature::initialize(FeatureInit& init) {
   bloom_ = init.scene.scene->post.bloom;
+  injectNan_ = init.settings.injectNanPass == "Bloom";
   // Nothing drawn (no instances, no particles): the cleared background has nothing to bloom.
   const bool drawsSomething = !init.scene.scene->instances.empty() || !init.scene.scene->emitters.empty();
   enabled_ = bloom_.enabled && bloom_.intensity > 0.0f && drawsSomething;
@@ -76,7 +78,7 @@ void BloomFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
   for (uint32_t level = 0; level <= mips_; ++level) sizes[level] = levelExtent(targets.extent, level);
 
   node.setJob([down = downPipeline_, up = upPipeline_, sampler = samplerIndex_, bloom = bloom_, mips = mips_, hdr,
-               levels, sizes](graph::JobContext& context) {
+               levels, sizes, injectNan = injectNan_](graph::JobContext& context) {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
     const auto xy = [](const graph::Extent& e) { return std::array{int32_t(e.width), int32_t(e.height)}; };
@@ -86,7 +88,7 @@ void BloomFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
       const bool first = level == 1;
       DownPush push{first ? ctx.sampledTextureIndex(hdr) : ctx.storageTextureIndex(levels[level - 1]),
                     first ? 0u : 1u, sampler, ctx.storageTextureIndex(levels[level]), {}, {},
-                    first ? 1u : 0u, bloom.threshold, bloom.knee};
+                    first ? 1u : 0u, bloom.threshold, bloom.knee, first && injectNan ? 1u : 0u};
       std::ranges::copy(xy(sizes[level - 1]), push.sourceSize);
       std::ranges::copy(xy(sizes[level]), push.targetSize);
       cmd.push(push);

@@ -26,6 +26,7 @@ class BloomFeature final : public IRenderFeature {
   uint32_t mips_ = 0;
   scene::BloomSettings bloom_;
   bool enabled_ = false;
+  bool injectNan_ = false;  // debug.inject_nan=Bloom
 };
 
 }  // namespace fgb::features

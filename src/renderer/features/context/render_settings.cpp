@@ -47,6 +47,7 @@ void applyOne(RenderSettings& settings, const std::string& key, const std::strin
   else if (key == "lighting.max_per_cluster") settings.maxLightsPerCluster = count(value);
   else if (key == "bloom.mips") settings.bloomMips = count(value);
   else if (key == "particles.seed") settings.particleSeedOffset = count(value);
+  else if (key == "debug.inject_nan") settings.injectNanPass = value == "none" ? "" : value;
 }
 
 }  // namespace
@@ -61,6 +62,8 @@ const std::vector<KnobSpec>& rendererKnobSpecs() {
       integer("lighting.max_per_cluster", 1, 1024, "lights kept per cluster (overflow guard)"),
       integer("bloom.mips", 1, 10, "bloom chain levels (clamped to what the size allows)"),
       integer("particles.seed", 0, 1 << 30, "added to every emitter's seed"),
+      // The passes whose shaders can write a NaN on request (tests of --check-finite).
+      word("debug.inject_nan", {"none", "Mesh Render", "Bloom"}, "pass that writes a NaN (tests of --check-finite)"),
   };
   return specs;
 }

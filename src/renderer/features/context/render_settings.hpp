@@ -29,6 +29,8 @@ struct RenderSettings {
   uint32_t maxLightsPerCluster = 128; // lighting.max_per_cluster (overflow guard)
   uint32_t bloomMips = 6;             // bloom.mips
   uint32_t particleSeedOffset = 0;    // particles.seed (added to every emitter's seed)
+  bool checkFinite = false;           // --check-finite (not a knob: a run option)
+  std::string injectNanPass;          // debug.inject_nan: the pass whose shader writes a NaN ("": none)
 
   // Size the scene passes (meshes, lights, particles) render at: the output size times render.ssaa.
   [[nodiscard]] uint32_t sceneWidth() const { return width * ssaa; }

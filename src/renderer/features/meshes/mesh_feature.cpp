@@ -148,6 +148,7 @@ void MeshFeature::initialize(FeatureInit& init) {
   if (drawCount_) pipelines_.compact = init.device.createComputePipeline({"mesh draw compaction", "renderer/mesh_compact.comp"});
   pipelines_.opaque = init.device.createGraphicsPipeline(forwardPipeline(init.settings, false));
   depthPrepass_ = init.settings.depthPrepass;
+  injectNanPass_ = init.settings.injectNanPass;
   if (depthPrepass_) pipelines_.depthOnly = init.device.createGraphicsPipeline(depthOnlyPipeline(init.settings));
   if (hasTransparent_) pipelines_.transparent = init.device.createGraphicsPipeline(forwardPipeline(init.settings, true));
   statsReadback_ = init.device.createBuffer(
@@ -250,7 +251,8 @@ void MeshFeature::declareDraw(graph::FrameGraph& graph, Blackboard& board, std::
   push.lights = device_->storageBufferIndex(scene.lights);
   push.clusterCounts = push.clusterIndices = rhi::kInvalidId;
   push.materialSampler = device_->samplerIndex(scene.materialSampler);
-  push.flags = transparent ? 2u : 0u;
+  // Bit 2: debug.inject_nan names this pass (forward.frag writes a NaN at the centre pixel).
+  push.flags = (transparent ? 2u : 0u) | (nodeName == injectNanPass_ ? 4u : 0u);
   ClusteredLights clusters;
   if (const auto* published = board.find<ClusteredLights>()) {
     clusters = *published;

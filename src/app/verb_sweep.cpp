@@ -89,11 +89,14 @@ int sweepVerb(const CLI::App& command, SweepOptions o) {
 
   harness::ProgressBar bar(std::cerr, "measuring", chatty && harness::ProgressBar::stderrIsTerminal());
   harness::SweepProgress progress;
+  bool opened = false;  // the first phase is said once every configuration opened
   progress.phase = [&](const std::string& phase) {
-    if (chatty) std::cerr << "sweep: " << phase << "\n";
+    if (!chatty) return;
+    if (!opened) std::cerr << fmt::format("sweep: {} configuration(s) of {} opened\n", plan.configurations.size(), o.scene);
+    opened = true;
+    std::cerr << "sweep: " << phase << "\n";
   };
   progress.frames = [&](uint32_t done, uint32_t total) { bar.update(done, total); };
-  if (chatty) std::cerr << fmt::format("sweep: {} configuration(s) of {}\n", plan.configurations.size(), o.scene);
 
   harness::SweepResult result = harness::runSweep(render::openWorkload, plan, progress);
   bar.finish();

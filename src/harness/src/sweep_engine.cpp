@@ -108,8 +108,8 @@ SweepResult runSweep(const WorkloadOpener& open, const SweepPlan& requested, con
     if (progress.phase) progress.phase(what);
   };
 
-  // Every configuration is opened first: a bad knob fails here, before the costly references.
-  say("opening configurations");
+  // Every configuration is opened first: a bad knob fails here, before the costly references (and
+  // before anything is said, so that bad input gets its one line).
   std::vector<std::unique_ptr<ConfigurationRenderer>> renderers;
   for (const auto& c : plan.configurations) {
     renderers.push_back(std::make_unique<ConfigurationRenderer>(open, c.workload));

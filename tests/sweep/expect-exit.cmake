@@ -1,0 +1,17 @@
+# Runs one fgbench command line and checks its exit code and its one-line message on stderr.
+# Inputs (-D): COMMAND (";"-separated), EXIT (expected code), MATCH (regex stderr must match).
+execute_process(COMMAND ${COMMAND} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+string(STRIP "${err}" err)
+string(REPLACE ";" " " shown "${COMMAND}")
+if(NOT rc STREQUAL EXIT)
+  message(FATAL_ERROR "${shown}\n  exit ${rc}, expected ${EXIT}\n  stderr: ${err}\n  stdout: ${out}")
+endif()
+if(NOT err MATCHES "${MATCH}")
+  message(FATAL_ERROR "${shown}\n  exit ${rc} as expected, but stderr does not match '${MATCH}':\n  ${err}")
+endif()
+string(REGEX MATCHALL "\n" newlines "${err}")
+list(LENGTH newlines lines)
+if(lines GREATER 0)
+  message(FATAL_ERROR "${shown}\n  expected one line on stderr, got:\n${err}")
+endif()
+message(STATUS "${shown}: exit ${rc} ${err}")

@@ -29,7 +29,8 @@ const std::vector<std::string>& Knobs::knownKeys() {
       "atrium.scale",       "atrium.seed",          "atrium.texture_size", "stress.offset",  "stress.seed",
       "camera.fov",         "camera.near",          "camera.far",          "camera.position", "camera.target",
       "post.exposure",      "post.bloom",           "post.bloom_threshold", "post.bloom_knee",
-      "post.bloom_intensity", "post.bloom_radius",  "scene.lights",        "scene.particles", "scene.sun"};
+      "post.bloom_intensity", "post.bloom_radius",  "scene.lights",        "scene.particles", "scene.sun",
+      "scene.light_scale",  "scene.emissive_scale"};
   return keys;
 }
 
@@ -59,6 +60,10 @@ Knobs Knobs::parse(const std::vector<std::string>& assignments) {
   for (const auto& [key, value] : knobs.values_) {
     if (key == "camera.position" || key == "camera.target") {
       (void)knobs.vec3(key);
+    } else if (key == "camera.far" || key == "post.exposure") {
+      (void)knobs.numberOr(key, key == "camera.far" ? "inf" : "auto");
+    } else if (key == "scene.light_scale" || key == "scene.emissive_scale") {
+      (void)knobs.scale(key);
     } else if (key == "post.bloom" || key.starts_with("scene.")) {
       (void)knobs.flag(key);
     } else {
@@ -76,6 +81,27 @@ std::optional<double> Knobs::number(const std::string& key) const {
   return value;
 }
 
+std::optional<double> Knobs::numberOr(const std::string& key, const std::string& word) const {
+  const auto it = values_.find(key);
+  if (it == values_.end() || it->second == word) return std::nullopt;
+  const auto value = parseNumber(it->second);
+  if (!value) throw InputError(describe(key, it->second) + ": expected a finite number or '" + word + "'");
+  return value;
+}
+
+bool Knobs::isWord(const std::string& key, const std::string& word) const {
+  const auto it = values_.find(key);
+  return it != values_.end() && it->second == word;
+}
+
+std::optional<double> Knobs::scale(const std::string& key) const {
+  const auto value = number(key);
+  if (value && !(*value >= 1e-12 && *value <= 1e12)) {
+    throw InputError(describe(key, values_.at(key)) + ": expected a factor in [1e-12, 1e12]");
+  }
+  return value;
+}
+
 std::optional<bool> Knobs::flag(const std::string& key) const {
   const auto it = values_.find(key);
   if (it == values_.end()) return std::nullopt;
@@ -85,10 +111,10 @@ std::optional<bool> Knobs::flag(const std::string& key) const {
   throw InputError(describe(key, v) + ": expected 0|1|true|false|on|off");
 }
 
-std::optional<glm::vec3> Knobs::vec3(const std::string& key) const {
+std::optional<glm::dvec3> Knobs::vec3(const std::string& key) const {
   const auto it = values_.find(key);
   if (it == values_.end()) return std::nullopt;
-  glm::vec3 result(0.0f);
+  glm::dvec3 result(0.0);
   std::string_view rest = it->second;
   for (int axis = 0; axis < 3; ++axis) {
     const size_t comma = rest.find(',');
@@ -96,7 +122,7 @@ std::optional<glm::vec3> Knobs::vec3(const std::string& key) const {
     if (!component || (axis < 2) != (comma != std::string_view::npos)) {
       throw InputError(describe(key, it->second) + ": expected three numbers x,y,z");
     }
-    result[axis] = static_cast<float>(*component);
+    result[axis] = *component;
     rest = comma == std::string_view::npos ? std::string_view{} : rest.substr(comma + 1);
   }
   return result;

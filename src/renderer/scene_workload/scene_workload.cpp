@@ -5,6 +5,7 @@
 #include "../features/bloom/bloom_feature.hpp"
 #include "../features/context/render_feature.hpp"
 #include "../features/finite_check/finite_check_feature.hpp"
+#include "../features/exposure/exposure_feature.hpp"
 #include "../features/lighting/clustered_lighting.hpp"
 #include "../features/meshes/mesh_feature.hpp"
 #include "../features/particles/particle_feature.hpp"
@@ -21,6 +22,7 @@
 #include <fgb/vulkan/backend.hpp>
 
 #include <algorithm>
+#include <array>
 #include <deque>
 #include <filesystem>
 #include <iostream>
@@ -37,6 +39,21 @@ constexpr graph::ImportState kDisplayFinal{graph::kStageColorAttachmentOutput, g
                                            graph::Layout::ColorAttachment, graph::QueueClass::Graphics};
 constexpr graph::ImportState kDiscard{graph::kStageNone, graph::kAccessNone, graph::Layout::Undefined,
                                       graph::QueueClass::Graphics};
+
+constexpr graph::ImportState kExposureState{
+    graph::kStageVertexShader | graph::kStageFragmentShader | graph::kStageComputeShader,
+    graph::kAccessShaderStorageRead | graph::kAccessShaderStorageWrite, graph::Layout::Undefined,
+    graph::QueueClass::Graphics};
+
+// The HDR clear: the background radiance, scaled with the lights and pre-exposed. With auto
+// exposure it is pre-exposed with the starting exposure, so the backdrop keeps a fixed display
+// value; its alpha of 0 keeps it out of the exposure measurement (geometry writes alpha > 0).
+std::array<float, 4> backgroundClear(const scene::PostSettings& post) {
+  const float scale = post.lightScale * initialExposure(post).preExposure;
+  const auto& b = features::kBackgroundRadiance;
+  const auto channel = [&](float radiance) { return std::min(radiance * scale, 65504.0f); };  // R16F max
+  return {channel(b[0]), channel(b[1]), channel(b[2]), 0.0f};
+}
 
 DeviceDescription describe(const rhi::AdapterInfo& adapter) {
   return {adapter.index, adapter.name, adapter.driver, adapter.type, adapter.apiVersion, adapter.timestampPeriodNs,
@@ -173,6 +190,7 @@ class SceneWorkload final : public Workload {
     features_.push_back(std::make_unique<features::ParticleFeature>());
     features_.push_back(std::make_unique<features::SsaaResolveFeature>());
     features_.push_back(std::make_unique<features::BloomFeature>());
+    features_.push_back(std::make_unique<features::ExposureFeature>());  // after bloom: see there
     features_.push_back(std::make_unique<features::TonemapFeature>());
     // Last: it inspects every node declared before it (see finite_check_feature.hpp).
     auto finiteCheck = std::make_unique<features::FiniteCheckFeature>();
@@ -192,6 +210,13 @@ class SceneWorkload final : public Workload {
     targets.outputExtent = extent;
     targets.extent = {settings_.sceneWidth(), settings_.sceneHeight(), 1};
     targets.samples = settings_.msaa;
+    targets.background = backgroundClear(loaded_.scene.post);
+    if (loaded_.scene.post.autoExposure) {
+      // Written by the "Exposure" node, read by the next frame's colour passes: the state carries
+      // over between frames, all on the graphics queue.
+      targets.exposure = graph.importBuffer("exposure", {sizeof(features::ExposureGpu), {}}, rhi::external(gpu_.exposure),
+                                            kExposureState, kExposureState);
+    }
     const graph::TextureHandle hdr = graph.importTexture("hdr", {features::kHdrFormat, extent, 1, 1, 1, {}, 0},
                                                          rhi::external(hdrTexture_), kDiscard, kHdrFinal);
     if (settings_.ssaa == 1) {

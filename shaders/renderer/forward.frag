@@ -98,10 +98,10 @@ void main() {
     // Light-complexity heat map: lights evaluated per fragment, 0 .. 16+.
     color = heatRamp(float(considered) / 16.0) * 4.0;
   }
-  if ((pc.flags & 4u) != 0u && ivec2(gl_FragCoord.xy) == ivec2(frame.viewport.xy) / 2) {
-    color = vec3(uintBitsToFloat(0x7fc00000u));  // debug.inject_nan: a NaN at the centre pixel
-  }
   float alpha = m.alphaMode == 2u ? base.a : 1.0;
   // Pre-exposed (see ExposureGpu) and clamped to R16F's range: too bright saturates, never Inf.
   outColor = vec4(min(color * preExposure(frame), vec3(kHalfMax)), alpha);
+  if ((pc.flags & 4u) != 0u && ivec2(gl_FragCoord.xy) == ivec2(frame.viewport.xy) / 2) {
+    outColor.rgb = vec3(uintBitsToFloat(0x7fc00000u));  // debug.inject_nan: a NaN at the centre pixel
+  }
 }

@@ -45,6 +45,7 @@ void appendMeasurements(RunResult& total, const RunResult& round) {
   for (const auto& p : round.passes) {
     PassRecord& t = passNamed(total, p, before);
     t.culled = t.culled && p.culled;
+    if (p.nonFinite) t.nonFinite = p.nonFinite;  // --check-finite: the latest frame's counts
     t.samplesMs.resize(before, 0.0);  // a pass culled so far has no samples yet
     if (p.culled) {
       t.samplesMs.resize(after, 0.0);
@@ -60,6 +61,10 @@ void appendMeasurements(RunResult& total, const RunResult& round) {
     t.samplesMs.resize(after, 0.0);
     if (!t.startMs.empty()) t.startMs.resize(after, 0.0);
     if (t.culled) t.samplesMs.clear();
+  }
+  if (round.checkedFinite) {
+    total.checkedFinite = true;
+    total.nonFinite = round.nonFinite;
   }
   total.frameGpuMs.insert(total.frameGpuMs.end(), round.frameGpuMs.begin(), round.frameGpuMs.end());
   total.frameCpuMs.insert(total.frameCpuMs.end(), round.frameCpuMs.begin(), round.frameCpuMs.end());

@@ -1,4 +1,5 @@
 // sweep.html: one self-contained file (inline SVG charts, images as data: URIs, no scripts).
+#include <fgb/harness/html_util.hpp>
 #include <fgb/harness/image_io.hpp>
 #include <fgb/harness/report.hpp>
 #include <fgb/harness/sweep_report.hpp>
@@ -12,8 +13,6 @@
 namespace fgb::harness {
 namespace {
 
-constexpr uint32_t kThumbnailWidth = 420;  // gallery images are shrunk to this width at most
-
 constexpr const char* kStyle =
     "body{font-family:sans-serif;max-width:1100px;margin:2em auto;color:#222}"
     "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #ccc;padding:3px 8px;text-align:right}"
@@ -25,58 +24,6 @@ constexpr const char* kStyle =
 constexpr std::array<const char*, 12> kPassColors = {"#3f6fb5", "#e08a2e", "#4a9c5d", "#c0392b", "#8e6bbf", "#8c564b",
                                                      "#d45fb0", "#7f7f7f", "#bcbd22", "#17becf", "#1f3f6f", "#f2b134"};
 
-std::string base64(const std::vector<uint8_t>& bytes) {
-  static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  out.reserve((bytes.size() + 2) / 3 * 4);
-  for (std::size_t i = 0; i < bytes.size(); i += 3) {
-    const uint32_t b0 = bytes[i], b1 = i + 1 < bytes.size() ? bytes[i + 1] : 0, b2 = i + 2 < bytes.size() ? bytes[i + 2] : 0;
-    const uint32_t triple = (b0 << 16) | (b1 << 8) | b2;
-    out += kAlphabet[(triple >> 18) & 63];
-    out += kAlphabet[(triple >> 12) & 63];
-    out += i + 1 < bytes.size() ? kAlphabet[(triple >> 6) & 63] : '=';
-    out += i + 2 < bytes.size() ? kAlphabet[triple & 63] : '=';
-  }
-  return out;
-}
-
-std::string imgTag(const Image& image, const std::string& alt) {
-  const Image thumb = shrinkToWidth(image, kThumbnailWidth);
-  return fmt::format(R"(<img src="data:image/png;base64,{}" width="{}" height="{}" alt="{}">)", base64(encodePng(thumb)),
-                     thumb.width, thumb.height, escapeXml(alt));
-}
-
-// A log10 axis over [lo, hi]: position of a value and tick values (1, 2, 5 x 10^k inside the range,
-// or the ends when the range holds fewer than two of those).
-struct LogAxis {
-  double lo, hi;
-  double at(double v, double from, double to) const {
-    const double t = (std::log10(std::max(v, lo)) - std::log10(lo)) / (std::log10(hi) - std::log10(lo));
-    return from + t * (to - from);
-  }
-  std::vector<double> ticks() const {
-    std::vector<double> out;
-    for (int e = static_cast<int>(std::floor(std::log10(lo))); e <= static_cast<int>(std::ceil(std::log10(hi))); ++e) {
-      for (double m : {1.0, 2.0, 5.0}) {
-        const double v = m * std::pow(10.0, e);
-        if (v >= lo && v <= hi) out.push_back(v);
-      }
-    }
-    if (out.size() < 2) out = {lo, std::sqrt(lo * hi), hi};
-    return out;
-  }
-};
-
-LogAxis paddedLogAxis(double lo, double hi) {
-  if (!(lo > 0)) lo = 1e-6;
-  if (!(hi > lo)) hi = lo * 1.0001;
-  // At least a factor 1.5 across, centred on the data, so close points do not fill the whole plot.
-  const double centre = std::sqrt(lo * hi);
-  const double half = std::max(std::sqrt(hi / lo), std::sqrt(1.5)) * 1.08;
-  return {centre / half, centre * half};
-}
-
-std::string tickLabel(double v) { return fmt::format("{:.3g}", v); }
 
 }  // namespace
 

@@ -82,6 +82,7 @@ std::vector<KnobSpec> knobSpecs() {
       typed("scene.sun", KnobType::Flag, "sun on/off"),
       number("scene.light_scale", 1e-12, 1e12, false, "factor on every light, emissive, particle, background"),
       number("scene.emissive_scale", 1e-12, 1e12, false, "factor on emissive materials and particles"),
+      number("scene.offset", -1e9, 1e9, false, "whole scene and camera moved by (d, 0, d) m"),
   };
 }
 

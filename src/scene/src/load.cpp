@@ -9,6 +9,7 @@
 #include <fgb/scene/knobs.hpp>
 #include <fgb/scene/stats.hpp>
 
+#include <glm/ext/matrix_transform.hpp>
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
@@ -156,6 +157,22 @@ void scaleLights(Scene& scene, float factor) {
   scene.post.bloom.threshold *= factor;
 }
 
+// scene.offset: the whole scene and its camera moved by (d, 0, d) metres, in double (the `offset`
+// stress ladder on any scene; stress-far's generator parameter does the same for the atrium).
+void offsetScene(Scene& scene, double d) {
+  const glm::dvec3 shift(d, 0.0, d);
+  const glm::dmat4 move = glm::translate(glm::dmat4(1.0), shift);
+  for (Instance& instance : scene.instances) {
+    instance.transform = move * instance.transform;
+    instance.worldBounds.min += shift;
+    instance.worldBounds.max += shift;
+  }
+  for (PointLight& light : scene.lights) light.position += shift;
+  for (Emitter& emitter : scene.emitters) emitter.position += shift;
+  scene.camera.position += shift;
+  scene.camera.target += shift;
+}
+
 void applyKnobs(Scene& scene, const Knobs& knobs) {
   Camera& c = scene.camera;
   if (auto v = knobs.number("camera.fov")) c.verticalFovDeg = static_cast<float>(*v);
@@ -184,6 +201,7 @@ void applyKnobs(Scene& scene, const Knobs& knobs) {
   if (auto v = knobs.flag("scene.sun")) scene.sun.enabled = *v;
   if (auto v = knobs.scale("scene.light_scale")) scaleLights(scene, static_cast<float>(*v));
   if (auto v = knobs.scale("scene.emissive_scale")) scaleEmissive(scene, static_cast<float>(*v));
+  if (auto v = knobs.number("scene.offset")) offsetScene(scene, *v);
 }
 
 void applyDescription(Scene& scene, const SceneDescription& d) {

@@ -32,6 +32,7 @@ struct UpPush {
   int32_t sourceSize[2];
   int32_t targetSize[2];
   float radius;
+  uint32_t injectNan;
 };
 
 constexpr uint32_t kGroupSize = 8;  // local size of both shaders (8 x 8)
@@ -100,8 +101,9 @@ void BloomFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
     cmd.bindPipeline(up);
     for (uint32_t level = mips; level >= 2; --level) {
       cmd.computeBarrier();
+      // debug.inject_nan=Bloom: the last write of level 1 (the level tone mapping reads) holds the NaN.
       UpPush push{ctx.storageTextureIndex(levels[level]), ctx.storageTextureIndex(levels[level - 1]), {}, {},
-                  bloom.radius};
+                  bloom.radius, level == 2 && injectNan ? 1u : 0u};
       std::ranges::copy(xy(sizes[level]), push.sourceSize);
       std::ranges::copy(xy(sizes[level - 1]), push.targetSize);
       cmd.push(push);

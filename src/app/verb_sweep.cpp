@@ -29,8 +29,8 @@ struct SweepOptions {
   std::string sweepFile;
   std::string out;
   bool untilStable = false;
-  double stableWithin = 2.0;  // percent
-  uint32_t maxFrames = 512;
+  double stableWithin = 3.0;  // percent
+  uint32_t maxFrames = 128;
   uint32_t roundFrames = 16;
   double maxMinutes = 0.0;
   uint64_t seed = 1;

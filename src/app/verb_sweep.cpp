@@ -29,8 +29,8 @@ struct SweepOptions {
   std::string sweepFile;
   std::string out;
   bool untilStable = false;
-  double stableWithin = 2.0;  // percent
-  uint32_t maxFrames = 512;
+  double stableWithin = 3.0;  // percent
+  uint32_t maxFrames = 128;
   uint32_t roundFrames = 16;
   double maxMinutes = 0.0;
   uint64_t seed = 1;
@@ -52,6 +52,19 @@ std::vector<harness::SweepAxis> gatherAxes(const SweepOptions& o, const harness:
   return axes;
 }
 
+// Every value of a knob axis against the knob registry, before anything opens: exit 2 naming it.
+void checkAxisKnob(const harness::SweepAxis& axis) {
+  if (axis.key == "msaa" || axis.key == "width" || axis.key == "height" || axis.key == "size") return;
+  for (const auto& value : axis.values) {
+    try {
+      knobRegistry().check(axis.key, value);
+    } catch (const InputError& e) {
+      const std::string message = e.what();
+      throw InputError(message.starts_with("--set ") ? "--vary " + message.substr(6) : message);
+    }
+  }
+}
+
 harness::SweepPlan makePlan(const CLI::App& command, SweepOptions& o, std::vector<harness::SweepAxis>& axes) {
   std::optional<harness::SweepFile> file;
   if (!o.sweepFile.empty()) file = harness::loadSweepFile(o.sweepFile);
@@ -61,6 +74,7 @@ harness::SweepPlan makePlan(const CLI::App& command, SweepOptions& o, std::vecto
   if (file && !command.count("--height") && file->height) o.common.height = file->height;
   axes = gatherAxes(o, file ? &*file : nullptr);
   for (const auto& axis : axes) {
+    checkAxisKnob(axis);
     if (knobs.count(axis.key)) throw InputError("--vary " + axis.key + ": also fixed by --set " + axis.key + "=" + knobs[axis.key]);
     if (axis.key == "msaa" && command.count("--msaa")) throw InputError("--vary msaa: also fixed by --msaa");
   }

@@ -84,6 +84,9 @@ void measureInRounds(std::vector<std::unique_ptr<ConfigurationRenderer>>& render
     }
     std::shuffle(order.begin(), order.end(), random);
     for (std::size_t i : order) {
+      // The time limit also ends a round early (after the first round): a round of slow
+      // configurations on a CPU device can take minutes.
+      if (plan.maxMinutes > 0 && result.rounds > 0 && sweepClock.elapsedMs() > plan.maxMinutes * 60000.0) break;
       const uint32_t have = static_cast<uint32_t>(renderers[i]->result().frameGpuMs.size());
       const uint32_t frames = std::min(plan.roundFrames, plan.frames - have);
       renderers[i]->measure(frames, plan.rewarmFrames);

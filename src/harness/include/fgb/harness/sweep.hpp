@@ -84,10 +84,10 @@ struct SweepPlan {
   uint32_t frames = 64;      // measured frames per configuration without untilStable
   std::optional<StabilityRule> untilStable;  // sample each until stable, at most stableFrameCap frames
   bool untilStableOnCpu = false;  // use the default StabilityRule when the device is a CPU (lavapipe)
-  uint32_t stableFrameCap = 512;
+  uint32_t stableFrameCap = 128;
   uint32_t roundFrames = 16;  // frames per configuration per round
   uint32_t rewarmFrames = 1;  // dropped at the start of each round (others ran in between)
-  double maxMinutes = 0.0;    // 0: no limit; else no new round starts after this
+  double maxMinutes = 0.0;    // 0: no limit; else measuring stops after this (after one full round)
   uint64_t seed = 1;          // order of the configurations within each round
   double alpha = 0.05;
 };

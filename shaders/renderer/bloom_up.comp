@@ -13,6 +13,7 @@ layout(push_constant) uniform Push {
   ivec2 sourceSize;
   ivec2 targetSize;
   float radius;  // in source texels
+  uint injectNan;  // debug.inject_nan=Bloom: the centre texel of this (the first) level is a NaN
 } pc;
 
 vec2 gUv;
@@ -26,5 +27,8 @@ void main() {
   vec3 sum = tap(-1, -1) + 2.0 * tap(0, -1) + tap(1, -1) + 2.0 * tap(-1, 0) + 4.0 * tap(0, 0) + 2.0 * tap(1, 0) +
              tap(-1, 1) + 2.0 * tap(0, 1) + tap(1, 1);
   const vec4 below = imageLoad(fgbImagesRgba16f[pc.target], texel);
-  imageStore(fgbImagesRgba16f[pc.target], texel, vec4(below.rgb + sum / 16.0, 1.0));
+  // Adding levels can pass the half-float maximum: saturate rather than store Inf.
+  vec4 result = vec4(min(below.rgb + sum / 16.0, vec3(kHalfMax)), 1.0);
+  if (pc.injectNan != 0u && texel == pc.targetSize / 2) result.r = uintBitsToFloat(0x7fc00000u);
+  imageStore(fgbImagesRgba16f[pc.target], texel, result);
 }

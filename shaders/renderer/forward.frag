@@ -14,23 +14,35 @@ layout(location = 4) flat in uint inMaterial;
 
 layout(location = 0) out vec4 outColor;
 
-vec3 shadingNormal(Material m) {
-  vec3 n = normalize(inNormal);
+// Texture coordinates: a NaN would make every lookup undefined.
+vec2 safeUv() { return any(isnan(inUv)) || any(isinf(inUv)) ? vec2(0.0) : inUv; }
+
+// The face's own normal, for when the interpolated one vanishes (opposite vertex normals); its
+// derivatives vanish too on a degenerate (edge-on) triangle, then the view direction stands in.
+vec3 geometricNormal(vec3 towardsViewer) {
+  return safeNormalize(cross(dFdx(inWorldPosition), dFdy(inWorldPosition)), towardsViewer);
+}
+
+vec3 shadingNormal(Material m, vec2 uv, vec3 towardsViewer) {
+  vec3 n = safeNormalize(inNormal, geometricNormal(towardsViewer));
   if (!gl_FrontFacing) n = -n;
   if (m.normalTexture < 0 || dot(inTangent.xyz, inTangent.xyz) < 1e-12) return n;
-  vec3 t = normalize(inTangent.xyz - n * dot(n, inTangent.xyz));
+  vec3 tangent = inTangent.xyz - n * dot(n, inTangent.xyz);
+  if (dot(tangent, tangent) < 1e-12) return n;  // tangent along the normal: no tangent frame
+  vec3 t = normalize(tangent);
   vec3 b = cross(n, t) * inTangent.w;
-  vec3 tangentNormal = sampleMaterialTexture(m.normalTexture, pc.materialSampler, inUv).xyz * 2.0 - 1.0;
+  vec3 tangentNormal = sampleMaterialTexture(m.normalTexture, pc.materialSampler, uv).xyz * 2.0 - 1.0;
   tangentNormal.xy *= m.emissive.w;
-  return normalize(mat3(t, b, n) * tangentNormal);
+  return safeNormalize(mat3(t, b, n) * tangentNormal, n);
 }
 
 vec3 pointLight(Surface s, PointLight light) {
   vec3 toLight = light.positionRadius.xyz - inWorldPosition;
   float distance = length(toLight);
   float attenuation = pointLightAttenuation(distance, light.positionRadius.w);
-  if (attenuation <= 0.0) return vec3(0.0);
-  return shadeLight(s, toLight / distance, light.color.rgb * attenuation);
+  if (!(attenuation > 0.0)) return vec3(0.0);
+  // A light on the surface (distance 0) lights it head-on rather than from a NaN direction.
+  return shadeLight(s, safeNormalize(toLight, s.normal), light.color.rgb * attenuation);
 }
 
 // Point lights of this fragment's cluster; also returns how many were considered (debug view).
@@ -55,8 +67,9 @@ vec3 pointLights(FrameConstants frame, Surface s, out uint considered) {
 void main() {
   FrameConstants frame = fgbFrames[pc.frame].frame;
   Material m = fgbMaterials[pc.materials].materials[inMaterial];
+  vec2 uv = safeUv();
   vec4 base = m.baseColor;
-  if (m.baseColorTexture >= 0) base *= sampleMaterialTexture(m.baseColorTexture, pc.materialSampler, inUv);
+  if (m.baseColorTexture >= 0) base *= sampleMaterialTexture(m.baseColorTexture, pc.materialSampler, uv);
   if (m.alphaMode == 1u && base.a < m.alphaCutoff) discard;
 
   Surface s;
@@ -64,20 +77,21 @@ void main() {
   s.metallic = m.metallic;
   s.roughness = m.roughness;
   if (m.metallicRoughnessTexture >= 0) {
-    vec4 mr = sampleMaterialTexture(m.metallicRoughnessTexture, pc.materialSampler, inUv);
+    vec4 mr = sampleMaterialTexture(m.metallicRoughnessTexture, pc.materialSampler, uv);
     s.roughness *= mr.g;
     s.metallic *= mr.b;
   }
-  s.roughness = clamp(s.roughness, 0.04, 1.0);
-  s.normal = shadingNormal(m);
-  s.view = normalize(frame.cameraPosition.xyz - inWorldPosition);
+  s.roughness = clamp(s.roughness, kMinRoughness, 1.0);
+  // Render space is camera-relative (the camera at the origin); a fragment at the camera sees +Z.
+  s.view = safeNormalize(frame.cameraPosition.xyz - inWorldPosition, vec3(0.0, 0.0, 1.0));
+  s.normal = shadingNormal(m, uv, s.view);
 
   uint considered = 0u;
   vec3 color = pointLights(frame, s, considered);
   if (frame.sunDirection.w > 0.0) color += shadeLight(s, -frame.sunDirection.xyz, frame.sunColor.rgb);
   color += frame.ambient.rgb * s.albedo;
   vec3 emissive = m.emissive.rgb;
-  if (m.emissiveTexture >= 0) emissive *= sampleMaterialTexture(m.emissiveTexture, pc.materialSampler, inUv).rgb;
+  if (m.emissiveTexture >= 0) emissive *= sampleMaterialTexture(m.emissiveTexture, pc.materialSampler, uv).rgb;
   color += emissive;
 
   if (frame.counts.w == 1u) {
@@ -85,5 +99,9 @@ void main() {
     color = heatRamp(float(considered) / 16.0) * 4.0;
   }
   float alpha = m.alphaMode == 2u ? base.a : 1.0;
-  outColor = vec4(color, alpha);
+  // Pre-exposed (see ExposureGpu) and clamped to R16F's range: too bright saturates, never Inf.
+  outColor = vec4(min(color * preExposure(frame), vec3(kHalfMax)), alpha);
+  if ((pc.flags & 4u) != 0u && ivec2(gl_FragCoord.xy) == ivec2(frame.viewport.xy) / 2) {
+    outColor.rgb = vec3(uintBitsToFloat(0x7fc00000u));  // debug.inject_nan: a NaN at the centre pixel
+  }
 }

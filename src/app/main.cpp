@@ -4,6 +4,7 @@
 
 #include <fgb/core/error.hpp>
 #include <fgb/graph/frame_graph.hpp>
+#include <fgb/scene/knobs.hpp>
 #ifdef FGBENCH_WITH_IMPORT
 #include <fgb/import/module_loader.hpp>
 #endif
@@ -35,12 +36,32 @@ void addCommonOptions(CLI::App& command, CommonOptions& options) {
   command.add_flag("--json", options.json, "Machine-readable output on stdout");
   command.add_flag("-v,--verbose", options.verbose, "More output");
   command.add_flag("--quiet", options.quiet, "No progress output");
+  command.add_flag("--check-finite", options.checkFinite,
+                   "After every pass writing float colour data, count NaN, Inf and values above half of R16F's "
+                   "maximum on the GPU (timings.json passes[i].non_finite; the report names the first bad pass)");
   command.add_flag("--validation", options.validation,
                    "Enable Vulkan validation (+ synchronization validation); any message fails with exit 3");
 }
 
+const KnobRegistry& knobRegistry() {
+  static const KnobRegistry registry = [] {
+    KnobRegistry r;
+    r.add(scene::knobSpecs());
+    r.add(render::rendererKnobSpecs());
+    return r;
+  }();
+  return registry;
+}
+
+std::map<std::string, std::string> checkedKnobs(const std::vector<std::string>& assignments) {
+  auto knobs = splitKnobAssignments(assignments);
+  knobRegistry().checkAll(knobs);
+  return knobs;
+}
+
 render::WorkloadConfig workloadConfig(const std::string& scene, const CommonOptions& common,
                                       const std::map<std::string, std::string>& knobs) {
+  knobRegistry().checkAll(knobs);
   render::WorkloadConfig config;
   config.scenePath = scene;
   config.device = common.device;
@@ -48,6 +69,7 @@ render::WorkloadConfig workloadConfig(const std::string& scene, const CommonOpti
   config.height = common.height;
   config.msaa = common.msaa;
   config.validation = common.validation;
+  config.checkFinite = common.checkFinite;
   config.knobs = knobs;
   return config;
 }

@@ -9,6 +9,7 @@
 #include <fgb/harness/image_io.hpp>
 #include <fgb/harness/json_io.hpp>
 #include <fgb/harness/progress.hpp>
+#include <fgb/harness/render_path.hpp>
 #include <fgb/harness/run_loop.hpp>
 #include <fgb/harness/run_outputs.hpp>
 #include <fgb/renderer/workload.hpp>
@@ -49,18 +50,16 @@ std::filesystem::path defaultGoldenRoot(const std::string& scene) {
 }
 
 Render renderOnce(const render::WorkloadConfig& config, const BlessOptions& o, uint32_t index) {
-  auto workload = render::openWorkload(config);
   harness::ProgressBar bar(std::cerr, fmt::format("bless render {}/{}", index + 1, o.renders),
                            !o.common.quiet && harness::ProgressBar::stderrIsTerminal());
-  harness::RunOptions run{o.common.warmup, o.common.frames, harness::kDefaultUnstableSpread,
-                          [&](uint32_t done, uint32_t total) { bar.update(done, total); }};
-  harness::runBenchmark(*workload, run);
+  harness::RenderRequest request;
+  request.workload = config;
+  request.warmup = o.common.warmup;
+  request.frames = o.common.frames;
+  request.progress = [&](uint32_t done, uint32_t total) { bar.update(done, total); };
+  const harness::RunArtifacts a = harness::renderConfiguration(render::openWorkload, request);
   bar.finish();
-  if (workload->validationMessages() > 0) {
-    throw DeviceError(fmt::format("{} validation message(s) while rendering {}", workload->validationMessages(), o.scene));
-  }
-  return {harness::quantizeToSrgb8(harness::fromRendered(workload->readDisplay())),
-          harness::quantizeToHalf(harness::fromRendered(workload->readHdr())), workload->device(), workload->stats()};
+  return {harness::quantizeToSrgb8(a.images.display), harness::quantizeToHalf(a.images.hdr), a.run.device, a.run.stats};
 }
 
 // The largest difference between the first render and any other: what "the same" looks like.

@@ -3,13 +3,13 @@
 #include "verb.hpp"
 
 #include <fgb/core/error.hpp>
-#include <fgb/core/stopwatch.hpp>
 #include <fgb/harness/budget.hpp>
 #include <fgb/harness/dart.hpp>
 #include <fgb/harness/golden.hpp>
 #include <fgb/harness/json_io.hpp>
 #include <fgb/harness/progress.hpp>
 #include <fgb/harness/report.hpp>
+#include <fgb/harness/render_path.hpp>
 #include <fgb/harness/run_loop.hpp>
 #include <fgb/harness/run_outputs.hpp>
 #include <fgb/renderer/workload.hpp>
@@ -30,6 +30,7 @@ struct RunVerbOptions {
   double tolerance = -1.0;
   std::string golden;
   bool dart = false;
+  bool untilStable = false;
 };
 
 // A golden fixes what it was rendered with; options the user did not give follow it, so that
@@ -45,35 +46,18 @@ void adoptGoldenConfig(const harness::Golden& golden, const CLI::App& command, C
   for (const auto& [key, value] : golden.config.knobs) knobs.try_emplace(key, value);  // --set wins
 }
 
-harness::RunArtifacts render(render::Workload& workload, const RunVerbOptions& o,
-                             const std::map<std::string, std::string>& knobs) {
+harness::RunArtifacts render(const RunVerbOptions& o, const std::map<std::string, std::string>& knobs) {
   harness::ProgressBar bar(std::cerr, "rendering", !o.common.quiet && harness::ProgressBar::stderrIsTerminal());
-  harness::RunOptions runOptions;
-  runOptions.warmup = o.common.warmup;
-  runOptions.frames = o.common.frames;
-  runOptions.progress = [&](uint32_t done, uint32_t total) { bar.update(done, total); };
-  harness::RunArtifacts a;
-  a.run = harness::runBenchmark(workload, runOptions);
+  harness::RenderRequest request;
+  request.workload = workloadConfig(o.scene, o.common, knobs);
+  request.warmup = o.common.warmup;
+  request.frames = o.common.frames;
+  if (o.untilStable) request.untilStable = harness::StabilityRule{};
+  request.graphDumps = true;
+  request.progress = [&](uint32_t done, uint32_t total) { bar.update(done, total); };
+  harness::RunArtifacts a = harness::renderConfiguration(render::openWorkload, request);
   bar.finish();
-  a.run.overhead.startup = workload.startup();
-  if (workload.validationMessages() > 0) {
-    throw DeviceError(fmt::format("{} validation message(s) while rendering {}", workload.validationMessages(), o.scene));
-  }
-  Stopwatch readback;
-  a.images.hdr = harness::fromRendered(workload.readHdr());
-  a.images.display = harness::fromRendered(workload.readDisplay());
-  a.run.overhead.readbackMs = readback.elapsedMs();
-  a.graphBrief = workload.graphviz(render::GraphDetail::Brief);
-  a.graphFull = workload.graphviz(render::GraphDetail::Full);
-
-  harness::RunResult& run = a.run;
-  run.toolVersion = FGBENCH_VERSION;
-  run.scene = o.scene;
-  run.sceneHash = harness::sceneHash(o.scene);
-  const auto msaa = run.stats.find("msaa");
-  run.config = {a.images.hdr.width, a.images.hdr.height,
-                msaa != run.stats.end() ? static_cast<uint32_t>(msaa->second) : o.common.msaa,
-                o.common.frames, o.common.warmup, knobs};
+  a.run.toolVersion = FGBENCH_VERSION;
   return a;
 }
 
@@ -90,6 +74,10 @@ void printSummary(const harness::RunResult& run, const std::string& out) {
   }
   std::cout << fmt::format("  {:<28} {:>9.4f} ms GPU, {:.4f} ms CPU\n", "frame", run.frameGpu.median, run.frameCpu.median);
   if (run.device.hostTimestamps) std::cout << "  note: " << harness::timestampSourceNote(run.device) << "\n";
+  if (run.checkedFinite) {
+    const auto* bad = run.firstNonFinite();
+    std::cout << "  non-finite: " << (bad ? "first produced by " + bad->pass : std::string("none")) << "\n";
+  }
   if (run.budget) std::cout << "  budget: " << run.budget->verdict << "\n";
   if (run.golden) std::cout << "  golden: " << run.golden->verdict << "\n";
   std::cout << "  results in " << out << "\n";
@@ -128,11 +116,7 @@ int runVerb(const CLI::App& command, RunVerbOptions o) {
   }
   if (o.out.empty()) o.out = "out/" + harness::sceneName(o.scene);
 
-  Stopwatch opening;
-  auto workload = render::openWorkload(workloadConfig(o.scene, o.common, knobs));
-  const double openMs = opening.elapsedMs();
-  harness::RunArtifacts artifacts = render(*workload, o, knobs);
-  artifacts.run.overhead.openMs = openMs;
+  harness::RunArtifacts artifacts = render(o, knobs);
   harness::RunResult& run = artifacts.run;
   if (budget) run.budget = harness::checkBudget(*budget, run.medians(), o.tolerance);
   if (golden) run.golden = harness::checkGolden(*golden, artifacts.images, o.out, &artifacts.golden);
@@ -161,6 +145,8 @@ static VerbRegistrar reg(20, [](CLI::App& app) {
   sub->add_option("--golden", options->golden,
                   "Golden JSON (golden/<scene>/<device-class>/<config>.json) or its directory; exit 1 over threshold");
   sub->add_flag("--dart", options->dart, "Print <DartMeasurement> tags for CTest/CDash");
+  sub->add_flag("--until-stable", options->untilStable,
+                "Measure until the 95% CI of the median frame time is within +-2% (--frames is the cap)");
   return Verb{sub, [sub, options] { return runVerb(*sub, *options); }};
 });
 

@@ -1,19 +1,23 @@
-# Runs one fgbench command line and checks its exit code and its one-line message on stderr.
-# Inputs (-D): COMMAND (";"-separated), EXIT (expected code), MATCH (regex stderr must match; optional).
-execute_process(COMMAND ${COMMAND} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+# Runs fgbench with ARGS (`|`-separated) and checks its exit code (RC), that a failing run says one
+# line on stderr matching STDERR_REGEX (optional), and (when given) that NO_PATH was not created:
+# bad input fails before any output is written.
+#   cmake -DFGBENCH=... "-DARGS=run|scene.json|--set|foo.bar=1" -DRC=2 -DSTDERR_REGEX=... [-DNO_PATH=...] -P expect-exit.cmake
+string(REPLACE "|" ";" args "${ARGS}")
+if(NO_PATH)
+  file(REMOVE_RECURSE "${NO_PATH}")
+endif()
+execute_process(COMMAND ${FGBENCH} ${args} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 string(STRIP "${err}" err)
-string(REPLACE ";" " " shown "${COMMAND}")
-if(NOT rc STREQUAL EXIT)
-  message(FATAL_ERROR "${shown}\n  exit ${rc}, expected ${EXIT}\n  stderr: ${err}\n  stdout: ${out}")
+if(NOT rc EQUAL RC)
+  message(FATAL_ERROR "fgbench ${args}: expected exit ${RC}, got ${rc}; stderr: ${err}; stdout: ${out}")
 endif()
-if(DEFINED MATCH AND NOT err MATCHES "${MATCH}")
-  message(FATAL_ERROR "${shown}\n  exit ${rc} as expected, but stderr does not match '${MATCH}':\n  ${err}")
+if(NOT RC EQUAL 0 AND err MATCHES "\n")
+  message(FATAL_ERROR "fgbench ${args}: expected one line on stderr, got:\n${err}")
 endif()
-if(NOT EXIT STREQUAL "0")
-  string(REGEX MATCHALL "\n" newlines "${err}")
-  list(LENGTH newlines lines)
-  if(lines GREATER 0)
-    message(FATAL_ERROR "${shown}\n  expected one line on stderr, got:\n${err}")
-  endif()
+if(DEFINED STDERR_REGEX AND NOT err MATCHES "${STDERR_REGEX}")
+  message(FATAL_ERROR "fgbench ${args}: stderr does not match '${STDERR_REGEX}': ${err}")
 endif()
-message(STATUS "${shown}: exit ${rc} ${err}")
+if(NO_PATH AND EXISTS "${NO_PATH}")
+  message(FATAL_ERROR "fgbench ${args}: wrote ${NO_PATH} although the input was bad")
+endif()
+message(STATUS "exit ${rc}: ${err}")

@@ -21,7 +21,8 @@ class FakeWorkload : public render::Workload {
   const render::DeviceDescription& device() const override { return device_; }
 
   render::FrameTiming renderFrame() override {
-    const double f = static_cast<double>(rendered_++);
+    const double f = constantTimes_ ? 0.0 : static_cast<double>(rendered_);
+    ++rendered_;
     render::FrameTiming t;
     t.passes.push_back({"Cull", "compute", false, 0.1 + f, 0.0});
     t.passes.push_back({"Draw <main>", "graphics", false, 1.0 + f, 0.1 + f});
@@ -49,8 +50,12 @@ class FakeWorkload : public render::Workload {
   }
   std::map<std::string, double> stats() const override { return {{"instances", 3}, {"triangles", 36}}; }
   uint64_t validationMessages() const override { return 0; }
+  std::vector<render::NonFiniteCounts> nonFiniteCounts() const override { return nonFinite_; }
+  void setNonFiniteCounts(std::vector<render::NonFiniteCounts> counts) { nonFinite_ = std::move(counts); }
 
   void dropOneTimingOnFinish() { dropOnFinish_ = true; }
+  // Every frame takes the same time (frame 0's), so a median's interval is as narrow as can be.
+  void constantTimes() { constantTimes_ = true; }
   std::size_t rendered() const { return rendered_; }
 
  private:
@@ -66,7 +71,9 @@ class FakeWorkload : public render::Workload {
   std::size_t latency_;
   std::size_t rendered_ = 0;
   bool dropOnFinish_ = false;
+  bool constantTimes_ = false;
   std::deque<render::FrameTiming> pending_;
+  std::vector<render::NonFiniteCounts> nonFinite_;
 };
 
 }  // namespace fgb::harness::testing

@@ -1,5 +1,6 @@
 #include <fgb/core/atomic_file.hpp>
 #include <fgb/harness/dart.hpp>
+#include <fgb/harness/html_util.hpp>
 #include <fgb/harness/json_io.hpp>
 #include <fgb/harness/report.hpp>
 #include <fgb/harness/run_loop.hpp>

@@ -1,4 +1,5 @@
 #include <fgb/core/error.hpp>
+#include <fgb/harness/report.hpp>
 #include <fgb/harness/run_loop.hpp>
 
 #include "fake_workload.hpp"
@@ -82,6 +83,39 @@ TEST(RunLoop, SpreadingSamplesAreFlaggedUnstable) {
 
 namespace fgb::harness {
 namespace {
+
+TEST(RunLoop, NonFiniteCountsGoToTheirPassesAndTheFirstBadOneIsNamed) {
+  testing::FakeWorkload workload;
+  workload.setNonFiniteCounts({{"Cull", 0, 0, 0}, {"Draw <main>", 3, 1, 2}, {"Debug", 5, 0, 0}});
+  RunOptions options;
+  options.warmup = 0;
+  options.frames = 2;
+  const RunResult run = runBenchmark(workload, options);
+  EXPECT_TRUE(run.checkedFinite);
+  ASSERT_NE(run.firstNonFinite(), nullptr);
+  EXPECT_EQ(run.firstNonFinite()->pass, "Draw <main>");  // execution order, not the largest count
+  const nlohmann::json json = toJson(run);
+  EXPECT_EQ(json["check_finite"]["first_bad_pass"], "Draw <main>");
+  EXPECT_EQ(json["check_finite"]["checked_passes"], 3);
+  EXPECT_EQ(json["passes"][1]["non_finite"], (nlohmann::json{{"nan", 3}, {"inf", 1}, {"over_half_max", 2}}));
+  EXPECT_EQ(json["passes"][0]["non_finite"]["nan"], 0);
+  const std::string report = markdownReport(run);
+  EXPECT_NE(report.find("First bad value produced by **Draw <main>** (NaN 3, Inf 1"), std::string::npos) << report;
+}
+
+TEST(RunLoop, WithoutCheckFiniteNoCountsAreReported) {
+  testing::FakeWorkload workload;
+  RunOptions options;
+  options.warmup = 0;
+  options.frames = 1;
+  const RunResult run = runBenchmark(workload, options);
+  EXPECT_FALSE(run.checkedFinite);
+  EXPECT_EQ(run.firstNonFinite(), nullptr);
+  const nlohmann::json json = toJson(run);
+  EXPECT_FALSE(json["check_finite"]["enabled"].get<bool>());
+  EXPECT_FALSE(json["passes"][0].contains("non_finite"));
+  EXPECT_EQ(markdownReport(run).find("Non-finite"), std::string::npos);
+}
 
 TEST(Knobs, ParsesAssignmentsAndRejectsMalformedOnes) {
   const auto knobs = parseKnobs({"bloom=off", "exposure=0.6", "path=a=b"});

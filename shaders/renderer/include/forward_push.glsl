@@ -10,6 +10,6 @@ layout(push_constant) uniform Push {
   uint clusterCounts;   // FGB_NONE: no clustered lighting (loop over all lights)
   uint clusterIndices;
   uint materialSampler;
-  uint flags;           // bit 0: alpha-masked pass, bit 1: transparent pass
+  uint flags;           // bit 0: alpha-masked pass, bit 1: transparent pass, bit 2: inject a NaN
 } pc;
 #endif

@@ -107,4 +107,23 @@ std::string describeSize(const Image& image) {
   return std::to_string(image.width) + "x" + std::to_string(image.height);
 }
 
+Image shrinkToWidth(const Image& image, uint32_t maxWidth) {
+  if (maxWidth == 0 || image.width <= maxWidth) return image;
+  const uint32_t factor = (image.width + maxWidth - 1) / maxWidth;
+  Image out = makeImage(image.width / factor, image.height / factor, image.encoding);
+  const float weight = 1.0f / static_cast<float>(factor * factor);
+  for (uint32_t y = 0; y < out.height; ++y) {
+    for (uint32_t x = 0; x < out.width; ++x) {
+      float* o = &out.rgba[(static_cast<std::size_t>(y) * out.width + x) * 4];
+      for (uint32_t dy = 0; dy < factor; ++dy) {
+        for (uint32_t dx = 0; dx < factor; ++dx) {
+          const float* p = &image.rgba[((static_cast<std::size_t>(y) * factor + dy) * image.width + x * factor + dx) * 4];
+          for (int c = 0; c < 4; ++c) o[c] += p[c] * weight;
+        }
+      }
+    }
+  }
+  return out;
+}
+
 }  // namespace fgb::harness

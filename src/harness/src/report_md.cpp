@@ -39,6 +39,20 @@ std::string passTable(const RunResult& run) {
   return out;
 }
 
+// --check-finite: the first pass that wrote a bad value, and every checked pass's counts.
+std::string finiteSection(const RunResult& run) {
+  if (!run.checkedFinite) return "";
+  std::string out = "## Non-finite values (`--check-finite`, last frame)\n\n";
+  const auto* first = run.firstNonFinite();
+  out += first ? fmt::format("First bad value produced by **{}** (NaN {}, Inf {}, above half of R16F max {} pixels).\n\n",
+                             first->pass, first->nan, first->inf, first->overHalfMax)
+               : fmt::format("None: {} checked passes wrote only finite values within half of R16F's maximum.\n\n",
+                             run.nonFinite.size());
+  out += "| pass (execution order) | NaN | Inf | > 32752 |\n|---|---:|---:|---:|\n";
+  for (const auto& c : run.nonFinite) out += fmt::format("| {} | {} | {} | {} |\n", c.pass, c.nan, c.inf, c.overHalfMax);
+  return out + "\n";
+}
+
 std::string budgetSection(const RunResult& run) {
   if (!run.budget) return "## Budget\n\nNo budget given (`--budget FILE`).\n";
   const auto& b = *run.budget;
@@ -116,6 +130,7 @@ std::string markdownReport(const RunResult& run) {
   out += "## Timings (ms)\n\n" + passTable(run) + "\n";
   out += fmt::format("Unstable: (p95 − p5) / median > {:.0f}%.\n\n", kDefaultUnstableSpread * 100.0);
   out += hostOverheadNote(run) + "\n\n";
+  out += finiteSection(run);
   out += budgetSection(run) + "\n" + goldenSection(run);
   return out;
 }

@@ -1,6 +1,7 @@
 #include <fgb/harness/run_loop.hpp>
 
 #include <fgb/core/error.hpp>
+#include <fgb/core/knob_registry.hpp>
 
 #include <chrono>
 #include <map>
@@ -75,8 +76,14 @@ RunResult runBenchmark(render::Workload& workload, const RunOptions& options) {
   RunResult run;
   run.device = workload.device();
   run.stats = workload.stats();
+  run.nonFinite = workload.nonFiniteCounts();
+  run.checkedFinite = !run.nonFinite.empty();  // --check-finite always checks at least the HDR image
   std::map<std::string, std::size_t> index;
   for (std::size_t i = options.warmup; i < options.warmup + options.frames; ++i) appendFrame(run, index, timings[i]);
+  for (const auto& counts : run.nonFinite) {
+    for (auto& pass : run.passes)
+      if (pass.name == counts.pass) pass.nonFinite = counts;
+  }
   finalizeColumns(run);
   summarizeRun(run, options.unstableSpread);
 
@@ -88,13 +95,7 @@ RunResult runBenchmark(render::Workload& workload, const RunOptions& options) {
 }
 
 std::map<std::string, std::string> parseKnobs(const std::vector<std::string>& assignments) {
-  std::map<std::string, std::string> knobs;
-  for (const auto& a : assignments) {
-    const auto eq = a.find('=');
-    if (eq == std::string::npos || eq == 0) throw InputError("--set " + a + ": expected key=value");
-    knobs[a.substr(0, eq)] = a.substr(eq + 1);
-  }
-  return knobs;
+  return splitKnobAssignments(assignments);
 }
 
 }  // namespace fgb::harness

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 namespace fgb::harness {
@@ -34,6 +35,54 @@ Summary summarize(std::span<const double> samples) {
 bool isUnstable(const Summary& summary, double spreadLimit) {
   if (summary.n < 2 || summary.median <= 0.0) return false;
   return (summary.p95 - summary.p5) / summary.median > spreadLimit;
+}
+
+namespace {
+// C(n, i) / 2^n from lgamma, so that n in the thousands neither overflows nor underflows.
+double binomialHalfPmf(std::size_t n, std::size_t i) {
+  const double nd = static_cast<double>(n), id = static_cast<double>(i);
+  return std::exp(std::lgamma(nd + 1.0) - std::lgamma(id + 1.0) - std::lgamma(nd - id + 1.0) + nd * std::log(0.5));
+}
+}  // namespace
+
+double binomialHalfCdf(std::size_t n, std::size_t k) {
+  if (k >= n) return 1.0;
+  double sum = 0.0;
+  for (std::size_t i = 0; i <= k; ++i) sum += binomialHalfPmf(n, i);
+  return std::min(sum, 1.0);
+}
+
+MedianInterval medianConfidenceInterval(std::span<const double> samples, double confidence) {
+  MedianInterval interval;
+  interval.n = samples.size();
+  if (samples.empty()) return interval;
+  std::vector<double> sorted(samples.begin(), samples.end());
+  std::sort(sorted.begin(), sorted.end());
+  const std::size_t n = sorted.size();
+  interval.median = percentileOfSorted(sorted, 50.0);
+  // Coverage of [x(l), x(n+1-l)] is 1 - 2 P(B <= l - 1); it falls as l grows, so take the largest
+  // l that still covers `confidence`, searching up from l = 1 (the [min, max] interval).
+  std::size_t best = 1;
+  double tail = binomialHalfPmf(n, 0);  // P(B <= l - 1), accumulated as l grows
+  double bestCoverage = 1.0 - 2.0 * tail;
+  for (std::size_t l = 2; l <= (n + 1) / 2; ++l) {
+    tail += binomialHalfPmf(n, l - 1);
+    const double coverage = 1.0 - 2.0 * tail;
+    if (coverage < confidence) break;
+    best = l;
+    bestCoverage = coverage;
+  }
+  interval.lowerRank = best;
+  interval.upperRank = n + 1 - best;
+  interval.lower = sorted[interval.lowerRank - 1];
+  interval.upper = sorted[interval.upperRank - 1];
+  interval.coverage = n == 1 ? 0.0 : bestCoverage;
+  return interval;
+}
+
+double MedianInterval::relativeHalfWidth(double confidence) const {
+  if (n == 0 || median <= 0.0 || coverage < confidence) return std::numeric_limits<double>::infinity();
+  return (upper - lower) / (2.0 * median);
 }
 
 }  // namespace fgb::harness

@@ -10,6 +10,10 @@
 namespace fgb::harness {
 namespace {
 
+nlohmann::json toJson(const render::NonFiniteCounts& counts) {
+  return {{"nan", counts.nan}, {"inf", counts.inf}, {"over_half_max", counts.overHalfMax}};
+}
+
 nlohmann::json toJson(const Summary& s) {
   return {{"median", s.median}, {"p5", s.p5}, {"p95", s.p95}, {"mean", s.mean}, {"min", s.min}, {"max", s.max}, {"n", s.n}};
 }
@@ -68,6 +72,12 @@ const PassRecord* RunResult::findPass(const std::string& name) const {
   return nullptr;
 }
 
+const render::NonFiniteCounts* RunResult::firstNonFinite() const {
+  for (const auto& counts : nonFinite)
+    if (counts.bad()) return &counts;
+  return nullptr;
+}
+
 MeasuredMedians RunResult::medians() const {
   MeasuredMedians m;
   for (const auto& p : passes) {
@@ -95,6 +105,7 @@ nlohmann::json toJson(const RunResult& run) {
     nlohmann::json entry{{"name", p.name}, {"queue", p.queue}, {"culled", p.culled}, {"gpu_ms", toJson(p.gpu)},
                          {"unstable", p.unstable}, {"samples_ms", p.samplesMs}};
     if (!p.startMs.empty()) entry["start_ms"] = p.startMs;
+    if (p.nonFinite) entry["non_finite"] = toJson(*p.nonFinite);
     passes.push_back(std::move(entry));
   }
   nlohmann::json knobs = nlohmann::json::object();
@@ -120,6 +131,10 @@ nlohmann::json toJson(const RunResult& run) {
   };
   j["budget"] = run.budget ? toJson(*run.budget)
                            : nlohmann::json{{"file", ""}, {"verdict", "none"}, {"over", nlohmann::json::array()}};
+  const auto* firstBad = run.firstNonFinite();
+  j["check_finite"] = {{"enabled", run.checkedFinite},
+                       {"checked_passes", run.nonFinite.size()},
+                       {"first_bad_pass", firstBad ? nlohmann::json(firstBad->pass) : nlohmann::json(nullptr)}};
   j["golden"] = run.golden ? toJson(*run.golden)
                            : nlohmann::json{{"file", ""}, {"verdict", "none"}, {"metrics", nlohmann::json::object()}};
   return j;

@@ -4,9 +4,12 @@
 
 #include "../features/bloom/bloom_feature.hpp"
 #include "../features/context/render_feature.hpp"
+#include "../features/finite_check/finite_check_feature.hpp"
+#include "../features/exposure/exposure_feature.hpp"
 #include "../features/lighting/clustered_lighting.hpp"
 #include "../features/meshes/mesh_feature.hpp"
 #include "../features/particles/particle_feature.hpp"
+#include "../features/ssaa/ssaa_resolve_feature.hpp"
 #include "../features/tonemap/tonemap_feature.hpp"
 
 #include <fgb/core/error.hpp>
@@ -19,6 +22,8 @@
 #include <fgb/scene/stats.hpp>
 #include <fgb/vulkan/backend.hpp>
 
+#include <algorithm>
+#include <array>
 #include <deque>
 #include <filesystem>
 #include <iostream>
@@ -35,6 +40,21 @@ constexpr graph::ImportState kDisplayFinal{graph::kStageColorAttachmentOutput, g
                                            graph::Layout::ColorAttachment, graph::QueueClass::Graphics};
 constexpr graph::ImportState kDiscard{graph::kStageNone, graph::kAccessNone, graph::Layout::Undefined,
                                       graph::QueueClass::Graphics};
+
+constexpr graph::ImportState kExposureState{
+    graph::kStageVertexShader | graph::kStageFragmentShader | graph::kStageComputeShader,
+    graph::kAccessShaderStorageRead | graph::kAccessShaderStorageWrite, graph::Layout::Undefined,
+    graph::QueueClass::Graphics};
+
+// The HDR clear: the background radiance, scaled with the lights and pre-exposed. With auto
+// exposure it is pre-exposed with the starting exposure, so the backdrop keeps a fixed display
+// value; its alpha of 0 keeps it out of the exposure measurement (geometry writes alpha > 0).
+std::array<float, 4> backgroundClear(const scene::PostSettings& post) {
+  const float scale = post.lightScale * initialExposure(post).preExposure;
+  const auto& b = features::kBackgroundRadiance;
+  const auto channel = [&](float radiance) { return std::min(radiance * scale, 65504.0f); };  // R16F max
+  return {channel(b[0]), channel(b[1]), channel(b[2]), 0.0f};
+}
 
 uint32_t jsonCount(const nlohmann::json& section, const char* key, uint32_t fallback) {
   if (!section.is_object() || !section.contains(key) || !section[key].is_number_unsigned()) return fallback;
@@ -59,6 +79,7 @@ features::RenderSettings makeSettings(const WorkloadConfig& config, const scene:
   }
   settings.msaa = msaa;
   features::applyRendererKnobs(settings, config.knobs);
+  settings.checkFinite = config.checkFinite;
   return settings;
 }
 
@@ -141,18 +162,37 @@ class SceneWorkload final : public Workload {
   }
 
   uint64_t validationMessages() const override { return device_->validationMessages(); }
+
+  std::vector<NonFiniteCounts> nonFiniteCounts() const override {
+    auto counts = finiteCheck_->counts();
+    // Execution order: the first pass with a bad value is where it was born.
+    const auto& order = graph_->compiled().order;
+    std::vector<size_t> position(graph_->declaration().nodes().size(), order.size());
+    for (size_t i = 0; i < order.size(); ++i) position[order[i]] = i;
+    std::stable_sort(counts.begin(), counts.end(),
+                     [&](const auto& a, const auto& b) { return position[a.node] < position[b.node]; });
+    std::vector<NonFiniteCounts> result;
+    for (const auto& c : counts) result.push_back({c.pass, c.nan, c.inf, c.overHalfMax});
+    return result;
+  }
   StartupTimes startup() const override { return startup_; }
 
   [[nodiscard]] const graph::FrameGraph& declaration() const { return graph_->declaration(); }
 
  private:
   void createFeatures() {
-    // Declaration order: producers before consumers (lights -> meshes -> post).
+    // Declaration order: producers before consumers (lights -> meshes -> particles -> SSAA -> post).
     features_.push_back(std::make_unique<features::ClusteredLighting>());
     features_.push_back(std::make_unique<features::MeshFeature>());
     features_.push_back(std::make_unique<features::ParticleFeature>());
+    features_.push_back(std::make_unique<features::SsaaResolveFeature>());
     features_.push_back(std::make_unique<features::BloomFeature>());
+    features_.push_back(std::make_unique<features::ExposureFeature>());  // after bloom: see there
     features_.push_back(std::make_unique<features::TonemapFeature>());
+    // Last: it inspects every node declared before it (see finite_check_feature.hpp).
+    auto finiteCheck = std::make_unique<features::FiniteCheckFeature>();
+    finiteCheck_ = finiteCheck.get();
+    features_.push_back(std::move(finiteCheck));
     features::FeatureInit init{*device_, gpu_, settings_};
     for (auto& feature : features_) feature->initialize(init);
   }
@@ -164,10 +204,24 @@ class SceneWorkload final : public Workload {
     displayTexture_ = device_->createTexture({"display", features::kDisplayFormat, extent, 1, 1, 1,
                                               rhi::kTextureColorAttachment | rhi::kTextureTransferSrc});
     FrameTargets targets;
-    targets.extent = extent;
+    targets.outputExtent = extent;
+    targets.extent = {settings_.sceneWidth(), settings_.sceneHeight(), 1};
     targets.samples = settings_.msaa;
-    targets.hdr = graph.importTexture("hdr", {features::kHdrFormat, extent, 1, 1, 1, {}, 0},
-                                      rhi::external(hdrTexture_), kDiscard, kHdrFinal);
+    targets.background = backgroundClear(loaded_.scene.post);
+    if (loaded_.scene.post.autoExposure) {
+      // Written by the "Exposure" node, read by the next frame's colour passes: the state carries
+      // over between frames, all on the graphics queue.
+      targets.exposure = graph.importBuffer("exposure", {sizeof(features::ExposureGpu), {}}, rhi::external(gpu_.exposure),
+                                            kExposureState, kExposureState);
+    }
+    const graph::TextureHandle hdr = graph.importTexture("hdr", {features::kHdrFormat, extent, 1, 1, 1, {}, 0},
+                                                         rhi::external(hdrTexture_), kDiscard, kHdrFinal);
+    if (settings_.ssaa == 1) {
+      targets.hdr = hdr;
+    } else {
+      targets.outputHdr = hdr;
+      targets.hdr = graph.createTexture("hdr ssaa", {features::kHdrFormat, targets.extent, 1, 1, 1, {}, 0});
+    }
     targets.display = graph.importTexture("display", {features::kDisplayFormat, extent, 1, 1, 1, {}, 0},
                                           rhi::external(displayTexture_), kDiscard, kDisplayFinal);
     targets.color = settings_.msaa == 1
@@ -196,7 +250,7 @@ class SceneWorkload final : public Workload {
     options.compileProfile = &profile;
     graph_ = device_->compile(std::move(graph), options);
     for (const double us : profile.microseconds) startup_.graphCompileMs += us / 1000.0;
-    const graph::Extent extent = targets.extent;
+    const graph::Extent extent = targets.outputExtent;
     hdrReadback_ = std::make_unique<ImageReadback>(*device_, hdrTexture_, features::kHdrFormat, extent, kHdrFinal);
     displayReadback_ =
         std::make_unique<ImageReadback>(*device_, displayTexture_, features::kDisplayFormat, extent, kDisplayFinal);
@@ -228,6 +282,7 @@ class SceneWorkload final : public Workload {
   features::RenderSettings settings_;
   features::GpuScene gpu_;
   std::vector<std::unique_ptr<features::IRenderFeature>> features_;
+  features::FiniteCheckFeature* finiteCheck_ = nullptr;  // owned by features_
   rhi::TextureId hdrTexture_;
   rhi::TextureId displayTexture_;
   std::unique_ptr<rhi::ExecutableGraph> graph_;

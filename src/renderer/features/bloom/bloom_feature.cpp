@@ -23,6 +23,8 @@ struct DownPush {
   uint32_t firstMip;
   float threshold;
   float knee;
+  uint32_t exposure;
+  uint32_t injectNan;
 };
 struct UpPush {
   uint32_t source;
@@ -30,6 +32,7 @@ struct UpPush {
   int32_t sourceSize[2];
   int32_t targetSize[2];
   float radius;
+  uint32_t injectNan;
 };
 
 constexpr uint32_t kGroupSize = 8;  // local size of both shaders (8 x 8)
@@ -47,6 +50,7 @@ void dispatchOver(rhi::CommandBuffer& cmd, const graph::Extent& size) {
 
 void BloomFeature::initialize(FeatureInit& init) {
   bloom_ = init.scene.scene->post.bloom;
+  injectNan_ = init.settings.injectNanPass == "Bloom";
   // Nothing drawn (no instances, no particles): the cleared background has nothing to bloom.
   const bool drawsSomething = !init.scene.scene->instances.empty() || !init.scene.scene->emitters.empty();
   enabled_ = bloom_.enabled && bloom_.intensity > 0.0f && drawsSomething;
@@ -59,6 +63,7 @@ void BloomFeature::initialize(FeatureInit& init) {
   downPipeline_ = init.device.createComputePipeline({"bloom downsample", "renderer/bloom_down.comp"});
   upPipeline_ = init.device.createComputePipeline({"bloom upsample", "renderer/bloom_up.comp"});
   samplerIndex_ = init.device.samplerIndex(init.scene.linearClampSampler);
+  exposureIndex_ = init.device.storageBufferIndex(init.scene.exposure);
 }
 
 void BloomFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
@@ -66,6 +71,7 @@ void BloomFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
   const auto& targets = board.get<FrameTargets>();
   auto node = graph.addNode("Bloom", graph::NodeType::Compute, graph::QueueClass::Graphics);
   const auto hdr = node.read(targets.hdr, graph::Access::Sampled);
+  if (targets.exposure.valid()) node.read(targets.exposure, graph::Access::StorageRead);
   std::vector<graph::TextureHandle> levels(size_t{mips_} + 1);  // [0] unused: the HDR image
   for (uint32_t level = 1; level <= mips_; ++level) {
     const auto texture = graph.createTexture("bloom " + std::to_string(level), {kHdrFormat, {}, 1, 1, 1, targets.hdr, level});
@@ -76,7 +82,7 @@ void BloomFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
   for (uint32_t level = 0; level <= mips_; ++level) sizes[level] = levelExtent(targets.extent, level);
 
   node.setJob([down = downPipeline_, up = upPipeline_, sampler = samplerIndex_, bloom = bloom_, mips = mips_, hdr,
-               levels, sizes](graph::JobContext& context) {
+               levels, sizes, exposure = exposureIndex_, injectNan = injectNan_](graph::JobContext& context) {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
     const auto xy = [](const graph::Extent& e) { return std::array{int32_t(e.width), int32_t(e.height)}; };
@@ -86,7 +92,7 @@ void BloomFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
       const bool first = level == 1;
       DownPush push{first ? ctx.sampledTextureIndex(hdr) : ctx.storageTextureIndex(levels[level - 1]),
                     first ? 0u : 1u, sampler, ctx.storageTextureIndex(levels[level]), {}, {},
-                    first ? 1u : 0u, bloom.threshold, bloom.knee};
+                    first ? 1u : 0u, bloom.threshold, bloom.knee, exposure, first && injectNan ? 1u : 0u};
       std::ranges::copy(xy(sizes[level - 1]), push.sourceSize);
       std::ranges::copy(xy(sizes[level]), push.targetSize);
       cmd.push(push);
@@ -95,8 +101,9 @@ void BloomFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
     cmd.bindPipeline(up);
     for (uint32_t level = mips; level >= 2; --level) {
       cmd.computeBarrier();
+      // debug.inject_nan=Bloom: the last write of level 1 (the level tone mapping reads) holds the NaN.
       UpPush push{ctx.storageTextureIndex(levels[level]), ctx.storageTextureIndex(levels[level - 1]), {}, {},
-                  bloom.radius};
+                  bloom.radius, level == 2 && injectNan ? 1u : 0u};
       std::ranges::copy(xy(sizes[level]), push.sourceSize);
       std::ranges::copy(xy(sizes[level - 1]), push.targetSize);
       cmd.push(push);

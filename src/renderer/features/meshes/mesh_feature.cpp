@@ -69,7 +69,7 @@ rhi::GraphicsPipelineDesc forwardPipeline(const RenderSettings& settings, bool t
   desc.depthFormat = kDepthFormat;
   desc.depthTest = true;
   desc.depthWrite = !transparent;
-  desc.depthCompare = rhi::CompareOp::LessOrEqual;
+  desc.depthCompare = kDepthCompare;
   desc.samples = settings.msaa;
   return desc;
 }
@@ -148,6 +148,7 @@ void MeshFeature::initialize(FeatureInit& init) {
   if (drawCount_) pipelines_.compact = init.device.createComputePipeline({"mesh draw compaction", "renderer/mesh_compact.comp"});
   pipelines_.opaque = init.device.createGraphicsPipeline(forwardPipeline(init.settings, false));
   depthPrepass_ = init.settings.depthPrepass;
+  injectNanPass_ = init.settings.injectNanPass;
   if (depthPrepass_) pipelines_.depthOnly = init.device.createGraphicsPipeline(depthOnlyPipeline(init.settings));
   if (hasTransparent_) pipelines_.transparent = init.device.createGraphicsPipeline(forwardPipeline(init.settings, true));
   statsReadback_ = createReadbackBuffer(init.device, "mesh cull stats readback", kStatsBytes);
@@ -232,7 +233,8 @@ void MeshFeature::declareDraw(graph::FrameGraph& graph, Blackboard& board, std::
   push.lights = device_->storageBufferIndex(scene.lights);
   push.clusterCounts = push.clusterIndices = rhi::kInvalidId;
   push.materialSampler = device_->samplerIndex(scene.materialSampler);
-  push.flags = transparent ? 2u : 0u;
+  // Bit 2: debug.inject_nan names this pass (forward.frag writes a NaN at the centre pixel).
+  push.flags = (transparent ? 2u : 0u) | (nodeName == injectNanPass_ ? 4u : 0u);
   ClusteredLights clusters;
   if (const auto* published = board.find<ClusteredLights>()) {
     clusters = *published;
@@ -261,7 +263,7 @@ void MeshFeature::declareDepthPrepass(graph::FrameGraph& graph, Blackboard& boar
   auto node = graph.addNode("Depth Prepass", graph::NodeType::Graphics);
   readDrawCommands(node, cull, drawCount_);
   node.read(cull.visible, graph::Access::StorageRead, kStageVertexShader);
-  targets.depth = node.setDepthStencil(targets.depth, graph::LoadOp::Clear);
+  targets.depth = node.setDepthStencil(targets.depth, graph::LoadOp::Clear, graph::ClearValue{{}, kDepthClear, 0});
   targets.depthCleared = true;
   ForwardPush push{};
   push.frame = device_->storageBufferIndex(scene.frameConstants);

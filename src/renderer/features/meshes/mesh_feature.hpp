@@ -65,6 +65,7 @@ class MeshFeature final : public IRenderFeature {
   uint32_t instanceCount_ = 0;
   bool hasTransparent_ = false;
   bool depthPrepass_ = false;
+  std::string injectNanPass_;  // debug.inject_nan
   bool drawCount_ = false;  // the device has vkCmdDrawIndexedIndirectCount
 };
 

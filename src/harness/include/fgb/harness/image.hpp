@@ -45,6 +45,10 @@ Image quantizeToHalf(const Image& linear);
 // NaN or Inf in any RGB channel.
 std::size_t countNonFinite(const Image& image);
 
-std::string describeSize(const Image& image);  // "640x360"
+std::string describeSize(const Image& image);
+
+// The image shrunk by an integer factor (box filter over factor x factor blocks, in its own
+// encoding) so that it is at most maxWidth wide; the image itself when it already is.
+Image shrinkToWidth(const Image& image, uint32_t maxWidth);  // "640x360"
 
 }  // namespace fgb::harness

@@ -1,4 +1,4 @@
-// A one-line progress bar on stderr for long runs; silent under --quiet or when stderr is not a TTY.
+// A one-line progress bar (with an ETA from the rate so far) on stderr for long runs; silent under --quiet or when stderr is not a TTY.
 #pragma once
 
 #include <chrono>
@@ -25,8 +25,11 @@ class ProgressBar {
   std::ostream& out_;
   std::string label_;
   bool enabled_;
+  std::string etaText(uint32_t done, uint32_t total, std::chrono::steady_clock::time_point now) const;
+
   bool drawn_ = false;
-  std::chrono::steady_clock::time_point lastDraw_{};
+  bool started_ = false;
+  std::chrono::steady_clock::time_point start_{}, lastDraw_{};
 };
 
 }  // namespace fgb::harness

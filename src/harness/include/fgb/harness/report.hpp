@@ -34,8 +34,6 @@ std::string timestampSourceNote(const render::DeviceDescription& device);
 std::string hostOverheadNote(const RunResult& run);
 
 std::string escapeXml(const std::string& text);
-std::string base64(std::string_view bytes);
-std::string pngDataUri(std::string_view png);  // "data:image/png;base64,..."
 std::string msaaLabel(uint32_t msaa);  // "4", or "scene default" for 0
 
 }  // namespace fgb::harness

@@ -27,6 +27,7 @@ struct PassRecord {
   std::vector<double> startMs;    // start offsets within the frame when the workload reports them
   Summary gpu;
   bool unstable = false;
+  std::optional<render::NonFiniteCounts> nonFinite;  // --check-finite: this pass's counts (last frame)
 };
 
 // Host time around rendering, reported apart from GPU time: opening the workload (start-up, with
@@ -61,8 +62,13 @@ struct RunResult {
   HarnessOverhead overhead;
   std::optional<BudgetResult> budget;
   std::optional<GoldenResult> golden;
+  bool checkedFinite = false;                       // --check-finite was on
+  std::vector<render::NonFiniteCounts> nonFinite;   // checked passes, in execution order
 
   const PassRecord* findPass(const std::string& name) const;
+  // The first checked pass (execution order) that wrote a NaN, Inf or value above half of R16F's
+  // maximum; null when none did (or nothing was checked).
+  const render::NonFiniteCounts* firstNonFinite() const;
   MeasuredMedians medians() const;
 };
 

@@ -3,6 +3,8 @@
 // scene (issue 2) and the full renderer (issue 4) implement it. No Vulkan types leak through.
 #pragma once
 
+#include <fgb/core/knob_registry.hpp>
+
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -31,6 +33,19 @@ struct WorkloadConfig {
   bool validation = false;    // validation + synchronization validation; messages are errors
   std::map<std::string, std::string> knobs;  // --set key=value
   std::string cacheDir;       // cooked-asset cache ("" = default)
+  // --check-finite: a reduction node after every pass that writes float colour data counts its
+  // NaN / Inf / above-half-of-R16F-max pixels (nonFiniteCounts()); off: those nodes do not exist.
+  bool checkFinite = false;
+};
+
+// --check-finite counts of one pass (the last rendered frame): pixels with a NaN, an Inf, or a
+// finite magnitude above half of R16F's maximum (32752) in some channel of a float texture it wrote.
+struct NonFiniteCounts {
+  std::string pass;
+  uint64_t nan = 0;
+  uint64_t inf = 0;
+  uint64_t overHalfMax = 0;
+  [[nodiscard]] bool bad() const { return nan + inf + overHalfMax > 0; }
 };
 
 struct PassTiming {
@@ -90,10 +105,16 @@ class Workload {
   // Validation messages counted so far (0 when validation is off).
   virtual uint64_t validationMessages() const = 0;
   virtual StartupTimes startup() const { return {}; }
+  // With --check-finite: one entry per checked pass, in execution order (the first bad one is where
+  // a bad value was born); empty without the flag or when nothing writes float data.
+  virtual std::vector<NonFiniteCounts> nonFiniteCounts() const { return {}; }
 };
 
 // Opens the workload for a scene. Throws fgb::InputError (bad scene/option), fgb::DeviceError.
 std::unique_ptr<Workload> openWorkload(const WorkloadConfig& config);
+
+// The renderer's entries of the knob registry (render.*, lighting.*, bloom.*, debug.*, particles.*).
+std::vector<KnobSpec> rendererKnobSpecs();
 
 // Lists Vulkan devices (for `fgbench devices`). Throws fgb::DeviceError when Vulkan is unusable.
 std::vector<DeviceDescription> listDevices();

@@ -10,7 +10,7 @@
 namespace fgb::scene {
 
 // Bump when the cooked output of the same input changes: it is part of every cache key.
-inline constexpr uint32_t kCookerVersion = 1;
+inline constexpr uint32_t kCookerVersion = 2;  // 2: world placement in double
 
 void cookScene(Scene& scene);
 

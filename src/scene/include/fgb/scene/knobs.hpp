@@ -1,16 +1,22 @@
 // `--set key=value` knobs. The scene side owns the prefixes atrium., stress., camera., scene. and
-// post.; it rejects unknown keys under those prefixes (InputError naming the key) and ignores every
-// other key, which belongs to the renderer or harness.
+// post.; it rejects unknown keys under those prefixes and values out of range (InputError naming the
+// key) and ignores every other key, which belongs to the renderer or harness. The CLI checks every
+// key of every layer against one registry (fgb/core/knob_registry.hpp); knobSpecs() is this layer's part.
 //
 // Keys: atrium.scale (geometry density multiplier, > 0), atrium.seed, atrium.texture_size,
 //       stress.offset (distance from the origin for stress-far), stress.seed,
-//       camera.fov (vertical, degrees), camera.near, camera.far, camera.position (x,y,z),
-//       camera.target (x,y,z), post.exposure, post.bloom (0|1), post.bloom_threshold,
-//       post.bloom_knee, post.bloom_intensity, post.bloom_radius,
-//       scene.lights (0 drops point lights), scene.particles (0 drops emitters), scene.sun (0|1).
+//       camera.fov (vertical, degrees), camera.near, camera.far (a number or inf: infinite far
+//       plane), camera.position (x,y,z), camera.target (x,y,z), post.exposure (a number or auto),
+//       post.bloom (0|1), post.bloom_threshold, post.bloom_knee, post.bloom_intensity,
+//       post.bloom_radius, scene.lights (0 drops point lights), scene.particles (0 drops
+//       emitters), scene.sun (0|1), scene.light_scale (factor on every light, emissive and
+//       particle radiance, the background and the bloom threshold), scene.emissive_scale (factor
+//       on emissive materials and particles only).
 #pragma once
 
-#include <glm/vec3.hpp>
+#include <fgb/core/knob_registry.hpp>
+
+#include <glm/ext/vector_double3.hpp>
 
 #include <map>
 #include <optional>
@@ -19,6 +25,9 @@
 #include <vector>
 
 namespace fgb::scene {
+
+// The scene layer's entries of the knob registry (keys above, with types and ranges).
+std::vector<KnobSpec> knobSpecs();
 
 class Knobs {
  public:
@@ -32,8 +41,13 @@ class Knobs {
   bool has(const std::string& key) const { return values_.count(key) != 0; }
   // Typed getters: nullopt when unset; InputError "--set key=value: expected ..." when malformed.
   std::optional<double> number(const std::string& key) const;
+  // A number, or nullopt when unset or set to `word` (camera.far=inf, post.exposure=auto).
+  std::optional<double> numberOr(const std::string& key, const std::string& word) const;
+  bool isWord(const std::string& key, const std::string& word) const;
+  // A positive factor in [1e-12, 1e12] (scene.light_scale, scene.emissive_scale).
+  std::optional<double> scale(const std::string& key) const;
   std::optional<bool> flag(const std::string& key) const;
-  std::optional<glm::vec3> vec3(const std::string& key) const;
+  std::optional<glm::dvec3> vec3(const std::string& key) const;  // double: camera positions far out
 
   // Owned knobs with a given prefix ("atrium."), without the prefix.
   std::map<std::string, std::string> withPrefix(const std::string& prefix) const;

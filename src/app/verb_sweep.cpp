@@ -1,0 +1,160 @@
+// `fgbench sweep SCENE --vary KEY=V1,V2 [--vary ...] [--sweep FILE]`: run time against error over
+// the full grid of the varied keys, each configuration compared with a supersampled reference;
+// writes sweep.json/.csv/.md/.html into --out DIR and prints a table marking the Pareto front.
+#include "verb.hpp"
+
+#include <fgb/core/error.hpp>
+#include <fgb/core/stopwatch.hpp>
+#include <fgb/harness/golden.hpp>
+#include <fgb/harness/json_io.hpp>
+#include <fgb/harness/progress.hpp>
+#include <fgb/harness/run_loop.hpp>
+#include <fgb/harness/run_outputs.hpp>
+#include <fgb/harness/sweep.hpp>
+#include <fgb/harness/sweep_report.hpp>
+#include <fgb/renderer/workload.hpp>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <iostream>
+
+namespace fgb::app {
+namespace {
+
+struct SweepOptions {
+  CommonOptions common;
+  std::string scene;
+  std::vector<std::string> vary;
+  std::string sweepFile;
+  std::string out;
+  bool untilStable = false;
+  double stableWithin = 3.0;  // percent
+  uint32_t maxFrames = 128;
+  uint32_t roundFrames = 16;
+  double maxMinutes = 0.0;
+  uint64_t seed = 1;
+};
+
+// Axes from the sweep file, then --vary (a --vary of a key the file also varies replaces it).
+std::vector<harness::SweepAxis> gatherAxes(const SweepOptions& o, const harness::SweepFile* file) {
+  std::vector<harness::SweepAxis> axes;
+  if (file) axes = file->axes;
+  for (const auto& text : o.vary) {
+    harness::SweepAxis axis = harness::parseVary(text);
+    auto same = std::find_if(axes.begin(), axes.end(), [&](const auto& a) { return a.key == axis.key; });
+    if (same != axes.end() && file && same - axes.begin() < static_cast<std::ptrdiff_t>(file->axes.size())) {
+      *same = std::move(axis);
+    } else {
+      axes.push_back(std::move(axis));  // a key varied twice on the command line: expandGrid says so
+    }
+  }
+  return axes;
+}
+
+// Every value of a knob axis against the knob registry, before anything opens: exit 2 naming it.
+void checkAxisKnob(const harness::SweepAxis& axis) {
+  if (axis.key == "msaa" || axis.key == "width" || axis.key == "height" || axis.key == "size") return;
+  for (const auto& value : axis.values) {
+    try {
+      knobRegistry().check(axis.key, value);
+    } catch (const InputError& e) {
+      const std::string message = e.what();
+      throw InputError(message.starts_with("--set ") ? "--vary " + message.substr(6) : message);
+    }
+  }
+}
+
+harness::SweepPlan makePlan(const CLI::App& command, SweepOptions& o, std::vector<harness::SweepAxis>& axes) {
+  std::optional<harness::SweepFile> file;
+  if (!o.sweepFile.empty()) file = harness::loadSweepFile(o.sweepFile);
+  auto knobs = file ? file->knobs : std::map<std::string, std::string>{};
+  for (const auto& [k, v] : harness::parseKnobs(o.common.sets)) knobs[k] = v;  // --set wins
+  if (file && !command.count("--width") && file->width) o.common.width = file->width;
+  if (file && !command.count("--height") && file->height) o.common.height = file->height;
+  axes = gatherAxes(o, file ? &*file : nullptr);
+  for (const auto& axis : axes) {
+    checkAxisKnob(axis);
+    if (knobs.count(axis.key)) throw InputError("--vary " + axis.key + ": also fixed by --set " + axis.key + "=" + knobs[axis.key]);
+    if (axis.key == "msaa" && command.count("--msaa")) throw InputError("--vary msaa: also fixed by --msaa");
+  }
+
+  harness::SweepPlan plan;
+  plan.scene = o.scene;
+  plan.configurations = harness::expandGrid(workloadConfig(o.scene, o.common, knobs), axes);
+  plan.warmup = o.common.warmup;
+  plan.frames = o.common.frames;
+  plan.stableFrameCap = o.maxFrames;
+  const harness::StabilityRule rule{o.stableWithin / 100.0, 16, o.roundFrames};
+  if (o.untilStable) plan.untilStable = rule;
+  // --until-stable is the default on CPU devices unless a fixed --frames was asked for.
+  plan.untilStableOnCpu = !command.count("--frames");
+  plan.roundFrames = o.roundFrames;
+  plan.maxMinutes = o.maxMinutes;
+  plan.seed = o.seed;
+  return plan;
+}
+
+int sweepVerb(const CLI::App& command, SweepOptions o) {
+  std::vector<harness::SweepAxis> axes;
+  harness::SweepPlan plan = makePlan(command, o, axes);
+  if (o.out.empty()) o.out = "out/" + harness::sceneName(o.scene) + "-sweep";
+  const bool chatty = !o.common.quiet && !o.common.json;
+
+  harness::ProgressBar bar(std::cerr, "measuring", chatty && harness::ProgressBar::stderrIsTerminal());
+  harness::SweepProgress progress;
+  bool opened = false;  // the first phase is said once every configuration opened
+  progress.phase = [&](const std::string& phase) {
+    if (!chatty) return;
+    if (!opened) std::cerr << fmt::format("sweep: {} configuration(s) of {} opened\n", plan.configurations.size(), o.scene);
+    opened = true;
+    std::cerr << "sweep: " << phase << "\n";
+  };
+  progress.frames = [&](uint32_t done, uint32_t total) { bar.update(done, total); };
+
+  harness::SweepResult result = harness::runSweep(render::openWorkload, plan, progress);
+  bar.finish();
+  result.toolVersion = FGBENCH_VERSION;
+  result.axes = axes;
+  Stopwatch reporting;
+  harness::writeSweepOutputs(o.out, result);
+  result.overhead.reportMs = reporting.elapsedMs();
+
+  if (o.common.json) {
+    std::cout << harness::dumpJson(harness::sweepJson(result));
+  } else if (!o.common.quiet) {
+    std::cout << fmt::format("{} on {}: {} configuration(s), wall {:.1f} s\n", o.scene, result.device.name,
+                             result.configurations.size(), (result.overhead.totalMs + result.overhead.reportMs) / 1000.0);
+    std::cout << harness::sweepTable(result);
+    std::cout << "  results in " << o.out << " (sweep.html, sweep.json, sweep.csv, sweep.md)\n";
+  }
+  return kExitOk;
+}
+
+static VerbRegistrar reg(30, [](CLI::App& app) {
+  auto o = std::make_shared<SweepOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "sweep", "Run time against error over a grid of configurations; mark the Pareto front (sweep.html)");
+  sub->add_option("scene", o->scene, "Scene file (scenes/*.json) or builtin:proof")->required();
+  addCommonOptions(*sub, o->common);
+  sub->add_option("--vary", o->vary,
+                  "KEY=V1,V2,...: an axis of the grid (repeatable). KEY is msaa, width, height, size (WxH) or any --set knob");
+  sub->add_option("--sweep", o->sweepFile, "A standard sweep (bench/sweeps/*.json); --vary adds or replaces axes");
+  sub->add_option("--out", o->out, "Output directory (default: out/<scene>-sweep)");
+  sub->add_flag("--until-stable", o->untilStable,
+                "Sample each configuration until the 95% CI of its median frame time is within --stable-within "
+                "(default on CPU devices unless --frames is given)");
+  sub->add_option("--stable-within", o->stableWithin, "Stability target: CI half-width in percent of the median")
+      ->capture_default_str()->check(CLI::Range(0.1, 50.0));
+  sub->add_option("--max-frames", o->maxFrames, "Frame cap per configuration when sampling until stable")
+      ->capture_default_str()->check(CLI::Range(16u, 100000u));
+  sub->add_option("--round-frames", o->roundFrames, "Frames per configuration per interleaved round")
+      ->capture_default_str()->check(CLI::Range(1u, 10000u));
+  sub->add_option("--max-minutes", o->maxMinutes, "Start no new measuring round after this many minutes (0: no limit)")
+      ->check(CLI::Range(0.0, 1e6));
+  sub->add_option("--seed", o->seed, "Seed of the configurations' order in each round")->capture_default_str();
+  return Verb{sub, [sub, o] { return sweepVerb(*sub, *o); }};
+});
+
+}  // namespace
+}  // namespace fgb::app

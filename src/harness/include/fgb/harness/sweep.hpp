@@ -1,0 +1,154 @@
+// `fgbench sweep`: run time against error over a grid of configurations.
+//
+//   SweepGrid        the axes (--vary KEY=V1,V2 and bench/sweeps/*.json) and their full grid;
+//   referenceOf      the reference configuration each grid point is compared with;
+//   runSweep         renders the references (twice: their noise floor), opens every configuration,
+//                    measures them in interleaved rounds in a seeded random order, compares their
+//                    frames with the reference and marks the Pareto front;
+//   sweep outputs    sweep.json / .csv / .md / .html and the terminal table (sweep_report.hpp).
+//
+// Nothing here is specific to a sweep of many knobs: `stress` is a one-knob sweep whose reference
+// is its baseline rung (SweepPlan::referenceOverride).
+#pragma once
+
+#include <fgb/harness/metrics.hpp>
+#include <fgb/harness/pareto.hpp>
+#include <fgb/harness/render_path.hpp>
+
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace fgb::harness {
+
+// One axis of the grid: a key (msaa, width, height, size, or any --set knob) and its values.
+struct SweepAxis {
+  std::string key;
+  std::vector<std::string> values;
+};
+
+// "KEY=V1,V2,..." -> axis. Malformed text (no '=', empty key or value, repeated value, a value the
+// key cannot take: msaa not 1|2|4|8, width/height not a positive integer, size not WxH) is
+// InputError naming `--vary TEXT`.
+SweepAxis parseVary(const std::string& text);
+
+// A standard sweep file (bench/sweeps/*.json), schema 1:
+//   {"schema": 1, "description": "...", "vary": [{"key": "msaa", "values": [1, 4]}, ...],
+//    "set": {"key": "value"}, "width": 640, "height": 360}
+// ("set", "width", "height" optional). Errors are InputError naming the file and field.
+struct SweepFile {
+  std::string description;
+  std::vector<SweepAxis> axes;
+  std::map<std::string, std::string> knobs;
+  uint32_t width = 0, height = 0;
+};
+SweepFile loadSweepFile(const std::filesystem::path& path);
+
+// Largest grid a sweep accepts (a typo such as msaa=1,2,4,8 x size=... x ... is caught early).
+inline constexpr std::size_t kMaxSweepConfigurations = 256;
+
+struct SweepConfiguration {
+  std::string label;                                // "msaa=4 bloom.mips=2": the varied values
+  std::vector<std::pair<std::string, std::string>>  // the varied values, in axis order
+      point;
+  render::WorkloadConfig workload;
+};
+
+// The full grid: every combination of the axes' values applied to `base` (first axis slowest).
+// Axes must have distinct keys (InputError otherwise); more than kMaxSweepConfigurations
+// combinations or no axis at all is InputError.
+std::vector<SweepConfiguration> expandGrid(const render::WorkloadConfig& base, const std::vector<SweepAxis>& axes);
+
+// The reference a configuration is compared with (interfaces.md): the same scene, size and content
+// knobs, rendered at the renderer's highest quality: render.ssaa=4, the device's largest MSAA
+// (8, clamped by the device), lighting.mode=all (every light for every pixel, no per-cluster cap),
+// bloom.mips=10 (the full chain; the renderer clamps it to the size). Knobs that only trade speed
+// (lighting.max_per_cluster, lighting.slices, render.path, render.depth_prepass) are dropped, so
+// configurations that differ only in those share one reference.
+render::WorkloadConfig referenceOf(const render::WorkloadConfig& configuration);
+
+struct SweepPlan {
+  std::string scene;
+  std::vector<SweepConfiguration> configurations;
+  // Default: referenceOf(each configuration). Set to use one fixed configuration instead (stress:
+  // the baseline rung).
+  std::optional<render::WorkloadConfig> referenceOverride;
+  uint32_t warmup = 8;       // frames rendered before measuring
+  // The compared images are of this frame (1-based) of every configuration and reference: animated
+  // content (particles) depends on the frame number, and the reference renders only this many
+  // frames (twice), which keeps a costly reference cheap.
+  uint32_t imageFrame = 2;
+  uint32_t frames = 64;      // measured frames per configuration without untilStable
+  std::optional<StabilityRule> untilStable;  // sample each until stable, at most stableFrameCap frames
+  bool untilStableOnCpu = false;  // use the default StabilityRule when the device is a CPU (lavapipe)
+  uint32_t stableFrameCap = 128;
+  uint32_t roundFrames = 16;  // frames per configuration per round
+  uint32_t rewarmFrames = 1;  // dropped at the start of each round (others ran in between)
+  double maxMinutes = 0.0;    // 0: no limit; else measuring stops after this (after one full round)
+  uint64_t seed = 1;          // order of the configurations within each round
+  double alpha = 0.05;
+};
+
+struct ReferenceOutcome {
+  render::WorkloadConfig workload;
+  RenderedImages images;           // first render
+  ImageMetrics repeatDisplay, repeatHdr;  // second render against the first
+  bool identical = false;          // the two renders are bit-identical
+  double renderMs = 0.0;           // wall time of both renders
+};
+
+struct ConfigurationOutcome {
+  SweepConfiguration configuration;
+  std::size_t reference = 0;   // index into SweepResult::references
+  RunResult run;               // measured frames (all rounds)
+  MedianInterval frameGpu;     // median GPU frame time and its 95% interval
+  bool stable = false;         // met the stability rule (until-stable sweeps)
+  RenderedImages images;
+  ImageMetrics display, hdr;   // against the reference: LDR-FLIP on the display image, HDR-FLIP on the HDR
+  Image heatMap;               // LDR-FLIP map against the reference
+  bool onFront = false;
+  std::vector<std::size_t> dominatedBy;
+};
+
+// Host time the sweep spent outside measured frames, by phase (ms).
+struct SweepOverhead {
+  double openMs = 0.0, referenceMs = 0.0, warmupMs = 0.0, measureMs = 0.0, metricsMs = 0.0, reportMs = 0.0,
+         totalMs = 0.0;
+};
+
+struct SweepResult {
+  std::string toolVersion;
+  std::string scene;
+  std::string sceneHash;
+  render::DeviceDescription device;
+  std::vector<SweepAxis> axes;
+  std::vector<ReferenceOutcome> references;
+  std::vector<ConfigurationOutcome> configurations;
+  double errorFloor = 0.0;  // max LDR-FLIP mean between repeated reference renders
+  double alpha = 0.05;
+  uint64_t seed = 1;
+  uint32_t rounds = 0;
+  std::string stopReason;   // "frames" | "stable" | "time limit"
+  std::optional<StabilityRule> untilStable;
+  uint32_t frameCap = 0;
+  SweepOverhead overhead;
+};
+
+struct SweepProgress {
+  std::function<void(const std::string& phase)> phase;            // "reference 1/1", "measuring"
+  std::function<void(uint32_t done, uint32_t total)> frames;      // measured frames so far / planned
+};
+
+// Runs the plan. InputError from opening a configuration (bad knob) surfaces before any reference
+// is rendered.
+SweepResult runSweep(const WorkloadOpener& open, const SweepPlan& plan, const SweepProgress& progress = {});
+
+// Compares every configuration with its reference and marks the front (runSweep's last step;
+// exposed for the overhead benchmark and tests).
+void compareWithReferences(SweepResult& result);
+void markFront(SweepResult& result);
+
+}  // namespace fgb::harness

@@ -1,0 +1,37 @@
+// A sweep's outputs: sweep.json (schema in docs/sweep.md), sweep.csv, sweep.md, a single-file
+// sweep.html with inline SVG charts and inline images, and the terminal table.
+#pragma once
+
+#include <fgb/harness/sweep.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <string>
+
+namespace fgb::harness {
+
+inline constexpr int kSweepSchema = 1;
+
+nlohmann::json sweepJson(const SweepResult& result);
+std::string sweepCsv(const SweepResult& result);
+std::string sweepMarkdown(const SweepResult& result);
+std::string sweepTable(const SweepResult& result);  // the terminal's table, front marked with '*'
+std::string sweepHtml(const SweepResult& result);
+
+// The HTML's charts, each a standalone <svg> (exposed for tests).
+std::string timeErrorSvg(const SweepResult& result);  // log-log, error bars on both axes, front drawn
+std::string passStackSvg(const SweepResult& result);  // per-pass median times stacked per configuration
+
+// The front's configurations, fastest first (indices into result.configurations).
+std::vector<std::size_t> frontByTime(const SweepResult& result);
+// The error the front is built on: LDR-FLIP mean against the reference (RMSE without FLIP).
+double sweepError(const ConfigurationOutcome& c);
+// How the sweep measured and decided, in one paragraph (reports and --help say the same).
+std::string sweepMethodNote(const SweepResult& result);
+
+// Creates DIR if needed (InputError when impossible) and writes sweep.json, sweep.csv, sweep.md and
+// sweep.html, each atomically.
+void writeSweepOutputs(const std::filesystem::path& dir, const SweepResult& result);
+
+}  // namespace fgb::harness

@@ -1,0 +1,64 @@
+#include <fgb/harness/html_util.hpp>
+
+#include <fgb/harness/image_io.hpp>
+#include <fgb/harness/report.hpp>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace fgb::harness {
+
+std::string base64(std::string_view bytes) {
+  static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((bytes.size() + 2) / 3 * 4);
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    const std::size_t n = std::min<std::size_t>(3, bytes.size() - i);
+    uint32_t chunk = 0;
+    for (std::size_t k = 0; k < 3; ++k) chunk = chunk << 8 | (k < n ? static_cast<unsigned char>(bytes[i + k]) : 0u);
+    for (std::size_t k = 0; k < 4; ++k) out += k <= n ? kAlphabet[(chunk >> (18 - 6 * k)) & 63] : '=';
+  }
+  return out;
+}
+
+std::string pngDataUri(std::string_view png) { return "data:image/png;base64," + base64(png); }
+
+std::string imgTag(const Image& image, const std::string& alt, uint32_t maxWidth) {
+  const Image thumb = shrinkToWidth(image, maxWidth);
+  return fmt::format(R"(<img src="{}" width="{}" height="{}" alt="{}">)",
+                     pngDataUri(encodePng(thumb)), thumb.width, thumb.height, escapeXml(alt));
+}
+
+double LogAxis::at(double v, double from, double to) const {
+  const double t = (std::log10(std::max(v, lo)) - std::log10(lo)) / (std::log10(hi) - std::log10(lo));
+  return from + t * (to - from);
+}
+
+std::vector<double> LogAxis::ticks() const {
+  std::vector<double> out;
+  for (int e = static_cast<int>(std::floor(std::log10(lo))); e <= static_cast<int>(std::ceil(std::log10(hi))); ++e) {
+    for (double m : {1.0, 2.0, 5.0}) {
+      const double v = m * std::pow(10.0, e);
+      if (v >= lo && v <= hi) out.push_back(v);
+    }
+  }
+  if (out.size() < 2) out = {lo, std::sqrt(lo * hi), hi};
+  return out;
+}
+
+LogAxis paddedLogAxis(double lo, double hi) {
+  if (!(lo > 0)) lo = 1e-6;
+  if (!(hi > lo)) hi = lo * 1.0001;
+  // At least a factor 1.5 across, centred on the data, so close points do not fill the whole plot.
+  const double centre = std::sqrt(lo * hi);
+  const double half = std::max(std::sqrt(hi / lo), std::sqrt(1.5)) * 1.08;
+  return {centre / half, centre * half};
+}
+
+std::string tickLabel(double v) {
+  return fmt::format("{:.3g}", v);
+}
+
+}  // namespace fgb::harness

@@ -1,0 +1,205 @@
+// runSweep: references, interleaved measuring rounds, comparison with the references, the front.
+#include <fgb/harness/sweep.hpp>
+
+#include <fgb/core/error.hpp>
+#include <fgb/core/stopwatch.hpp>
+#include <fgb/harness/run_outputs.hpp>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstring>
+#include <memory>
+#include <numeric>
+#include <random>
+
+namespace fgb::harness {
+namespace {
+
+bool sameConfig(const render::WorkloadConfig& a, const render::WorkloadConfig& b) {
+  return a.scenePath == b.scenePath && a.device == b.device && a.width == b.width && a.height == b.height &&
+         a.msaa == b.msaa && a.validation == b.validation && a.knobs == b.knobs && a.cacheDir == b.cacheDir;
+}
+
+bool bitIdentical(const Image& a, const Image& b) {
+  return a.width == b.width && a.height == b.height &&
+         std::memcmp(a.rgba.data(), b.rgba.data(), a.rgba.size() * sizeof(float)) == 0;
+}
+
+// The images of frame `frames` of a freshly opened workload.
+RenderedImages renderImagesAfter(const WorkloadOpener& open, const render::WorkloadConfig& config, uint32_t frames) {
+  ConfigurationRenderer renderer(open, config);
+  renderer.warmUp(std::max(frames, 1u));
+  return renderer.readImages();
+}
+
+ReferenceOutcome renderReference(const WorkloadOpener& open, const render::WorkloadConfig& config, uint32_t frames) {
+  Stopwatch timer;
+  ReferenceOutcome ref;
+  ref.workload = config;
+  ref.images = renderImagesAfter(open, config, frames);
+  // Its noise floor: a second render of the same reference, compared with the first.
+  const RenderedImages again = renderImagesAfter(open, config, frames);
+  if (again.hdr.width != ref.images.hdr.width || again.hdr.height != ref.images.hdr.height) {
+    throw DeviceError("two renders of the reference differ in size");
+  }
+  ref.identical = bitIdentical(ref.images.hdr, again.hdr) && bitIdentical(ref.images.display, again.display);
+  ref.repeatDisplay = compareImages(quantizeToSrgb8(ref.images.display), quantizeToSrgb8(again.display)).metrics;
+  ref.repeatHdr = compareImages(ref.images.hdr, again.hdr).metrics;
+  ref.renderMs = timer.elapsedMs();
+  return ref;
+}
+
+std::size_t referenceIndex(std::vector<render::WorkloadConfig>& references, const render::WorkloadConfig& wanted) {
+  for (std::size_t i = 0; i < references.size(); ++i) {
+    if (sameConfig(references[i], wanted)) return i;
+  }
+  references.push_back(wanted);
+  return references.size() - 1;
+}
+
+bool finished(const RunResult& run, const SweepPlan& plan) {
+  if (run.frameGpuMs.size() >= plan.frames) return true;
+  return plan.untilStable && isStable(run, *plan.untilStable);
+}
+
+// Measures every configuration in rounds: each round visits the unfinished configurations in a
+// random order (seeded), `roundFrames` frames each, so slow drift (thermal, other processes)
+// spreads over all configurations alike instead of favouring whichever ran first.
+void measureInRounds(std::vector<std::unique_ptr<ConfigurationRenderer>>& renderers, SweepResult& result,
+                     const SweepPlan& plan, const SweepProgress& progress, const Stopwatch& sweepClock) {
+  std::mt19937_64 random(plan.seed);
+  const uint32_t planned = plan.frames * static_cast<uint32_t>(renderers.size());
+  uint32_t done = 0;
+  result.stopReason = plan.untilStable ? "stable" : "frames";
+  while (true) {
+    std::vector<std::size_t> order;
+    for (std::size_t i = 0; i < renderers.size(); ++i) {
+      if (!finished(renderers[i]->result(), plan)) order.push_back(i);
+    }
+    if (order.empty()) break;
+    if (plan.maxMinutes > 0 && result.rounds > 0 && sweepClock.elapsedMs() > plan.maxMinutes * 60000.0) {
+      result.stopReason = "time limit";
+      break;
+    }
+    std::shuffle(order.begin(), order.end(), random);
+    for (std::size_t i : order) {
+      // The time limit also ends a round early (after the first round): a round of slow
+      // configurations on a CPU device can take minutes.
+      if (plan.maxMinutes > 0 && result.rounds > 0 && sweepClock.elapsedMs() > plan.maxMinutes * 60000.0) break;
+      const uint32_t have = static_cast<uint32_t>(renderers[i]->result().frameGpuMs.size());
+      const uint32_t frames = std::min(plan.roundFrames, plan.frames - have);
+      renderers[i]->measure(frames, plan.rewarmFrames);
+      done += frames;
+      if (progress.frames) progress.frames(std::min(done, planned), planned);
+    }
+    ++result.rounds;
+  }
+}
+
+}  // namespace
+
+SweepResult runSweep(const WorkloadOpener& open, const SweepPlan& requested, const SweepProgress& progress) {
+  Stopwatch sweepClock, phase;
+  SweepPlan plan = requested;
+  SweepResult result;
+  result.scene = plan.scene;
+  result.sceneHash = sceneHash(plan.scene);
+  result.alpha = plan.alpha;
+  result.seed = plan.seed;
+  auto say = [&](const std::string& what) {
+    if (progress.phase) progress.phase(what);
+  };
+
+  // Every configuration is opened first: a bad knob fails here, before the costly references (and
+  // before anything is said, so that bad input gets its one line).
+  std::vector<std::unique_ptr<ConfigurationRenderer>> renderers;
+  for (const auto& c : plan.configurations) {
+    renderers.push_back(std::make_unique<ConfigurationRenderer>(open, c.workload));
+    ConfigurationOutcome outcome;
+    outcome.configuration = c;
+    result.configurations.push_back(std::move(outcome));
+  }
+  result.overhead.openMs = phase.lap();
+  if (!renderers.empty()) result.device = renderers.front()->result().device;
+  if (!plan.untilStable && plan.untilStableOnCpu && result.device.type == "cpu") plan.untilStable = StabilityRule{};
+  if (plan.untilStable) plan.frames = plan.stableFrameCap;  // from here on `frames` is the cap
+  result.untilStable = plan.untilStable;
+  result.frameCap = plan.frames;
+
+  std::vector<render::WorkloadConfig> referenceConfigs;
+  for (auto& c : result.configurations) {
+    c.reference = referenceIndex(referenceConfigs, plan.referenceOverride.value_or(referenceOf(c.configuration.workload)));
+  }
+  for (std::size_t r = 0; r < referenceConfigs.size(); ++r) {
+    say(fmt::format("reference {}/{} (2 renders)", r + 1, referenceConfigs.size()));
+    result.references.push_back(renderReference(open, referenceConfigs[r], plan.imageFrame));
+  }
+  result.overhead.referenceMs = phase.lap();
+
+  say("warming up");
+  for (std::size_t i = 0; i < renderers.size(); ++i) {
+    renderers[i]->warmUp(std::max(plan.imageFrame, 1u));
+    result.configurations[i].images = renderers[i]->readImages();
+    if (plan.warmup > plan.imageFrame) renderers[i]->warmUp(plan.warmup - plan.imageFrame);
+  }
+  result.overhead.warmupMs = phase.lap();
+
+  say("measuring");
+  measureInRounds(renderers, result, plan, progress, sweepClock);
+  for (std::size_t i = 0; i < renderers.size(); ++i) {
+    renderers[i]->checkValidation();
+    ConfigurationOutcome& c = result.configurations[i];
+    c.run = renderers[i]->result();
+    c.frameGpu = medianConfidenceInterval(c.run.frameGpuMs);
+    c.stable = plan.untilStable && isStable(c.run, *plan.untilStable);
+  }
+  if (result.stopReason == "stable") {
+    for (const auto& c : result.configurations) {
+      if (!c.stable) result.stopReason = "frame cap (not every configuration stable)";
+    }
+  }
+  renderers.clear();  // every device closed before the metrics (memory)
+  result.overhead.measureMs = phase.lap();
+
+  say("comparing with the reference");
+  compareWithReferences(result);
+  markFront(result);
+  result.overhead.metricsMs = phase.lap();
+  result.overhead.totalMs = sweepClock.elapsedMs();
+  return result;
+}
+
+void compareWithReferences(SweepResult& result) {
+  result.errorFloor = 0.0;
+  for (const auto& ref : result.references) {
+    if (ref.repeatDisplay.flip) result.errorFloor = std::max(result.errorFloor, ref.repeatDisplay.flip->mean);
+  }
+  for (auto& c : result.configurations) {
+    const ReferenceOutcome& ref = result.references.at(c.reference);
+    if (c.images.display.width != ref.images.display.width || c.images.display.height != ref.images.display.height) {
+      throw DeviceError(fmt::format("{}: rendered {} but its reference {}", c.configuration.label,
+                                    describeSize(c.images.display), describeSize(ref.images.display)));
+    }
+    // LDR-FLIP on the display images as frame.png stores them (8-bit sRGB), HDR-FLIP on the HDR.
+    const Comparison display = compareImages(quantizeToSrgb8(ref.images.display), quantizeToSrgb8(c.images.display));
+    c.display = display.metrics;
+    c.heatMap = heatMap(display.errorMap, display.nonFiniteMask, c.images.display.width, c.images.display.height);
+    c.hdr = compareImages(ref.images.hdr, c.images.hdr).metrics;
+  }
+}
+
+void markFront(SweepResult& result) {
+  std::vector<TradeoffPoint> points;
+  for (const auto& c : result.configurations) {
+    if (c.run.frameGpuMs.empty()) throw DeviceError(c.configuration.label + ": no frames measured");
+    points.push_back({c.run.frameGpuMs, c.display.flip ? c.display.flip->mean : c.display.rmse});
+  }
+  const FrontAnalysis front = paretoFront(points, {result.alpha, result.errorFloor});
+  for (std::size_t i = 0; i < result.configurations.size(); ++i) {
+    result.configurations[i].onFront = front.onFront[i];
+    result.configurations[i].dominatedBy = front.dominatedBy[i];
+  }
+}
+
+}  // namespace fgb::harness

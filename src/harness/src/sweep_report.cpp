@@ -1,0 +1,250 @@
+// sweep.json, sweep.csv, sweep.md and the terminal table.
+#include <fgb/harness/sweep_report.hpp>
+
+#include <fgb/core/atomic_file.hpp>
+#include <fgb/core/error.hpp>
+#include <fgb/harness/json_io.hpp>
+#include <fgb/harness/report.hpp>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace fgb::harness {
+namespace {
+
+nlohmann::json knobsJson(const std::map<std::string, std::string>& knobs) {
+  nlohmann::json j = nlohmann::json::object();
+  for (const auto& [k, v] : knobs) j[k] = v;
+  return j;
+}
+
+uint32_t msaaUsed(const ConfigurationOutcome& c) {
+  const auto it = c.run.stats.find("msaa");
+  return it != c.run.stats.end() ? static_cast<uint32_t>(it->second) : c.configuration.workload.msaa;
+}
+
+nlohmann::json configJson(const render::WorkloadConfig& w, const RenderedImages& images) {
+  return {{"width", images.display.width}, {"height", images.display.height}, {"msaa_requested", w.msaa},
+          {"knobs", knobsJson(w.knobs)}};
+}
+
+nlohmann::json intervalJson(const MedianInterval& ci, const Summary& s) {
+  return {{"median", ci.median}, {"ci_low", ci.lower},   {"ci_high", ci.upper}, {"ci_coverage", ci.coverage},
+          {"n", ci.n},           {"p5", s.p5},           {"p95", s.p95},        {"mean", s.mean},
+          {"min", s.min},        {"max", s.max}};
+}
+
+nlohmann::json passesJson(const RunResult& run) {
+  nlohmann::json passes = nlohmann::json::array();
+  for (const auto& p : run.passes) {
+    passes.push_back({{"name", p.name}, {"queue", p.queue}, {"culled", p.culled}, {"median_ms", p.gpu.median},
+                      {"p5_ms", p.gpu.p5}, {"p95_ms", p.gpu.p95}, {"n", p.gpu.n}});
+  }
+  return passes;
+}
+
+nlohmann::json configurationJson(const SweepResult& result, const ConfigurationOutcome& c) {
+  nlohmann::json point = nlohmann::json::object();
+  for (const auto& [k, v] : c.configuration.point) point[k] = v;
+  nlohmann::json dominatedBy = nlohmann::json::array();
+  for (std::size_t d : c.dominatedBy) dominatedBy.push_back(result.configurations[d].configuration.label);
+  nlohmann::json config = configJson(c.configuration.workload, c.images);
+  config["msaa"] = msaaUsed(c);
+  return {{"label", c.configuration.label},
+          {"point", point},
+          {"config", config},
+          {"reference", c.reference},
+          {"frame_gpu_ms", intervalJson(c.frameGpu, c.run.frameGpu)},
+          {"frame_cpu_ms", {{"median", c.run.frameCpu.median}, {"p5", c.run.frameCpu.p5}, {"p95", c.run.frameCpu.p95}}},
+          {"stable", c.stable},
+          {"passes", passesJson(c.run)},
+          {"error", {{"display", toJson(c.display)}, {"hdr", toJson(c.hdr)}}},
+          {"front", c.onFront},
+          {"dominated_by", dominatedBy},
+          {"samples", {{"frame_gpu_ms", c.run.frameGpuMs}}}};
+}
+
+nlohmann::json referenceJson(const ReferenceOutcome& r) {
+  return {{"config", configJson(r.workload, r.images)},
+          {"repeat_identical", r.identical},
+          {"noise", {{"display", toJson(r.repeatDisplay)}, {"hdr", toJson(r.repeatHdr)}}},
+          {"render_ms", r.renderMs}};
+}
+
+nlohmann::json methodJson(const SweepResult& result) {
+  nlohmann::json stable = nullptr;
+  if (result.untilStable) {
+    stable = {{"relative_half_width", result.untilStable->relativeHalfWidth},
+              {"min_frames", result.untilStable->minFrames},
+              {"batch_frames", result.untilStable->batchFrames}};
+  }
+  return {{"time", "median GPU frame time; 95% distribution-free order-statistic interval (exact binomial)"},
+          {"error", "LDR-FLIP mean of the tone-mapped frame against the reference"},
+          {"dominance", "significantly faster or equal (one-sided Mann-Whitney U, alpha) and error <= other's + "
+                        "error_floor, strictly better in one"},
+          {"alpha", result.alpha},
+          {"error_floor", result.errorFloor},
+          {"seed", result.seed},
+          {"rounds", result.rounds},
+          {"frame_cap", result.frameCap},
+          {"until_stable", stable},
+          {"stop_reason", result.stopReason},
+          {"note", sweepMethodNote(result)}};
+}
+
+std::string csvField(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
+}
+
+std::string flipText(const ImageMetrics& m) { return m.flip ? fmt::format("{:.4f}", m.flip->mean) : "-"; }
+std::string psnrText(const ImageMetrics& m) { return std::isfinite(m.psnr) ? fmt::format("{:.2f}", m.psnr) : "inf"; }
+
+uint64_t nonFinite(const ConfigurationOutcome& c) { return c.display.nonFiniteTest + c.hdr.nonFiniteTest; }
+
+std::string frontSentence(const SweepResult& result) {
+  std::string text;
+  for (std::size_t i : frontByTime(result)) {
+    const auto& c = result.configurations[i];
+    text += fmt::format("{}{} ({:.3f} ms, FLIP {:.4f})", text.empty() ? "" : " → ", c.configuration.label,
+                        c.frameGpu.median, sweepError(c));
+  }
+  return text;
+}
+
+}  // namespace
+
+double sweepError(const ConfigurationOutcome& c) { return c.display.flip ? c.display.flip->mean : c.display.rmse; }
+
+std::vector<std::size_t> frontByTime(const SweepResult& result) {
+  std::vector<std::size_t> front;
+  for (std::size_t i = 0; i < result.configurations.size(); ++i) {
+    if (result.configurations[i].onFront) front.push_back(i);
+  }
+  std::sort(front.begin(), front.end(), [&](std::size_t a, std::size_t b) {
+    return result.configurations[a].frameGpu.median < result.configurations[b].frameGpu.median;
+  });
+  return front;
+}
+
+std::string sweepMethodNote(const SweepResult& result) {
+  std::string stop = result.untilStable
+                         ? fmt::format("each configuration was sampled until the 95% interval of its median was within "
+                                       "±{:.1f}% of it (at least {} frames, at most {})",
+                                       result.untilStable->relativeHalfWidth * 100.0, result.untilStable->minFrames,
+                                       result.frameCap)
+                         : fmt::format("each configuration was measured for {} frames", result.frameCap);
+  return fmt::format(
+      "Times are medians of the GPU frame time with a 95% distribution-free confidence interval (order statistics "
+      "x(l), x(n+1-l) from the exact binomial distribution). Configurations were measured in {} interleaved rounds in "
+      "a random order (seed {}); {}{}. Error is the LDR-FLIP mean of the tone-mapped frame against the reference; its "
+      "noise floor ({:.5f}) is the LDR-FLIP mean between two renders of the reference. A configuration is dominated "
+      "when another is significantly faster (one-sided Mann–Whitney U, α = {}) or equal in time, lower or equal in "
+      "error beyond the floor, and strictly better in one; the front is the configurations no other dominates.",
+      result.rounds, result.seed, stop, result.stopReason == "time limit" ? " (stopped by --max-minutes)" : "",
+      result.errorFloor, result.alpha);
+}
+
+nlohmann::json sweepJson(const SweepResult& result) {
+  nlohmann::json axes = nlohmann::json::array();
+  for (const auto& a : result.axes) axes.push_back({{"key", a.key}, {"values", a.values}});
+  nlohmann::json references = nlohmann::json::array();
+  for (const auto& r : result.references) references.push_back(referenceJson(r));
+  nlohmann::json configurations = nlohmann::json::array();
+  for (const auto& c : result.configurations) configurations.push_back(configurationJson(result, c));
+  nlohmann::json front = nlohmann::json::array();
+  for (std::size_t i : frontByTime(result)) front.push_back(result.configurations[i].configuration.label);
+  const SweepOverhead& o = result.overhead;
+  return {{"schema", kSweepSchema},
+          {"tool_version", result.toolVersion},
+          {"scene", result.scene},
+          {"scene_hash", result.sceneHash},
+          {"device", {{"name", result.device.name}, {"driver", result.device.driver}, {"type", result.device.type},
+                      {"api_version", result.device.apiVersion}, {"host_timestamps", result.device.hostTimestamps}}},
+          {"axes", axes},
+          {"method", methodJson(result)},
+          {"references", references},
+          {"configurations", configurations},
+          {"front", front},
+          {"wall_ms", {{"open", o.openMs}, {"references", o.referenceMs}, {"warmup", o.warmupMs},
+                       {"measure", o.measureMs}, {"metrics", o.metricsMs}, {"report", o.reportMs}, {"total", o.totalMs}}}};
+}
+
+std::string sweepCsv(const SweepResult& result) {
+  std::string csv = "label";
+  for (const auto& a : result.axes) csv += "," + csvField(a.key);
+  csv += ",width,height,msaa,frame_gpu_median_ms,ci_low_ms,ci_high_ms,frames,stable,ldr_flip_mean,hdr_flip_mean,"
+         "rmse,psnr_db,hdr_rmse,nonfinite,front,dominated_by\n";
+  for (const auto& c : result.configurations) {
+    csv += csvField(c.configuration.label);
+    for (const auto& [key, value] : c.configuration.point) csv += "," + csvField(value);
+    std::string dominatedBy;
+    for (std::size_t d : c.dominatedBy) dominatedBy += (dominatedBy.empty() ? "" : ";") + result.configurations[d].configuration.label;
+    csv += fmt::format(",{},{},{},{:.6f},{:.6f},{:.6f},{},{},{},{},{:.6f},{},{:.6f},{},{},{}\n", c.images.display.width,
+                       c.images.display.height, msaaUsed(c), c.frameGpu.median, c.frameGpu.lower, c.frameGpu.upper,
+                       c.frameGpu.n, c.stable ? 1 : 0, flipText(c.display), flipText(c.hdr), c.display.rmse,
+                       psnrText(c.display), c.hdr.rmse, nonFinite(c), c.onFront ? 1 : 0, csvField(dominatedBy));
+  }
+  return csv;
+}
+
+std::string sweepTable(const SweepResult& result) {
+  std::size_t width = 13;
+  for (const auto& c : result.configurations) width = std::max(width, c.configuration.label.size());
+  std::string out = fmt::format("  {:<{}}  {:>27}  {:>8}  {:>8}  {:>7}  {}\n", "configuration", width,
+                                "GPU frame ms (95% CI)", "LDR-FLIP", "HDR-FLIP", "PSNR", "front");
+  for (const auto& c : result.configurations) {
+    const std::string time = fmt::format("{:.3f} [{:.3f}, {:.3f}]", c.frameGpu.median, c.frameGpu.lower, c.frameGpu.upper);
+    out += fmt::format("{} {:<{}}  {:>27}  {:>8}  {:>8}  {:>7}  {}{}\n", c.onFront ? '*' : ' ', c.configuration.label,
+                       width, time, flipText(c.display), flipText(c.hdr), psnrText(c.display), c.onFront ? "front" : "",
+                       nonFinite(c) ? fmt::format("  {} NaN/Inf", nonFinite(c)) : "");
+  }
+  out += "  front (fastest first): " + frontSentence(result) + "\n";
+  out += fmt::format("  error floor (reference vs itself): {:.5f}; {} round(s), stop: {}\n", result.errorFloor,
+                     result.rounds, result.stopReason);
+  return out;
+}
+
+std::string sweepMarkdown(const SweepResult& result) {
+  std::string md = fmt::format("# Sweep: {}\n\nDevice: {} ({}). ", result.scene, result.device.name, result.device.driver);
+  if (result.device.hostTimestamps) md += timestampSourceNote(result.device) + " ";
+  md += "\n\n**Front (fastest first):** " + frontSentence(result) + "\n\n";
+  md += "| | configuration | GPU frame ms | 95% CI | frames | LDR-FLIP | HDR-FLIP | RMSE | PSNR dB | NaN/Inf | dominated by |\n"
+        "|---|---|---:|---|---:|---:|---:|---:|---:|---:|---|\n";
+  for (const auto& c : result.configurations) {
+    std::string dominatedBy;
+    for (std::size_t d : c.dominatedBy) dominatedBy += (dominatedBy.empty() ? "" : ", ") + result.configurations[d].configuration.label;
+    md += fmt::format("| {} | {} | {:.4f} | [{:.4f}, {:.4f}] | {} | {} | {} | {:.5f} | {} | {} | {} |\n",
+                      c.onFront ? "**front**" : "", c.configuration.label, c.frameGpu.median, c.frameGpu.lower,
+                      c.frameGpu.upper, c.frameGpu.n, flipText(c.display), flipText(c.hdr), c.display.rmse,
+                      psnrText(c.display), nonFinite(c), dominatedBy);
+  }
+  md += "\n## References\n\n";
+  for (const auto& r : result.references) {
+    std::string knobs;
+    for (const auto& [k, v] : r.workload.knobs) knobs += " " + k + "=" + v;
+    md += fmt::format("- {}x{} msaa={}{}: two renders {} (LDR-FLIP {:.5f} between them), {:.1f} s\n", r.images.display.width,
+                      r.images.display.height, r.workload.msaa, knobs, r.identical ? "bit-identical" : "differ",
+                      r.repeatDisplay.flip ? r.repeatDisplay.flip->mean : 0.0, r.renderMs / 1000.0);
+  }
+  md += "\n## Method\n\n" + sweepMethodNote(result) + "\n";
+  return md;
+}
+
+void writeSweepOutputs(const std::filesystem::path& dir, const SweepResult& result) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec || !std::filesystem::is_directory(dir)) {
+    throw InputError(dir.string() + ": cannot create the output directory (" + ec.message() + ")");
+  }
+  writeFileAtomic(dir / "sweep.json", dumpJson(sweepJson(result)));
+  writeFileAtomic(dir / "sweep.csv", sweepCsv(result));
+  writeFileAtomic(dir / "sweep.md", sweepMarkdown(result));
+  writeFileAtomic(dir / "sweep.html", sweepHtml(result));
+}
+
+}  // namespace fgb::harness

@@ -1,0 +1,240 @@
+#include <fgb/core/error.hpp>
+#include <fgb/harness/sweep.hpp>
+#include <fgb/harness/sweep_report.hpp>
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace fgb::harness {
+namespace {
+
+TEST(SweepGrid, ParsesAxes) {
+  const SweepAxis axis = parseVary("lighting.max_per_cluster=4,64");
+  EXPECT_EQ(axis.key, "lighting.max_per_cluster");
+  EXPECT_EQ(axis.values, (std::vector<std::string>{"4", "64"}));
+  EXPECT_EQ(parseVary("size=640x360,1280x720").values.size(), 2u);
+}
+
+TEST(SweepGrid, BadAxesAreInputErrorsNamingTheOption) {
+  for (const char* bad : {"msaa", "=1,2", "msaa=", "msaa=1,,4", "msaa=1,1", "msaa=3", "width=0", "size=640", "size=0x10",
+                          "height=abc"}) {
+    try {
+      parseVary(bad);
+      ADD_FAILURE() << bad << " was accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(std::string("--vary ") + bad), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(SweepGrid, FullGridFirstAxisSlowest) {
+  render::WorkloadConfig base;
+  base.scenePath = "s.json";
+  base.knobs = {{"post.exposure", "0.5"}};
+  const auto grid = expandGrid(base, {parseVary("msaa=1,4"), parseVary("bloom.mips=2,4,6")});
+  ASSERT_EQ(grid.size(), 6u);
+  EXPECT_EQ(grid[0].label, "msaa=1 bloom.mips=2");
+  EXPECT_EQ(grid[1].label, "msaa=1 bloom.mips=4");
+  EXPECT_EQ(grid[5].label, "msaa=4 bloom.mips=6");
+  EXPECT_EQ(grid[5].workload.msaa, 4u);
+  EXPECT_EQ(grid[5].workload.knobs.at("bloom.mips"), "6");
+  EXPECT_EQ(grid[5].workload.knobs.at("post.exposure"), "0.5");  // --set knobs kept
+  const auto sized = expandGrid(base, {parseVary("size=320x180,64x32")});
+  EXPECT_EQ(sized[1].workload.width, 64u);
+  EXPECT_EQ(sized[1].workload.height, 32u);
+}
+
+TEST(SweepGrid, BadGridsAreInputErrors) {
+  const render::WorkloadConfig base;
+  EXPECT_THROW(expandGrid(base, {}), InputError);
+  EXPECT_THROW(expandGrid(base, {parseVary("msaa=1,4"), parseVary("msaa=2")}), InputError);
+  EXPECT_THROW(expandGrid(base, {parseVary("size=64x32"), parseVary("width=32,64")}), InputError);
+  // 2^9 = 512 combinations: more than a sweep accepts.
+  std::vector<SweepAxis> axes;
+  for (char c = 'a'; c < 'a' + 9; ++c) axes.push_back(parseVary(std::string("k.") + c + "=0,1"));
+  EXPECT_THROW(expandGrid(base, axes), InputError);
+}
+
+TEST(SweepGrid, ReferenceIsTheHighestQualityAndSharedAcrossSpeedKnobs) {
+  render::WorkloadConfig a;
+  a.width = 320;
+  a.msaa = 1;
+  a.knobs = {{"lighting.max_per_cluster", "4"}, {"bloom.mips", "2"}, {"post.exposure", "0.7"}, {"render.path", "visbuffer"}};
+  render::WorkloadConfig b = a;
+  b.msaa = 4;
+  b.knobs.insert_or_assign("lighting.max_per_cluster", std::string("64"));
+  b.knobs.insert_or_assign("bloom.mips", std::string("6"));
+  const render::WorkloadConfig ra = referenceOf(a), rb = referenceOf(b);
+  EXPECT_EQ(ra.msaa, 8u);
+  EXPECT_EQ(ra.width, 320u);
+  EXPECT_EQ(ra.knobs.at("render.ssaa"), "4");
+  EXPECT_EQ(ra.knobs.at("lighting.mode"), "all");
+  EXPECT_EQ(ra.knobs.at("bloom.mips"), "10");
+  EXPECT_EQ(ra.knobs.at("post.exposure"), "0.7");  // content knobs stay
+  EXPECT_EQ(ra.knobs.count("lighting.max_per_cluster"), 0u);
+  EXPECT_EQ(ra.knobs.count("render.path"), 0u);
+  EXPECT_EQ(ra.knobs, rb.knobs);
+}
+
+TEST(SweepGrid, SweepFileRoundTripAndErrors) {
+  const auto dir = std::filesystem::temp_directory_path() / "fgb-sweep-file-test";
+  std::filesystem::create_directories(dir);
+  const auto good = dir / "good.json";
+  std::ofstream(good) << R"({"schema": 1, "description": "d", "vary": [{"key": "msaa", "values": [1, 4]},
+                          {"key": "render.path", "values": ["forward"]}], "set": {"bloom.mips": 3}, "width": 64})";
+  const SweepFile file = loadSweepFile(good);
+  ASSERT_EQ(file.axes.size(), 2u);
+  EXPECT_EQ(file.axes[0].values, (std::vector<std::string>{"1", "4"}));
+  EXPECT_EQ(file.knobs.at("bloom.mips"), "3");
+  EXPECT_EQ(file.width, 64u);
+  const auto bad = dir / "bad.json";
+  std::ofstream(bad) << R"({"schema": 1, "vary": [{"key": "msaa", "values": [3]}]})";
+  try {
+    loadSweepFile(bad);
+    ADD_FAILURE() << "msaa=3 accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.json"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove_all(dir);
+}
+
+// A workload whose frame time grows with MSAA and whose image approaches the reference's (msaa 8,
+// value 0.5) except for msaa 2, which is both slower than msaa 1 and further off: dominated.
+class GridWorkload : public render::Workload {
+ public:
+  explicit GridWorkload(const render::WorkloadConfig& c, std::vector<std::string>& log) : config_(c), log_(log) {
+    device_.name = "fake";
+    device_.type = "cpu";
+  }
+  const render::DeviceDescription& device() const override { return device_; }
+  render::FrameTiming renderFrame() override {
+    log_.push_back(std::to_string(config_.msaa));
+    render::FrameTiming t;
+    const double jitter = 0.01 * static_cast<double>(frame_++ % 7);
+    t.passes.push_back({"Draw", "graphics", false, config_.msaa + jitter, 0.0});
+    t.gpuFrameMs = config_.msaa + jitter;
+    return t;
+  }
+  std::vector<render::FrameTiming> finish() override { return {}; }
+  render::ImageRGBA32F readHdr() override { return image(value() * 4.0f); }
+  render::ImageRGBA32F readDisplay() override { return image(value()); }
+  std::string graphviz(render::GraphDetail) const override { return ""; }
+  std::map<std::string, double> stats() const override { return {{"msaa", config_.msaa}}; }
+  uint64_t validationMessages() const override { return 0; }
+
+ private:
+  float value() const {
+    switch (config_.msaa) {
+      case 1: return 0.40f;
+      case 2: return 0.30f;
+      case 4: return 0.49f;
+      default: return 0.50f;
+    }
+  }
+  static render::ImageRGBA32F image(float v) {
+    render::ImageRGBA32F img{32, 16, {}};
+    img.pixels.assign(32 * 16 * 4, v);
+    for (std::size_t i = 3; i < img.pixels.size(); i += 4) img.pixels[i] = 1.0f;
+    return img;
+  }
+  render::WorkloadConfig config_;
+  render::DeviceDescription device_;
+  std::vector<std::string>& log_;
+  uint32_t frame_ = 0;
+};
+
+SweepPlan gridPlan() {
+  render::WorkloadConfig base;
+  base.scenePath = "grid.json";
+  SweepPlan plan;
+  plan.scene = base.scenePath;
+  plan.configurations = expandGrid(base, {parseVary("msaa=1,2,4")});
+  plan.warmup = 3;
+  plan.frames = 24;
+  plan.roundFrames = 8;
+  plan.rewarmFrames = 0;
+  return plan;
+}
+
+TEST(Sweep, MeasuresInterleavedRoundsAndFindsTheFront) {
+  std::vector<std::string> log;
+  std::vector<render::WorkloadConfig> opened;
+  const WorkloadOpener open = [&](const render::WorkloadConfig& c) {
+    opened.push_back(c);
+    return std::make_unique<GridWorkload>(c, log);
+  };
+  const SweepResult result = runSweep(open, gridPlan());
+  // Three configurations, then one reference rendered twice.
+  ASSERT_EQ(opened.size(), 5u);
+  EXPECT_EQ(opened[3].msaa, 8u);
+  EXPECT_EQ(opened[3].knobs.at("render.ssaa"), "4");
+  ASSERT_EQ(result.references.size(), 1u);
+  EXPECT_TRUE(result.references[0].identical);
+  EXPECT_EQ(result.errorFloor, 0.0);
+  EXPECT_EQ(result.rounds, 3u);  // 24 frames in rounds of 8
+  // Rounds interleave: the log after warm-up holds 3 rounds x 3 blocks of 8 frames of one config.
+  const std::size_t warm = 3 * 3 + 2 * 2;  // 3 warm-up frames per config, 2 image frames per reference render
+  ASSERT_EQ(log.size(), warm + 3 * 24);
+  for (int round = 0; round < 3; ++round) {
+    std::vector<std::string> blocks;
+    for (int b = 0; b < 3; ++b) blocks.push_back(log[warm + (round * 3 + b) * 8]);
+    std::sort(blocks.begin(), blocks.end());
+    EXPECT_EQ(blocks, (std::vector<std::string>{"1", "2", "4"})) << "round " << round;
+  }
+  const auto& c = result.configurations;
+  ASSERT_EQ(c.size(), 3u);
+  EXPECT_EQ(c[0].run.frameGpuMs.size(), 24u);
+  EXPECT_GT(c[1].display.flip->mean, c[0].display.flip->mean);
+  EXPECT_GT(c[0].display.flip->mean, c[2].display.flip->mean);
+  EXPECT_TRUE(c[0].onFront);   // fastest
+  EXPECT_FALSE(c[1].onFront);  // slower and worse than msaa 1
+  EXPECT_EQ(c[1].dominatedBy, (std::vector<std::size_t>{0}));
+  EXPECT_TRUE(c[2].onFront);   // most accurate
+  EXPECT_EQ(frontByTime(result), (std::vector<std::size_t>{0, 2}));
+}
+
+TEST(Sweep, OrderOfEachRoundFollowsTheSeed) {
+  auto firstBlocks = [](uint64_t seed) {
+    std::vector<std::string> log;
+    const WorkloadOpener open = [&](const render::WorkloadConfig& c) { return std::make_unique<GridWorkload>(c, log); };
+    SweepPlan plan = gridPlan();
+    plan.seed = seed;
+    runSweep(open, plan);
+    std::string order;
+    for (std::size_t i = 13; i < log.size(); i += 8) order += log[i];
+    return order;
+  };
+  EXPECT_EQ(firstBlocks(7), firstBlocks(7));
+  bool someDiffer = false;
+  for (uint64_t seed = 1; seed < 6 && !someDiffer; ++seed) someDiffer = firstBlocks(seed) != firstBlocks(seed + 10);
+  EXPECT_TRUE(someDiffer);
+}
+
+TEST(Sweep, OutputsCarryTheFrontAndInlineEverything) {
+  std::vector<std::string> log;
+  const WorkloadOpener open = [&](const render::WorkloadConfig& c) { return std::make_unique<GridWorkload>(c, log); };
+  SweepResult result = runSweep(open, gridPlan());
+  result.axes = {parseVary("msaa=1,2,4")};
+  const nlohmann::json j = sweepJson(result);
+  EXPECT_EQ(j["schema"], kSweepSchema);
+  EXPECT_EQ(j["front"], (nlohmann::json{"msaa=1", "msaa=4"}));
+  EXPECT_EQ(j["configurations"][1]["dominated_by"], (nlohmann::json{"msaa=1"}));
+  EXPECT_EQ(j["configurations"][0]["frame_gpu_ms"]["n"], 24);
+  EXPECT_TRUE(j["references"][0]["repeat_identical"].get<bool>());
+  const std::string csv = sweepCsv(result);
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 4);
+  const std::string html = sweepHtml(result);
+  EXPECT_EQ(html.find("<script"), std::string::npos);
+  EXPECT_EQ(html.find("src=\"http"), std::string::npos);
+  // 1 reference + 3 frames + 3 heat maps, all inline.
+  std::size_t images = 0;
+  for (auto at = html.find("data:image/png;base64,"); at != std::string::npos; at = html.find("data:image/png;base64,", at + 1)) ++images;
+  EXPECT_EQ(images, 7u);
+  EXPECT_NE(timeErrorSvg(result).find("polyline"), std::string::npos);
+  EXPECT_NE(sweepTable(result).find("* msaa=1"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace fgb::harness

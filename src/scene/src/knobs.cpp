@@ -30,7 +30,7 @@ const std::vector<std::string>& Knobs::knownKeys() {
       "camera.fov",         "camera.near",          "camera.far",          "camera.position", "camera.target",
       "post.exposure",      "post.bloom",           "post.bloom_threshold", "post.bloom_knee",
       "post.bloom_intensity", "post.bloom_radius",  "scene.lights",        "scene.particles", "scene.sun",
-      "scene.light_scale",  "scene.emissive_scale"};
+      "scene.light_scale",  "scene.emissive_scale", "scene.offset"};
   return keys;
 }
 
@@ -64,6 +64,8 @@ Knobs Knobs::parse(const std::vector<std::string>& assignments) {
       (void)knobs.numberOr(key, key == "camera.far" ? "inf" : "auto");
     } else if (key == "scene.light_scale" || key == "scene.emissive_scale") {
       (void)knobs.scale(key);
+    } else if (key == "scene.offset") {
+      (void)knobs.number(key);
     } else if (key == "post.bloom" || key.starts_with("scene.")) {
       (void)knobs.flag(key);
     } else {

@@ -9,8 +9,9 @@
 namespace fgb::features {
 namespace {
 
-constexpr std::array<std::string_view, 6> kKeys = {"debug.view",        "render.depth_prepass", "lighting.slices",
-                                                   "lighting.max_per_cluster", "bloom.mips", "particles.seed"};
+constexpr std::array<std::string_view, 7> kKeys = {"debug.view",      "render.depth_prepass",     "lighting.slices",
+                                                   "lighting.max_per_cluster", "bloom.mips", "particles.seed",
+                                                   "render.path"};
 
 [[noreturn]] void badValue(const std::string& key, const std::string& value, const char* expected) {
   throw InputError("--set " + key + "=" + value + ": expected " + expected);
@@ -39,6 +40,12 @@ DebugView parseDebugView(const std::string& key, const std::string& value) {
   badValue(key, value, "none|light-complexity");
 }
 
+RenderPath parseRenderPath(const std::string& key, const std::string& value) {
+  if (value == "forward") return RenderPath::Forward;
+  if (value == "visbuffer") return RenderPath::VisBuffer;
+  badValue(key, value, "forward|visbuffer");
+}
+
 }  // namespace
 
 bool isRendererKnob(const std::string& key) {
@@ -64,6 +71,7 @@ void applyRendererKnobs(RenderSettings& settings, const std::map<std::string, st
       throw InputError("--set " + key + "=" + value + ": unknown renderer knob (known: " + known + ")");
     }
     if (key == "debug.view") settings.debugView = parseDebugView(key, value);
+    else if (key == "render.path") settings.renderPath = parseRenderPath(key, value);
     else if (key == "render.depth_prepass") settings.depthPrepass = parseFlag(key, value);
     else if (key == "lighting.slices") settings.clusterSlices = parseCount(key, value, 1, 64);
     else if (key == "lighting.max_per_cluster") settings.maxLightsPerCluster = parseCount(key, value, 1, 1024);

@@ -10,10 +10,16 @@ namespace fgb::features {
 
 enum class DebugView : uint8_t { None, LightComplexity };
 
+// render.path: which features draw the opaque scene. Forward (the thesis' renderer) rasterises it
+// in "Mesh Render"; VisBuffer culls clusters and triangles, rasterises ids in compute and shades
+// from the visibility buffer (features/visbuffer).
+enum class RenderPath : uint8_t { Forward, VisBuffer };
+
 struct RenderSettings {
   uint32_t width = 640;
   uint32_t height = 360;
   uint32_t msaa = 1;
+  RenderPath renderPath = RenderPath::Forward;  // render.path = forward | visbuffer
   bool depthPrepass = false;          // render.depth_prepass
   DebugView debugView = DebugView::None;  // debug.view = none | light-complexity
   uint32_t clusterSlices = 24;        // lighting.slices

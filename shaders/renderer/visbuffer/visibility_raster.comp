@@ -1,0 +1,103 @@
+#version 460
+// "Visibility Raster": writes (depth key << 32 | id) into the visibility buffer with a 64-bit
+// atomic max per covered pixel centre. Two dispatches of this shader in one node: small triangles
+// (one invocation each walks its at most 8x8 pixel centres) and the tiles of large triangles (one
+// workgroup per 8x8-pixel tile, one invocation per pixel; the tile's triangle is found by binary
+// search over the large list's first-job offsets). Projected triangles use 8-bit sub-pixel
+// integer edge functions with the top-left rule; those crossing the eye plane or the guard band
+// use homogeneous edge functions. Depth outside [0, 1] is clipped per pixel, like the hardware's
+// depth clipping, and alpha-masked materials are tested per pixel.
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_nonuniform_qualifier : require
+#include "../include/visbuffer_material.glsl"
+
+layout(local_size_x = 64) in;
+
+struct RasterTriangle {
+  ScreenTriangle screen;
+  EdgeSetup edges;
+  BarycentricFrame frame;  // homogeneous path and alpha test
+  uvec3 vertices;
+  bool masked;
+  Material material;
+  uint id;
+};
+
+RasterTriangle loadTriangle(uint id) {
+  RasterTriangle r;
+  r.id = id;
+  uint drawIndex = fgbUintsRead[pc.visible].values[id >> kClusterTriangleBits];
+  VisTriangle tri = visTriangle(drawIndex, id & ((1u << kClusterTriangleBits) - 1u), pc.draws, pc.clusters, pc.indices);
+  Instance inst = fgbInstances[pc.instances].instances[tri.instance];
+  r.vertices = tri.vertices;
+  r.screen = setupTriangle(inst.model, tri.vertices);
+  if (r.screen.projected) r.edges = edgeSetup(r.screen);
+  r.masked = (tri.flags & kDrawAlphaMasked) != 0u;
+  if (r.masked) r.material = fgbMaterials[pc.materials].materials[inst.material];
+  if (r.masked || !r.screen.projected)
+    r.frame = barycentricFrame(r.screen.clip[0], r.screen.clip[1], r.screen.clip[2], viewportSize());
+  return r;
+}
+
+bool alphaPasses(RasterTriangle r, ivec2 pixel) {
+  vec3 b, dbdx, dbdy;
+  barycentricsAt(r.frame, pixelNdc(uvec2(pixel), viewportSize()), b, dbdx, dbdy);
+  vec2 uv = interpolateUv(r.vertices, b, dbdx, dbdy);
+  return surfaceBaseColor(r.material, uv).a >= r.material.alphaCutoff;
+}
+
+void rasterPixel(RasterTriangle r, ivec2 pixel) {
+  float z;
+  if (r.screen.projected) {
+    vec3 w = coverage(r.edges, r.screen, pixel);
+    if (w.x < 0.0) return;
+    vec3 ndcZ = vec3(r.screen.clip[0].z / r.screen.clip[0].w, r.screen.clip[1].z / r.screen.clip[1].w,
+                     r.screen.clip[2].z / r.screen.clip[2].w);
+    z = dot(w, ndcZ);
+  } else {
+    vec3 e = r.frame.inverse * vec3(pixelNdc(uvec2(pixel), viewportSize()), 1.0);
+    if (e.x < 0.0 || e.y < 0.0 || e.z < 0.0 || e.x + e.y + e.z <= 0.0) return;
+    z = dot(e, vec3(r.screen.clip[0].z, r.screen.clip[1].z, r.screen.clip[2].z));
+  }
+  if (!(z >= 0.0 && z <= 1.0)) return;  // depth clipping (also drops NaN)
+  if (r.masked && !alphaPasses(r, pixel)) return;
+  uint index = uint(pixel.y) * uint(viewportSize().x) + uint(pixel.x);
+  atomicMax(visWords[pc.words].words[index], (uint64_t(depthKey(z, reversedZ())) << 32) | uint64_t(r.id));
+}
+
+void rasterSmall() {
+  uint slot = linearGroup() * gl_WorkGroupSize.x + gl_LocalInvocationID.x;
+  if (slot >= visCountersRead[pc.args].c.smallTriangles) return;
+  RasterTriangle r = loadTriangle(fgbUintsRead[pc.smallList].values[slot]);
+  for (int y = r.screen.pixels.y; y <= r.screen.pixels.w; ++y)
+    for (int x = r.screen.pixels.x; x <= r.screen.pixels.z; ++x) rasterPixel(r, ivec2(x, y));
+}
+
+// The large triangle whose tiles include job `job`: the last entry with firstJob <= job.
+uint largeEntryOf(uint job) {
+  uint lo = 0u, hi = min(visCountersRead[pc.args].c.largeTriangles, pc.largeCapacity);
+  while (hi - lo > 1u) {
+    uint mid = (lo + hi) / 2u;
+    if (visUvec4sRead[pc.largeList].values[mid].w <= job) lo = mid;
+    else hi = mid;
+  }
+  return lo;
+}
+
+void rasterTile() {
+  uint job = linearGroup();
+  if (job >= visCountersRead[pc.args].c.tileJobs) return;
+  uvec4 entry = visUvec4sRead[pc.largeList].values[largeEntryOf(job)];
+  uint local = job - entry.w;
+  uint tilesX = entry.z & 0xffffu;
+  uvec2 tile = uvec2(entry.y & 0xffffu, entry.y >> 16) + uvec2(local % tilesX, local / tilesX);
+  ivec2 pixel = ivec2(tile * kTileSize + uvec2(gl_LocalInvocationID.x % kTileSize, gl_LocalInvocationID.x / kTileSize));
+  RasterTriangle r = loadTriangle(entry.x);
+  if (any(lessThan(pixel, r.screen.pixels.xy)) || any(greaterThan(pixel, r.screen.pixels.zw))) return;
+  rasterPixel(r, pixel);
+}
+
+void main() {
+  if ((pc.flags & kFlagLargeTiles) != 0u) rasterTile();
+  else rasterSmall();
+}

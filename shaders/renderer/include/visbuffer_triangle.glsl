@@ -51,11 +51,19 @@ struct ScreenTriangle {
   ivec4 pixels;        // covered pixel-centre range x0, y0, x1, y1 (inclusive; empty if x0 > x1)
 };
 
-vec2 viewportSize() { return fgbFrames[pc.frame].frame.viewport.xy; }
+// The frame's view-projection and viewport, loaded once per invocation (loadFrameGlobals()).
+mat4 gViewProj;
+vec2 gViewport;
+void loadFrameGlobals() {
+  gViewProj = fgbFrames[pc.frame].frame.viewProj;
+  gViewport = fgbFrames[pc.frame].frame.viewport.xy;
+}
+
+vec2 viewportSize() { return gViewport; }
 
 vec4 clipPosition(mat4 model, uint vertex) {
   vec4 world = model * vec4(fetchVec3(pc.vertices, pc.positions, vertex), 1.0);
-  return fgbFrames[pc.frame].frame.viewProj * world;  // the same operations as forward.vert
+  return gViewProj * world;  // the same operations as forward.vert
 }
 
 // Screen position (pixels, y down as the viewport transform makes it) of a clip-space point.

@@ -16,6 +16,7 @@ layout(set = 0, binding = FGB_BINDING_STORAGE_TEXTURES, rgba16f) uniform writeon
 vec3 interpolate3(vec3 a, vec3 b, vec3 c, vec3 w) { return a * w.x + b * w.y + c * w.z; }
 
 void main() {
+  loadFrameGlobals();
   uvec2 pixel = gl_GlobalInvocationID.xy;
   uvec2 size = uvec2(viewportSize());
   if (any(greaterThanEqual(pixel, size))) return;

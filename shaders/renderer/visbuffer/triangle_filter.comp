@@ -36,6 +36,7 @@ void appendLarge(uint id, ivec4 pixels) {
 }
 
 void main() {
+  loadFrameGlobals();
   uint clusterSlot = linearGroup();
   if (clusterSlot >= visCountersRead[pc.args].c.visibleClusters) return;
   uint drawIndex = fgbUintsRead[pc.visible].values[clusterSlot];

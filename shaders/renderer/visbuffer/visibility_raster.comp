@@ -84,20 +84,29 @@ uint largeEntryOf(uint job) {
   return lo;
 }
 
+// One invocation finds the tile's triangle and sets it up for the whole workgroup.
+shared RasterTriangle sTriangle;
+shared uvec2 sTile;
+
 void rasterTile() {
   uint job = linearGroup();
-  if (job >= visCountersRead[pc.args].c.tileJobs) return;
-  uvec4 entry = visUvec4sRead[pc.largeList].values[largeEntryOf(job)];
-  uint local = job - entry.w;
-  uint tilesX = entry.z & 0xffffu;
-  uvec2 tile = uvec2(entry.y & 0xffffu, entry.y >> 16) + uvec2(local % tilesX, local / tilesX);
-  ivec2 pixel = ivec2(tile * kTileSize + uvec2(gl_LocalInvocationID.x % kTileSize, gl_LocalInvocationID.x / kTileSize));
-  RasterTriangle r = loadTriangle(entry.x);
+  if (job >= visCountersRead[pc.args].c.tileJobs) return;  // uniform across the workgroup
+  if (gl_LocalInvocationIndex == 0u) {
+    uvec4 entry = visUvec4sRead[pc.largeList].values[largeEntryOf(job)];
+    uint local = job - entry.w;
+    uint tilesX = entry.z & 0xffffu;
+    sTile = uvec2(entry.y & 0xffffu, entry.y >> 16) + uvec2(local % tilesX, local / tilesX);
+    sTriangle = loadTriangle(entry.x);
+  }
+  barrier();
+  RasterTriangle r = sTriangle;
+  ivec2 pixel = ivec2(sTile * kTileSize + uvec2(gl_LocalInvocationID.x % kTileSize, gl_LocalInvocationID.x / kTileSize));
   if (any(lessThan(pixel, r.screen.pixels.xy)) || any(greaterThan(pixel, r.screen.pixels.zw))) return;
   rasterPixel(r, pixel);
 }
 
 void main() {
+  loadFrameGlobals();
   if ((pc.flags & kFlagLargeTiles) != 0u) rasterTile();
   else rasterSmall();
 }

@@ -61,10 +61,12 @@ void loadFrameGlobals() {
 
 vec2 viewportSize() { return gViewport; }
 
-vec4 clipPosition(mat4 model, uint vertex) {
-  vec4 world = model * vec4(fetchVec3(pc.vertices, pc.positions, vertex), 1.0);
-  return gViewProj * world;  // the same operations as forward.vert
-}
+// Every visibility-buffer node transforms with the same model-view-projection product, so they
+// agree exactly on each triangle's clip positions (forward.vert's two products differ from it
+// only in rounding).
+mat4 modelViewProj(mat4 model) { return gViewProj * model; }
+
+vec4 clipPosition(mat4 mvp, uint vertex) { return mvp * vec4(fetchVec3(pc.vertices, pc.positions, vertex), 1.0); }
 
 // Screen position (pixels, y down as the viewport transform makes it) of a clip-space point.
 vec2 toScreen(vec4 c) { return (c.xy / c.w * 0.5 + 0.5) * viewportSize(); }
@@ -98,11 +100,11 @@ ivec4 clippedPixelRange(vec4 c[3]) {
   return pixelRange(lo, hi);
 }
 
-ScreenTriangle setupTriangle(mat4 model, uvec3 vertices) {
+ScreenTriangle setupTriangle(mat4 mvp, uvec3 vertices) {
   ScreenTriangle t;
-  t.clip[0] = clipPosition(model, vertices.x);
-  t.clip[1] = clipPosition(model, vertices.y);
-  t.clip[2] = clipPosition(model, vertices.z);
+  t.clip[0] = clipPosition(mvp, vertices.x);
+  t.clip[1] = clipPosition(mvp, vertices.y);
+  t.clip[2] = clipPosition(mvp, vertices.z);
   t.projected = true;
   vec2 lo = vec2(1e30), hi = vec2(-1e30);
   for (int i = 0; i < 3; ++i) {

@@ -32,7 +32,7 @@ void main() {
   uint drawIndex = fgbUintsRead[pc.visible].values[id >> kClusterTriangleBits];
   VisTriangle tri = visTriangle(drawIndex, id & ((1u << kClusterTriangleBits) - 1u), pc.draws, pc.clusters, pc.indices);
   Instance inst = fgbInstances[pc.instances].instances[tri.instance];
-  ScreenTriangle screen = setupTriangle(inst.model, tri.vertices);
+  ScreenTriangle screen = setupTriangle(modelViewProj(inst.model), tri.vertices);
   BarycentricFrame bf = barycentricFrame(screen.clip[0], screen.clip[1], screen.clip[2], vec2(size));
   vec3 b, dbdx, dbdy;
   barycentricsAt(bf, pixelNdc(pixel, vec2(size)), b, dbdx, dbdy);

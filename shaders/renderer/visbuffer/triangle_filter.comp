@@ -35,17 +35,35 @@ void appendLarge(uint id, ivec4 pixels) {
   visUvec4s[pc.largeList].values[slot] = uvec4(id, firstTile.x | (firstTile.y << 16), tiles.x | (tiles.y << 16), firstJob);
 }
 
+// What every invocation of the workgroup (one cluster of one instance) shares, loaded once.
+shared mat4 sModelViewProj;
+shared ClusterDraw sDraw;
+shared uint sFirstIndex;
+shared uint sTriangles;
+
 void main() {
-  loadFrameGlobals();
   uint clusterSlot = linearGroup();
-  if (clusterSlot >= visCountersRead[pc.args].c.visibleClusters) return;
-  uint drawIndex = fgbUintsRead[pc.visible].values[clusterSlot];
+  if (clusterSlot >= visCountersRead[pc.args].c.visibleClusters) return;  // uniform in the workgroup
+  if (gl_LocalInvocationIndex == 0u) {
+    loadFrameGlobals();
+    ClusterDraw draw = visDraws[pc.draws].draws[fgbUintsRead[pc.visible].values[clusterSlot]];
+    sDraw = draw;
+    sModelViewProj = modelViewProj(fgbInstances[pc.instances].instances[draw.instance].model);
+    sFirstIndex = visClusters[pc.clusters].clusters[draw.cluster].firstIndex;
+    sTriangles = visClusters[pc.clusters].clusters[draw.cluster].triangleCount;
+  }
+  barrier();
+  loadFrameGlobals();
   uint triangle = gl_LocalInvocationID.x;
-  ClusterDraw draw = visDraws[pc.draws].draws[drawIndex];
-  if (triangle >= visClusters[pc.clusters].clusters[draw.cluster].triangleCount) return;
-  VisTriangle tri = visTriangle(drawIndex, triangle, pc.draws, pc.clusters, pc.indices);
+  if (triangle >= sTriangles) return;
+  VisTriangle tri;
+  tri.instance = sDraw.instance;
+  tri.flags = sDraw.flags;
+  uint first = sFirstIndex + 3u * triangle;
+  tri.vertices = uvec3(fgbUintsRead[pc.indices].values[first], fgbUintsRead[pc.indices].values[first + 1u],
+                       fgbUintsRead[pc.indices].values[first + 2u]) + sDraw.firstVertex;
   if (tri.vertices.x == tri.vertices.y || tri.vertices.y == tri.vertices.z || tri.vertices.x == tri.vertices.z) return;
-  ScreenTriangle t = setupTriangle(fgbInstances[pc.instances].instances[tri.instance].model, tri.vertices);
+  ScreenTriangle t = setupTriangle(sModelViewProj, tri.vertices);
   if (t.clip[0].w <= 0.0 && t.clip[1].w <= 0.0 && t.clip[2].w <= 0.0) return;
   if (outsideFrustum(t.clip)) return;
   if (t.pixels.x > t.pixels.z || t.pixels.y > t.pixels.w) return;  // covers no pixel centre

@@ -28,12 +28,12 @@ RasterTriangle loadTriangle(uint id) {
   r.id = id;
   uint drawIndex = fgbUintsRead[pc.visible].values[id >> kClusterTriangleBits];
   VisTriangle tri = visTriangle(drawIndex, id & ((1u << kClusterTriangleBits) - 1u), pc.draws, pc.clusters, pc.indices);
-  Instance inst = fgbInstances[pc.instances].instances[tri.instance];
   r.vertices = tri.vertices;
-  r.screen = setupTriangle(inst.model, tri.vertices);
+  r.screen = setupTriangle(modelViewProj(fgbInstances[pc.instances].instances[tri.instance].model), tri.vertices);
   if (r.screen.projected) r.edges = edgeSetup(r.screen);
   r.masked = (tri.flags & kDrawAlphaMasked) != 0u;
-  if (r.masked) r.material = fgbMaterials[pc.materials].materials[inst.material];
+  if (r.masked)
+    r.material = fgbMaterials[pc.materials].materials[fgbInstances[pc.instances].instances[tri.instance].material];
   if (r.masked || !r.screen.projected)
     r.frame = barycentricFrame(r.screen.clip[0], r.screen.clip[1], r.screen.clip[2], viewportSize());
   return r;

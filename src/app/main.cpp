@@ -4,6 +4,7 @@
 
 #include <fgb/core/error.hpp>
 #include <fgb/graph/frame_graph.hpp>
+#include <fgb/scene/knobs.hpp>
 #ifdef FGBENCH_WITH_IMPORT
 #include <fgb/import/module_loader.hpp>
 #endif
@@ -39,8 +40,25 @@ void addCommonOptions(CLI::App& command, CommonOptions& options) {
                    "Enable Vulkan validation (+ synchronization validation); any message fails with exit 3");
 }
 
+const KnobRegistry& knobRegistry() {
+  static const KnobRegistry registry = [] {
+    KnobRegistry r;
+    r.add(scene::knobSpecs());
+    r.add(render::rendererKnobSpecs());
+    return r;
+  }();
+  return registry;
+}
+
+std::map<std::string, std::string> checkedKnobs(const std::vector<std::string>& assignments) {
+  auto knobs = splitKnobAssignments(assignments);
+  knobRegistry().checkAll(knobs);
+  return knobs;
+}
+
 render::WorkloadConfig workloadConfig(const std::string& scene, const CommonOptions& common,
                                       const std::map<std::string, std::string>& knobs) {
+  knobRegistry().checkAll(knobs);
   render::WorkloadConfig config;
   config.scenePath = scene;
   config.device = common.device;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <fgb/core/knob_registry.hpp>
 #include <fgb/renderer/workload.hpp>
 
 #include <functional>
@@ -33,7 +34,15 @@ struct CommonOptions {
 // Adds the common rendering options to a subcommand, bound to `options`.
 void addCommonOptions(CLI::App& command, CommonOptions& options);
 
-// The workload a rendering verb opens: SCENE plus the common options and the given knobs.
+// Every `--set` key the program knows: the scene layer's and the renderer's (fgb/core/knob_registry.hpp).
+const KnobRegistry& knobRegistry();
+
+// "key=value" assignments split and checked against knobRegistry(): InputError (exit 2) naming an
+// unknown key (and the known ones) or a value of the wrong type or out of range.
+std::map<std::string, std::string> checkedKnobs(const std::vector<std::string>& assignments);
+
+// The workload a rendering verb opens: SCENE plus the common options and the given knobs (checked
+// against knobRegistry() here, so knobs adopted from a golden's configuration are checked too).
 render::WorkloadConfig workloadConfig(const std::string& scene, const CommonOptions& common,
                                       const std::map<std::string, std::string>& knobs);
 

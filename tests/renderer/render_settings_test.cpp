@@ -54,7 +54,33 @@ TEST(RenderSettings, RenderPathDefaultsToForwardAndRejectsOthers) {
 
 TEST(RenderSettings, KnowsItsKeys) {
   EXPECT_TRUE(isRendererKnob("debug.view"));
+  EXPECT_TRUE(isRendererKnob("render.ssaa"));
+  EXPECT_TRUE(isRendererKnob("lighting.mode"));
   EXPECT_FALSE(isRendererKnob("post.exposure"));
+  for (const KnobSpec& spec : rendererKnobSpecs()) EXPECT_EQ(spec.owner, "renderer") << spec.key;
+}
+
+TEST(RenderSettings, SupersamplingScalesTheScenePassesOnly) {
+  RenderSettings settings;
+  settings.width = 320;
+  settings.height = 180;
+  applyRendererKnobs(settings, {{"render.ssaa", "3"}});
+  EXPECT_EQ(settings.ssaa, 3u);
+  EXPECT_EQ(settings.width, 320u);  // the output (bloom, tone mapping, frame.png) keeps its size
+  EXPECT_EQ(settings.sceneWidth(), 960u);
+  EXPECT_EQ(settings.sceneHeight(), 540u);
+  EXPECT_THROW(applyRendererKnobs(settings, {{"render.ssaa", "5"}}), InputError);
+  EXPECT_THROW(applyRendererKnobs(settings, {{"render.ssaa", "0"}}), InputError);
+}
+
+TEST(RenderSettings, LightingMode) {
+  RenderSettings settings;
+  EXPECT_EQ(settings.lightingMode, LightingMode::Clustered);
+  applyRendererKnobs(settings, {{"lighting.mode", "all"}});
+  EXPECT_EQ(settings.lightingMode, LightingMode::All);
+  applyRendererKnobs(settings, {{"lighting.mode", "clustered"}});
+  EXPECT_EQ(settings.lightingMode, LightingMode::Clustered);
+  EXPECT_THROW(applyRendererKnobs(settings, {{"lighting.mode", "every"}}), InputError);
 }
 
 }  // namespace

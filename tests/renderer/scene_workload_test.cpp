@@ -24,18 +24,27 @@ struct Rendered {
 
 // Validation is off by default (it is slow); FGB_RENDERER_TEST_VALIDATION=1 turns it on for every
 // test. validation_test.cpp checks every quick scene under synchronization validation.
-Rendered render(const std::string& scene, std::map<std::string, std::string> knobs = {}, uint32_t frames = 2,
-                bool validation = false) {
+WorkloadConfig lavapipeConfig(const std::string& scene, std::map<std::string, std::string> knobs,
+                              bool validation = false) {
   WorkloadConfig config;
   config.scenePath = scene.starts_with("/") ? scene : kScenes + "/" + scene;  // absolute or ours
   config.device = "lavapipe";
   config.validation = validation || std::getenv("FGB_RENDERER_TEST_VALIDATION") != nullptr;
   config.knobs = std::move(knobs);
+  return config;
+}
+
+Rendered render(const WorkloadConfig& config, uint32_t frames) {
   Rendered result{openSceneWorkload(config), {}};
   for (uint32_t i = 0; i < frames; ++i) result.workload->renderFrame();
   const auto rest = result.workload->finish();
   if (!rest.empty()) result.passes = rest.back().passes;
   return result;
+}
+
+Rendered render(const std::string& scene, std::map<std::string, std::string> knobs = {}, uint32_t frames = 2,
+                bool validation = false) {
+  return render(lavapipeConfig(scene, std::move(knobs), validation), frames);
 }
 
 std::set<std::string> aliveNames(const std::vector<PassTiming>& passes) {
@@ -180,6 +189,119 @@ TEST(SceneWorkload, ParticlesAreDeterministicBySeedAndFrame) {
   EXPECT_EQ(imageA.pixels, b.workload->readHdr().pixels);
   EXPECT_NE(imageA.pixels, c.workload->readHdr().pixels);
   EXPECT_GT(meanOf(imageA), meanOf(render(kRepositoryScenes + "/empty.json", {}, 1).workload->readHdr()));
+}
+
+}  // namespace
+}  // namespace fgb::render
+
+// Supersampling (render.ssaa), lighting.mode and the reference configuration.
+namespace fgb::render {
+namespace {
+
+WorkloadConfig sized(WorkloadConfig config, uint32_t width, uint32_t height, uint32_t msaa) {
+  config.width = width;
+  config.height = height;
+  config.msaa = msaa;
+  return config;
+}
+
+// Pixels (of all four channels) where a and b differ by more than `relative` of the larger value
+// (and more than `absolute`).
+size_t differingValues(const ImageRGBA32F& a, const ImageRGBA32F& b, float relative, float absolute) {
+  size_t differing = 0;
+  for (size_t i = 0; i < a.pixels.size(); ++i) {
+    const float tolerance = std::max(absolute, relative * std::max(std::abs(a.pixels[i]), std::abs(b.pixels[i])));
+    differing += !(std::abs(a.pixels[i] - b.pixels[i]) <= tolerance);
+  }
+  return differing;
+}
+
+// The box filter the SSAA resolve documents: output pixel = mean of its factor x factor block.
+ImageRGBA32F boxDownsample(const ImageRGBA32F& image, uint32_t factor) {
+  ImageRGBA32F out{image.width / factor, image.height / factor, {}};
+  out.pixels.assign(size_t{out.width} * out.height * 4, 0.0f);
+  for (uint32_t y = 0; y < out.height; ++y)
+    for (uint32_t x = 0; x < out.width; ++x)
+      for (uint32_t c = 0; c < 4; ++c) {
+        float sum = 0.0f;
+        for (uint32_t dy = 0; dy < factor; ++dy)
+          for (uint32_t dx = 0; dx < factor; ++dx)
+            sum += image.pixels[((size_t{y} * factor + dy) * image.width + x * factor + dx) * 4 + c];
+        out.pixels[(size_t{y} * out.width + x) * 4 + c] = sum / float(factor * factor);
+      }
+  return out;
+}
+
+// A rendering's results, read before the next workload opens (each test holds one device at a time).
+struct Images {
+  std::set<std::string> passes;  // alive passes
+  ImageRGBA32F hdr;
+  ImageRGBA32F display;
+  uint64_t validationMessages = 0;
+  std::map<std::string, double> stats;
+};
+
+Images renderImages(const WorkloadConfig& config, uint32_t frames) {
+  const auto r = render(config, frames);
+  return {aliveNames(r.passes), r.workload->readHdr(), r.workload->readDisplay(), r.workload->validationMessages(),
+          r.workload->stats()};
+}
+
+// render.ssaa=2 at 160x90 must equal the scene rendered at 320x180, box-filtered 2x2: the scene
+// passes (meshes, particles) ran at twice the size, and the resolve is the documented filter.
+// Every light is shaded (lighting.mode=all) so the cluster tiling, which follows the output size,
+// cannot differ. Validation is on: the resolve node's accesses are checked too.
+TEST(Supersampling, ResolvesTheScenePassesRenderedAtTwiceTheSizeWithABoxFilter) {
+  const auto supersampled = renderImages(
+      sized(lavapipeConfig("atrium-small.json", {{"render.ssaa", "2"}, {"lighting.mode", "all"}}, true), 160, 90, 1), 1);
+  const auto large = renderImages(sized(lavapipeConfig("atrium-small.json", {{"lighting.mode", "all"}}), 320, 180, 1), 1);
+  const auto plain = renderImages(sized(lavapipeConfig("atrium-small.json", {{"lighting.mode", "all"}}), 160, 90, 1), 1);
+  EXPECT_EQ(supersampled.validationMessages, 0u);
+  EXPECT_TRUE(supersampled.passes.count("SSAA Resolve"));
+  EXPECT_FALSE(large.passes.count("SSAA Resolve"));
+
+  const auto& hdr = supersampled.hdr;
+  ASSERT_EQ(hdr.width, 160u);
+  ASSERT_EQ(hdr.height, 90u);
+  EXPECT_EQ(supersampled.display.width, 160u);  // bloom and tone mapping ran at the output size
+  const auto expected = boxDownsample(large.hdr, 2);
+  ASSERT_EQ(expected.pixels.size(), hdr.pixels.size());
+  EXPECT_GT(meanOf(hdr), 0.0);
+  // R16F keeps 11 significant bits: the resolve rounds its mean once (relative error <= 2^-11).
+  EXPECT_EQ(differingValues(hdr, expected, 1.0e-3f, 1.0e-5f), 0u);
+  // ... and is not trivially the 1x image: edges are smoother, so some pixels differ.
+  EXPECT_GT(differingValues(hdr, plain.hdr, 1.0e-2f, 1.0e-3f), hdr.pixels.size() / 100);
+}
+
+TEST(LightingMode, AllShadesEveryLightWithoutClusterPasses) {
+  const auto all = renderImages(lavapipeConfig("atrium-small.json", {{"lighting.mode", "all"}}), 1);
+  for (const auto& name : all.passes) EXPECT_FALSE(name.starts_with("Cluster")) << name;
+  EXPECT_TRUE(all.passes.count("Mesh Render"));
+
+  // Clustered lists that never overflow keep every light that reaches a fragment: same image up to
+  // the order of the sum (and the rare fragment on a cluster's edge).
+  const auto uncapped = renderImages(lavapipeConfig("atrium-small.json", {{"lighting.max_per_cluster", "1024"}}), 1);
+  EXPECT_LT(differingValues(all.hdr, uncapped.hdr, 1.0e-2f, 1.0e-3f), all.hdr.pixels.size() / 1000);
+  // With one light per cluster the clustered image loses light where lights overlap; `all` has no cap.
+  const auto capped = renderImages(lavapipeConfig("atrium-small.json", {{"lighting.max_per_cluster", "1"}}), 1);
+  ASSERT_GT(capped.stats.at("lights_per_cluster_max"), 1.0);
+  EXPECT_GT(differingValues(all.hdr, capped.hdr, 1.0e-2f, 1.0e-3f), all.hdr.pixels.size() / 100);
+}
+
+// The reference configuration (render.ssaa=4, lavapipe's largest MSAA 4, every light for every
+// pixel, the full bloom chain) renders bit-identically twice, under validation.
+TEST(Reference, TwoRendersAreBitIdentical) {
+  const std::map<std::string, std::string> reference = {
+      {"render.ssaa", "4"}, {"lighting.mode", "all"}, {"bloom.mips", "10"}};
+  const auto config = sized(lavapipeConfig("atrium-small.json", reference, true), 160, 90, 4);
+  const auto first = renderImages(config, 2);
+  const auto second = renderImages(config, 2);
+  EXPECT_EQ(first.validationMessages, 0u);
+  EXPECT_EQ(second.validationMessages, 0u);
+  EXPECT_TRUE(first.passes.count("SSAA Resolve"));
+  EXPECT_GT(meanOf(first.hdr), 0.0);
+  EXPECT_TRUE(first.hdr.pixels == second.hdr.pixels);
+  EXPECT_TRUE(first.display.pixels == second.display.pixels);
 }
 
 }  // namespace

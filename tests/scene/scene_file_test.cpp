@@ -96,8 +96,18 @@ TEST(Knobs, OwnedKeysAreValidatedOthersIgnored) {
     Knobs::parse({"atrium.sclae=2"});
     FAIL();
   } catch (const fgb::InputError& e) {
-    EXPECT_THAT(e.what(), AllOf(HasSubstr("atrium.sclae"), HasSubstr("unknown scene knob")));
+    EXPECT_THAT(e.what(), AllOf(HasSubstr("atrium.sclae"), HasSubstr("unknown knob"), HasSubstr("atrium.scale")));
   }
+  // Out of range (from knobSpecs()): one line saying what was expected.
+  try {
+    Knobs::parse({"camera.fov=200"});
+    FAIL();
+  } catch (const fgb::InputError& e) {
+    EXPECT_STREQ(e.what(), "--set camera.fov=200: expected a finite number in (0, 179)");
+  }
+  EXPECT_THROW(Knobs::parse({"camera.near=0"}), fgb::InputError);
+  EXPECT_THROW(Knobs::parse({"atrium.texture_size=2"}), fgb::InputError);
+  for (const fgb::KnobSpec& spec : knobSpecs()) EXPECT_EQ(spec.owner, "scene") << spec.key;
   EXPECT_THROW(Knobs::parse({"atrium.scale=big"}), fgb::InputError);
   EXPECT_THROW(Knobs::parse({"camera.position=1,2"}), fgb::InputError);
   EXPECT_THROW(Knobs::parse({"scene.lights=maybe"}), fgb::InputError);

@@ -1,6 +1,7 @@
 #include <fgb/harness/run_loop.hpp>
 
 #include <fgb/core/error.hpp>
+#include <fgb/core/knob_registry.hpp>
 
 #include <chrono>
 #include <map>
@@ -88,13 +89,7 @@ RunResult runBenchmark(render::Workload& workload, const RunOptions& options) {
 }
 
 std::map<std::string, std::string> parseKnobs(const std::vector<std::string>& assignments) {
-  std::map<std::string, std::string> knobs;
-  for (const auto& a : assignments) {
-    const auto eq = a.find('=');
-    if (eq == std::string::npos || eq == 0) throw InputError("--set " + a + ": expected key=value");
-    knobs[a.substr(0, eq)] = a.substr(eq + 1);
-  }
-  return knobs;
+  return splitKnobAssignments(assignments);
 }
 
 }  // namespace fgb::harness

@@ -6,6 +6,8 @@
 
 #if FGB_HAVE_SCENE_WORKLOAD
 #include <fgb/renderer/scene_workload.hpp>
+
+#include "features/context/render_settings.hpp"
 #endif
 
 namespace fgb::render {
@@ -19,6 +21,14 @@ std::unique_ptr<Workload> openWorkload(const WorkloadConfig& config) {
   return openSceneWorkload(config);
 #else
   throw InputError(config.scenePath + ": scene files are not supported by this build (only builtin:proof)");
+#endif
+}
+
+std::vector<KnobSpec> rendererKnobSpecs() {
+#if FGB_HAVE_SCENE_WORKLOAD
+  return features::rendererKnobSpecs();
+#else
+  return {};  // builtin:proof has no knobs
 #endif
 }
 

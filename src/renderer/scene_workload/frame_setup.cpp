@@ -42,14 +42,18 @@ features::FrameConstantsGpu makeFrameConstants(const scene::Scene& scene, const 
     c.sunDirection = glm::vec4(glm::normalize(scene.sun.direction), 1.0f);
     c.sunColor = glm::vec4(scene.sun.color * scene.sun.intensity, 0.0f);
   }
-  c.viewport = {float(settings.width), float(settings.height), 1.0f / float(settings.width),
-                1.0f / float(settings.height)};
+  // The scene passes' size (render.ssaa times the output): clusters tile the supersampled image.
+  const uint32_t width = settings.sceneWidth();
+  const uint32_t height = settings.sceneHeight();
+  c.viewport = {float(width), float(height), 1.0f / float(width), 1.0f / float(height)};
   // Exponential slices z = near * (far/near)^(slice/slices)  <=>  slice = log(z)*scale + bias.
   const float logRatio = std::log(camera.farPlane / camera.nearPlane);
   const auto slices = float(settings.clusterSlices);
   c.depthRange = {camera.nearPlane, camera.farPlane, slices / logRatio, -slices * std::log(camera.nearPlane) / logRatio};
-  c.clusterGrid = {(settings.width + kTileSize - 1) / kTileSize, (settings.height + kTileSize - 1) / kTileSize,
-                   settings.clusterSlices, kTileSize};
+  // Tiles cover the same screen area at any render.ssaa (kTileSize output pixels), so SSAA changes
+  // neither the cluster count (nor the dispatch size) nor which lights a screen region keeps.
+  const uint32_t tile = kTileSize * settings.ssaa;
+  c.clusterGrid = {(width + tile - 1) / tile, (height + tile - 1) / tile, settings.clusterSlices, tile};
   c.counts = {uint32_t(scene.lights.size()), uint32_t(scene.instances.size()), settings.maxLightsPerCluster,
               settings.debugView == features::DebugView::LightComplexity ? 1u : 0u};
   c.ambient = {0.03f, 0.03f, 0.035f, 0.0f};

@@ -1,6 +1,6 @@
 // Render paths: which features a frame is composed of, per render.path. Both paths share the
-// scene data, lights ("Clustered Light Cull"), transparent meshes, particles, bloom, tone mapping
-// and the light-complexity debug view; they differ in what draws the opaque scene:
+// scene data, lights ("Clustered Light Cull"), transparent meshes, particles, SSAA resolve, bloom,
+// tone mapping and the light-complexity debug view; they differ in what draws the opaque scene:
 //   forward:   "Mesh Frustum Cull" + "Mesh Render" (graphics, the thesis' renderer);
 //   visbuffer: the compute nodes of features/visbuffer, then the forward passes for the rest.
 #pragma once

@@ -165,10 +165,17 @@ class SceneWorkload final : public Workload {
     displayTexture_ = device_->createTexture({"display", features::kDisplayFormat, extent, 1, 1, 1,
                                               rhi::kTextureColorAttachment | rhi::kTextureTransferSrc});
     FrameTargets targets;
-    targets.extent = extent;
+    targets.outputExtent = extent;
+    targets.extent = {settings_.sceneWidth(), settings_.sceneHeight(), 1};
     targets.samples = settings_.msaa;
-    targets.hdr = graph.importTexture("hdr", {features::kHdrFormat, extent, 1, 1, 1, {}, 0},
-                                      rhi::external(hdrTexture_), kDiscard, kHdrFinal);
+    const graph::TextureHandle hdr = graph.importTexture("hdr", {features::kHdrFormat, extent, 1, 1, 1, {}, 0},
+                                                         rhi::external(hdrTexture_), kDiscard, kHdrFinal);
+    if (settings_.ssaa == 1) {
+      targets.hdr = hdr;
+    } else {
+      targets.outputHdr = hdr;
+      targets.hdr = graph.createTexture("hdr ssaa", {features::kHdrFormat, targets.extent, 1, 1, 1, {}, 0});
+    }
     targets.display = graph.importTexture("display", {features::kDisplayFormat, extent, 1, 1, 1, {}, 0},
                                           rhi::external(displayTexture_), kDiscard, kDisplayFinal);
     targets.color = settings_.msaa == 1
@@ -197,7 +204,7 @@ class SceneWorkload final : public Workload {
     rhi::GraphOptions options;
     options.name = "frame";
     graph_ = device_->compile(std::move(graph), options);
-    const graph::Extent extent = targets.extent;
+    const graph::Extent extent = targets.outputExtent;
     hdrReadback_ = std::make_unique<ImageReadback>(*device_, hdrTexture_, features::kHdrFormat, extent, kHdrFinal);
     displayReadback_ =
         std::make_unique<ImageReadback>(*device_, displayTexture_, features::kDisplayFormat, extent, kDisplayFinal);

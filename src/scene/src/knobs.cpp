@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <limits>
 
 namespace fgb::scene {
 namespace {
@@ -22,14 +23,67 @@ std::optional<double> parseNumber(std::string_view text) {
   return value;
 }
 
+KnobSpec number(std::string key, double min, double max, bool minExclusive, std::string help) {
+  KnobSpec spec{std::move(key), KnobType::Number, min, max, minExclusive, false, {}, "scene", std::move(help)};
+  return spec;
+}
+KnobSpec integer(std::string key, double min, double max, std::string help) {
+  return {std::move(key), KnobType::Integer, min, max, false, false, {}, "scene", std::move(help)};
+}
+KnobSpec typed(std::string key, KnobType type, std::string help) {
+  KnobSpec spec;
+  spec.key = std::move(key);
+  spec.type = type;
+  spec.owner = "scene";
+  spec.help = std::move(help);
+  return spec;
+}
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+const KnobRegistry& sceneRegistry() {
+  static const KnobRegistry registry = [] {
+    KnobRegistry r;
+    r.add(knobSpecs());
+    return r;
+  }();
+  return registry;
+}
+
 }  // namespace
 
+std::vector<KnobSpec> knobSpecs() {
+  KnobSpec fov = number("camera.fov", 0.0, 179.0, true, "vertical field of view, degrees");
+  fov.maxExclusive = true;
+  return {
+      number("atrium.scale", 0.0, 1000.0, true, "geometry density multiplier"),
+      integer("atrium.seed", 0, 1000000, "atrium layout seed"),
+      integer("atrium.texture_size", 4, 4096, "procedural texture size (a power of two)"),
+      number("stress.offset", -kInf, kInf, false, "stress-far: distance of the scene from the origin, m"),
+      integer("stress.seed", 0, 1000000, "stress scenes' seed"),
+      fov,
+      number("camera.near", 0.0, kInf, true, "near plane, m"),
+      number("camera.far", 0.0, kInf, true, "far plane, m"),
+      typed("camera.position", KnobType::Vec3, "camera position x,y,z"),
+      typed("camera.target", KnobType::Vec3, "camera target x,y,z"),
+      number("post.exposure", 0.0, kInf, true, "tone-mapping exposure"),
+      typed("post.bloom", KnobType::Flag, "bloom on/off"),
+      number("post.bloom_threshold", 0.0, kInf, false, "bloom threshold"),
+      number("post.bloom_knee", 0.0, kInf, false, "bloom soft knee"),
+      number("post.bloom_intensity", 0.0, kInf, false, "bloom intensity"),
+      number("post.bloom_radius", 0.0, kInf, true, "bloom upsample radius"),
+      typed("scene.lights", KnobType::Flag, "0 drops the point lights"),
+      typed("scene.particles", KnobType::Flag, "0 drops the particle emitters"),
+      typed("scene.sun", KnobType::Flag, "sun on/off"),
+  };
+}
+
 const std::vector<std::string>& Knobs::knownKeys() {
-  static const std::vector<std::string> keys = {
-      "atrium.scale",       "atrium.seed",          "atrium.texture_size", "stress.offset",  "stress.seed",
-      "camera.fov",         "camera.near",          "camera.far",          "camera.position", "camera.target",
-      "post.exposure",      "post.bloom",           "post.bloom_threshold", "post.bloom_knee",
-      "post.bloom_intensity", "post.bloom_radius",  "scene.lights",        "scene.particles", "scene.sun"};
+  static const std::vector<std::string> keys = [] {
+    std::vector<std::string> list;
+    for (const KnobSpec& spec : knobSpecs()) list.push_back(spec.key);
+    return list;
+  }();
   return keys;
 }
 
@@ -40,30 +94,12 @@ bool Knobs::ownedByScene(std::string_view key) {
 
 Knobs Knobs::parse(const std::vector<std::string>& assignments) {
   Knobs knobs;
-  for (const std::string& assignment : assignments) {
-    const size_t equals = assignment.find('=');
-    if (equals == std::string::npos || equals == 0) {
-      throw InputError("--set " + assignment + ": expected key=value");
-    }
-    std::string key = assignment.substr(0, equals);
+  // Every value is checked now (type and range, from knobSpecs()), so a bad one fails before any
+  // work starts; keys outside the scene's prefixes belong to other layers and are left to them.
+  for (const auto& [key, value] : splitKnobAssignments(assignments)) {
     if (!ownedByScene(key)) continue;
-    const auto& known = knownKeys();
-    if (std::find(known.begin(), known.end(), key) == known.end()) {
-      std::string list;
-      for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
-      throw InputError("--set " + assignment + ": unknown scene knob '" + key + "' (known: " + list + ")");
-    }
-    knobs.values_[key] = assignment.substr(equals + 1);
-  }
-  // Parse every value now, so a malformed one fails before any work starts.
-  for (const auto& [key, value] : knobs.values_) {
-    if (key == "camera.position" || key == "camera.target") {
-      (void)knobs.vec3(key);
-    } else if (key == "post.bloom" || key.starts_with("scene.")) {
-      (void)knobs.flag(key);
-    } else {
-      (void)knobs.number(key);
-    }
+    sceneRegistry().check(key, value);
+    knobs.values_[key] = value;
   }
   return knobs;
 }

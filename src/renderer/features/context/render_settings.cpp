@@ -2,81 +2,78 @@
 
 #include <fgb/core/error.hpp>
 
-#include <array>
 #include <charconv>
-#include <string_view>
 
 namespace fgb::features {
 namespace {
 
-constexpr std::array<std::string_view, 7> kKeys = {"debug.view",      "render.depth_prepass",     "lighting.slices",
-                                                   "lighting.max_per_cluster", "bloom.mips", "particles.seed",
-                                                   "render.path"};
-
-[[noreturn]] void badValue(const std::string& key, const std::string& value, const char* expected) {
-  throw InputError("--set " + key + "=" + value + ": expected " + expected);
+KnobSpec integer(std::string key, double min, double max, std::string help) {
+  return {std::move(key), KnobType::Integer, min, max, false, false, {}, "renderer", std::move(help)};
+}
+KnobSpec word(std::string key, std::vector<std::string> words, std::string help) {
+  return {std::move(key), KnobType::Word, 0.0, 0.0, false, false, std::move(words), "renderer", std::move(help)};
 }
 
-uint32_t parseCount(const std::string& key, const std::string& value, uint32_t min, uint32_t max) {
-  uint32_t parsed = 0;
-  const auto* end = value.data() + value.size();
-  const auto [ptr, ec] = std::from_chars(value.data(), end, parsed);
-  if (ec != std::errc() || ptr != end || parsed < min || parsed > max) {
-    const std::string range = "an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "]";
-    badValue(key, value, range.c_str());
-  }
-  return parsed;
+const KnobRegistry& rendererRegistry() {
+  static const KnobRegistry registry = [] {
+    KnobRegistry r;
+    r.add(rendererKnobSpecs());
+    return r;
+  }();
+  return registry;
 }
 
-bool parseFlag(const std::string& key, const std::string& value) {
-  if (value == "1" || value == "true" || value == "on") return true;
-  if (value == "0" || value == "false" || value == "off") return false;
-  badValue(key, value, "0|1");
-}
-
-DebugView parseDebugView(const std::string& key, const std::string& value) {
-  if (value == "none" || value == "off") return DebugView::None;
-  if (value == "light-complexity") return DebugView::LightComplexity;
-  badValue(key, value, "none|light-complexity");
-}
-
-RenderPath parseRenderPath(const std::string& key, const std::string& value) {
-  if (value == "forward") return RenderPath::Forward;
-  if (value == "visbuffer") return RenderPath::VisBuffer;
-  badValue(key, value, "forward|visbuffer");
-}
-
-}  // namespace
-
-bool isRendererKnob(const std::string& key) {
-  for (const auto known : kKeys)
-    if (key == known) return true;
-  return false;
-}
-
-namespace {
 // Prefixes the renderer owns: an unknown key under one of them is a typo, not someone else's knob.
 bool underRendererPrefix(const std::string& key) {
   for (const char* prefix : {"debug.", "render.", "lighting.", "bloom.", "particles."})
     if (key.starts_with(prefix)) return true;
   return false;
 }
+
+// Values reach these only after the registry checked them (type and range).
+uint32_t count(const std::string& value) {
+  uint32_t parsed = 0;
+  std::from_chars(value.data(), value.data() + value.size(), parsed);
+  return parsed;
+}
+bool flag(const std::string& value) { return value == "1" || value == "true" || value == "on"; }
+
+void applyOne(RenderSettings& settings, const std::string& key, const std::string& value) {
+  if (key == "debug.view") settings.debugView = value == "light-complexity" ? DebugView::LightComplexity : DebugView::None;
+  else if (key == "render.depth_prepass") settings.depthPrepass = flag(value);
+  else if (key == "render.ssaa") settings.ssaa = count(value);
+  else if (key == "render.path") settings.renderPath = value == "visbuffer" ? RenderPath::VisBuffer : RenderPath::Forward;
+  else if (key == "lighting.mode") settings.lightingMode = value == "all" ? LightingMode::All : LightingMode::Clustered;
+  else if (key == "lighting.slices") settings.clusterSlices = count(value);
+  else if (key == "lighting.max_per_cluster") settings.maxLightsPerCluster = count(value);
+  else if (key == "bloom.mips") settings.bloomMips = count(value);
+  else if (key == "particles.seed") settings.particleSeedOffset = count(value);
+}
+
 }  // namespace
+
+const std::vector<KnobSpec>& rendererKnobSpecs() {
+  static const std::vector<KnobSpec> specs = {
+      word("debug.view", {"none", "off", "light-complexity"}, "debug visualisation"),
+      {"render.depth_prepass", KnobType::Flag, 0, 0, false, false, {}, "renderer", "depth-only pass before shading"},
+      integer("render.ssaa", 1, 4, "supersampling: scene passes at S*W x S*H, box-filtered to W x H"),
+      word("render.path", {"forward", "visbuffer"}, "what draws the opaque scene: forward raster or compute visibility buffer"),
+      word("lighting.mode", {"clustered", "all"}, "clustered light lists, or every light for every pixel"),
+      integer("lighting.slices", 1, 64, "cluster depth slices"),
+      integer("lighting.max_per_cluster", 1, 1024, "lights kept per cluster (overflow guard)"),
+      integer("bloom.mips", 1, 10, "bloom chain levels (clamped to what the size allows)"),
+      integer("particles.seed", 0, 1 << 30, "added to every emitter's seed"),
+  };
+  return specs;
+}
+
+bool isRendererKnob(const std::string& key) { return rendererRegistry().find(key) != nullptr; }
 
 void applyRendererKnobs(RenderSettings& settings, const std::map<std::string, std::string>& knobs) {
   for (const auto& [key, value] : knobs) {
-    if (underRendererPrefix(key) && !isRendererKnob(key)) {
-      std::string known;
-      for (const auto k : kKeys) known += (known.empty() ? "" : ", ") + std::string(k);
-      throw InputError("--set " + key + "=" + value + ": unknown renderer knob (known: " + known + ")");
-    }
-    if (key == "debug.view") settings.debugView = parseDebugView(key, value);
-    else if (key == "render.path") settings.renderPath = parseRenderPath(key, value);
-    else if (key == "render.depth_prepass") settings.depthPrepass = parseFlag(key, value);
-    else if (key == "lighting.slices") settings.clusterSlices = parseCount(key, value, 1, 64);
-    else if (key == "lighting.max_per_cluster") settings.maxLightsPerCluster = parseCount(key, value, 1, 1024);
-    else if (key == "bloom.mips") settings.bloomMips = parseCount(key, value, 1, 10);
-    else if (key == "particles.seed") settings.particleSeedOffset = parseCount(key, value, 0, 1u << 30);
+    if (!underRendererPrefix(key)) continue;
+    rendererRegistry().check(key, value);
+    applyOne(settings, key, value);
   }
 }
 

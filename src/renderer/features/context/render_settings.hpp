@@ -2,9 +2,12 @@
 // parameters (exposure, bloom) are scene settings (post.* knobs, applied by the scene loader).
 #pragma once
 
+#include <fgb/core/knob_registry.hpp>
+
 #include <cstdint>
 #include <map>
 #include <string>
+#include <vector>
 
 namespace fgb::features {
 
@@ -15,24 +18,38 @@ enum class DebugView : uint8_t { None, LightComplexity };
 // from the visibility buffer (features/visbuffer).
 enum class RenderPath : uint8_t { Forward, VisBuffer };
 
+// Clustered: each fragment shades the lights of its cluster (at most lighting.max_per_cluster).
+// All: each fragment shades every light, with no cap (the reference; no cluster passes at all).
+enum class LightingMode : uint8_t { Clustered, All };
+
 struct RenderSettings {
-  uint32_t width = 640;
+  uint32_t width = 640;               // output size: the HDR image bloom and tone mapping work on
   uint32_t height = 360;
   uint32_t msaa = 1;
   RenderPath renderPath = RenderPath::Forward;  // render.path = forward | visbuffer
+  uint32_t ssaa = 1;                  // render.ssaa: scene passes at ssaa*width x ssaa*height
   bool depthPrepass = false;          // render.depth_prepass
   DebugView debugView = DebugView::None;  // debug.view = none | light-complexity
+  LightingMode lightingMode = LightingMode::Clustered;  // lighting.mode = clustered | all
   uint32_t clusterSlices = 24;        // lighting.slices
   uint32_t maxLightsPerCluster = 128; // lighting.max_per_cluster (overflow guard)
   uint32_t bloomMips = 6;             // bloom.mips
   uint32_t particleSeedOffset = 0;    // particles.seed (added to every emitter's seed)
+
+  // Size the scene passes (meshes, lights, particles) render at: the output size times render.ssaa.
+  [[nodiscard]] uint32_t sceneWidth() const { return width * ssaa; }
+  [[nodiscard]] uint32_t sceneHeight() const { return height * ssaa; }
 };
 
-// Keys of the renderer knobs, for the CLI's unknown-key check.
+// The renderer's entries of the knob registry (every key below, with its type and range).
+const std::vector<KnobSpec>& rendererKnobSpecs();
+
+// Keys of the renderer knobs.
 bool isRendererKnob(const std::string& key);
 
-// Applies the renderer-owned knobs; other keys are ignored (they belong to the scene or harness).
-// Throws fgb::InputError "--set key=value: expected ..." for malformed values.
+// Applies the renderer-owned knobs; keys outside the renderer's prefixes are ignored (they belong to
+// the scene or harness). Throws fgb::InputError "--set key=value: ..." for an unknown key under a
+// renderer prefix and for a malformed or out-of-range value.
 void applyRendererKnobs(RenderSettings& settings, const std::map<std::string, std::string>& knobs);
 
 }  // namespace fgb::features

@@ -38,6 +38,7 @@ constexpr graph::ImportState kBoundsState{graph::kStageComputeShader,
 
 void ClusteredLighting::initialize(FeatureInit& init) {
   configure(init.scene);
+  clustered_ = init.settings.lightingMode == LightingMode::Clustered;
   device_ = &init.device;
   scene_ = &init.scene;
   if (!enabled()) return;

@@ -1,7 +1,9 @@
 // Clustered light culling (thesis): "Cluster Bounds" rebuilds the clusters' view-space AABBs only
 // when the projection changes (a persistent buffer); "Clustered Light Cull" fills per-cluster light
 // lists that the forward passes read (published as ClusteredLights). A scene without point lights
-// declares none of this. Stats: average/max lights per cluster (read back every frame).
+// declares none of this, nor does lighting.mode=all (forward shading then evaluates every light
+// for every fragment, with no per-cluster cap: the reference). Stats: average/max lights per
+// cluster (read back every frame).
 #pragma once
 
 #include "../context/render_feature.hpp"
@@ -13,7 +15,8 @@ namespace fgb::features {
 class ClusteredLighting final : public IRenderFeature {
  public:
   [[nodiscard]] std::string_view name() const override { return "clustered lighting"; }
-  [[nodiscard]] bool enabled() const override { return lightCount_ > 0; }
+  // lighting.mode=all: no cluster passes; the forward passes then loop over every light.
+  [[nodiscard]] bool enabled() const override { return lightCount_ > 0 && clustered_; }
   void configure(const GpuScene& scene) { lightCount_ = scene.lightCount; }
   void initialize(FeatureInit& init) override;
   void declare(graph::FrameGraph& graph, Blackboard& board) override;
@@ -37,6 +40,7 @@ class ClusteredLighting final : public IRenderFeature {
   rhi::BufferId countsReadback_;
   std::shared_ptr<BoundsState> boundsState_ = std::make_shared<BoundsState>();
   uint32_t lightCount_ = 0;
+  bool clustered_ = true;
   uint32_t clusterCount_ = 0;
   uint32_t capacity_ = 0;
 };

@@ -105,7 +105,7 @@ void VisBufferFeature::initialize(FeatureInit& init) {
                       init.device.adapter().name + " lacks");
   // Large triangles are few (most of a dense scene covers a pixel or less); a list overflow is
   // counted and reported as the "vis_large_overflow" statistic.
-  const uint64_t pixels = uint64_t{init.settings.width} * init.settings.height;
+  const uint64_t pixels = uint64_t{init.settings.sceneWidth()} * init.settings.sceneHeight();
   largeCapacity_ = uint32_t(std::min<uint64_t>(std::max<uint64_t>(init.scene.clusterGeometry.triangles, 1),
                                                std::max<uint64_t>(65536, pixels / 8)));
   reversedZ_ = projectsReversedZ(init.scene.constants);

@@ -3,6 +3,8 @@
 // scene (issue 2) and the full renderer (issue 4) implement it. No Vulkan types leak through.
 #pragma once
 
+#include <fgb/core/knob_registry.hpp>
+
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -93,6 +95,9 @@ class Workload {
 
 // Opens the workload for a scene. Throws fgb::InputError (bad scene/option), fgb::DeviceError.
 std::unique_ptr<Workload> openWorkload(const WorkloadConfig& config);
+
+// The renderer's entries of the knob registry (render.*, lighting.*, bloom.*, debug.*, particles.*).
+std::vector<KnobSpec> rendererKnobSpecs();
 
 // Lists Vulkan devices (for `fgbench devices`). Throws fgb::DeviceError when Vulkan is unusable.
 std::vector<DeviceDescription> listDevices();

@@ -1,6 +1,7 @@
 // `--set key=value` knobs. The scene side owns the prefixes atrium., stress., camera., scene. and
-// post.; it rejects unknown keys under those prefixes (InputError naming the key) and ignores every
-// other key, which belongs to the renderer or harness.
+// post.; it rejects unknown keys under those prefixes and values out of range (InputError naming the
+// key) and ignores every other key, which belongs to the renderer or harness. The CLI checks every
+// key of every layer against one registry (fgb/core/knob_registry.hpp); knobSpecs() is this layer's part.
 //
 // Keys: atrium.scale (geometry density multiplier, > 0), atrium.seed, atrium.texture_size,
 //       stress.offset (distance from the origin for stress-far), stress.seed,
@@ -9,6 +10,8 @@
 //       post.bloom_knee, post.bloom_intensity, post.bloom_radius,
 //       scene.lights (0 drops point lights), scene.particles (0 drops emitters), scene.sun (0|1).
 #pragma once
+
+#include <fgb/core/knob_registry.hpp>
 
 #include <glm/vec3.hpp>
 
@@ -19,6 +22,9 @@
 #include <vector>
 
 namespace fgb::scene {
+
+// The scene layer's entries of the knob registry (keys above, with types and ranges).
+std::vector<KnobSpec> knobSpecs();
 
 class Knobs {
  public:

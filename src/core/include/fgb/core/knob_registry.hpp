@@ -1,0 +1,68 @@
+// The `--set key=value` knob registry: one table that knows every key, its value type and range,
+// and which layer owns it. Each layer describes its own keys (scene::knobSpecs(),
+// render::rendererKnobSpecs(), ...) without knowing the others; the CLI registers the union and
+// checks every assignment before any work starts, so a misspelt key or an out-of-range value is
+// exit 2 naming the key (and listing the known ones) instead of a silently ignored setting.
+#pragma once
+
+#include <limits>
+#include <map>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace fgb {
+
+enum class KnobType {
+  Integer,  // decimal integer in [min, max]
+  Number,   // finite decimal number in [min, max] (an end is open when minExclusive/maxExclusive)
+  Flag,     // 0|1|true|false|on|off
+  Word,     // one of `words`
+  Vec3,     // three finite numbers "x,y,z"
+  Text,     // any non-empty text (checked by its owner when used, e.g. a pass name)
+};
+
+struct KnobSpec {
+  std::string key;
+  KnobType type = KnobType::Number;
+  double min = -std::numeric_limits<double>::infinity();
+  double max = std::numeric_limits<double>::infinity();
+  bool minExclusive = false;
+  bool maxExclusive = false;
+  // Word: the allowed values. Integer/Number: words accepted besides numbers (e.g. "inf", "auto").
+  std::vector<std::string> words;
+  std::string owner;  // "scene" | "renderer" | ...: the layer that applies it
+  std::string help;   // one short phrase
+};
+
+class KnobRegistry {
+ public:
+  // Adds a layer's keys; a key registered twice is a programming error (std::logic_error).
+  void add(const std::vector<KnobSpec>& specs);
+
+  [[nodiscard]] const KnobSpec* find(std::string_view key) const;
+  [[nodiscard]] const std::vector<KnobSpec>& specs() const { return specs_; }
+
+  // Throws fgb::InputError "--set key=value: ..." (one line) for an unknown key, naming the known
+  // ones, and for a value of the wrong type or out of range, saying what was expected.
+  void check(const std::string& key, const std::string& value) const;
+  void checkAll(const std::map<std::string, std::string>& knobs) const;
+
+  // "a, b, c": every key, sorted.
+  [[nodiscard]] std::string knownKeys() const;
+
+ private:
+  std::vector<KnobSpec> specs_;
+};
+
+// What a spec accepts, in words: "an integer in [1, 4]", "0|1", "a number > 0 or inf", ...
+std::string describeExpected(const KnobSpec& spec);
+
+// True when `value` is acceptable for `spec` (type and range).
+bool knobValueValid(const KnobSpec& spec, std::string_view value);
+
+// Splits "key=value" assignments (InputError "--set X: expected key=value" when one has no '=' or
+// no key). A later assignment of the same key wins.
+std::map<std::string, std::string> splitKnobAssignments(const std::vector<std::string>& assignments);
+
+}  // namespace fgb

@@ -159,11 +159,15 @@ void VisBufferFeature::declareClear(graph::FrameGraph& graph, Buffers& b) const 
   auto node = graph.addNode("Visibility Clear", graph::NodeType::Transfer, kQueue);
   b.words = node.write(b.words, Access::TransferDst);
   b.counters = node.write(b.counters, Access::TransferDst);
+  // The argument snapshots are zeroed too: the culling nodes then update them (read-write).
+  b.cullArgs = node.write(b.cullArgs, Access::TransferDst);
+  b.rasterArgs = node.write(b.rasterArgs, Access::TransferDst);
   const uint64_t wordBytes = uint64_t{8} * b.extent.width * b.extent.height;
-  node.setJob([words = b.words, counters = b.counters, wordBytes](graph::JobContext& context) {
+  node.setJob([b, wordBytes](graph::JobContext& context) {
     auto& ctx = rhi::rhiContext(context);
-    ctx.cmd().fillBuffer(ctx.buffer(words), 0, wordBytes, 0);  // 0: no triangle (see visbuffer.glsl)
-    ctx.cmd().fillBuffer(ctx.buffer(counters), 0, sizeof(VisCounters), 0);
+    ctx.cmd().fillBuffer(ctx.buffer(b.words), 0, wordBytes, 0);  // 0: no triangle (see visbuffer.glsl)
+    for (const auto counters : {b.counters, b.cullArgs, b.rasterArgs})
+      ctx.cmd().fillBuffer(ctx.buffer(counters), 0, sizeof(VisCounters), 0);
   });
 }
 
@@ -171,7 +175,9 @@ void VisBufferFeature::declareClusterCull(graph::FrameGraph& graph, Buffers& b) 
   auto node = graph.addNode("Cluster Cull", graph::NodeType::Compute, kQueue);
   b.counters = node.write(b.counters, Access::StorageReadWrite);
   b.visible = node.write(b.visible, Access::StorageWrite);
-  b.cullArgs = node.write(b.cullArgs, Access::StorageWrite);
+  // Read-write, not write: under validation the node's read-only binding exposes every buffer it
+  // declared, and the cull shader reads that binding, so sync validation counts it as a reader.
+  b.cullArgs = node.write(b.cullArgs, Access::StorageReadWrite);
   CullPush push{};
   const auto frustum = scene::Frustum::fromMatrix(scene_->constants.viewProj);
   for (size_t i = 0; i < 6; ++i) push.planes[i] = frustum.planes[i];
@@ -204,7 +210,7 @@ void VisBufferFeature::declareTriangleFilter(graph::FrameGraph& graph, Buffers& 
   b.counters = node.write(b.counters, Access::StorageReadWrite);
   b.smallList = node.write(b.smallList, Access::StorageWrite);
   b.largeList = node.write(b.largeList, Access::StorageWrite);
-  b.rasterArgs = node.write(b.rasterArgs, Access::StorageWrite);
+  b.rasterArgs = node.write(b.rasterArgs, Access::StorageReadWrite);  // see cullArgs in Cluster Cull
   node.setJob([push = b.push, pipelines = pipelines_, b](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();

@@ -16,8 +16,9 @@ layout(push_constant) uniform Push {
   ivec2 sourceSize;
   ivec2 targetSize;
   uint firstMip;
-  float threshold;
+  float threshold;      // radiance; applied in the HDR image's pre-exposed units
   float knee;
+  uint exposure;        // storage-buffer index of the exposure state
 } pc;
 
 vec2 gUv;  // centre of this invocation's target texel
@@ -31,12 +32,14 @@ vec3 tap(vec2 offset) {
 
 float karisWeight(vec3 c) { return 1.0 / (1.0 + luminance(c)); }
 
-vec3 softThreshold(vec3 c) {
+// Karis' weight and the threshold see pre-exposed values (display-range, whatever the scene's
+// absolute radiance), so a scene whose lights and exposure are scaled inversely blooms the same.
+vec3 softThreshold(vec3 c, float threshold) {
   const float bias = 1e-4;
   float brightness = max(c.r, max(c.g, c.b));
-  float soft = clamp(brightness - pc.threshold + pc.threshold * pc.knee, 0.0, 2.0 * pc.threshold * pc.knee);
-  soft = soft * soft / (4.0 * (pc.threshold * pc.knee + bias));
-  return c * max(soft, brightness - pc.threshold) / max(brightness, bias);
+  float soft = clamp(brightness - threshold + threshold * pc.knee, 0.0, 2.0 * threshold * pc.knee);
+  soft = soft * soft / (4.0 * (threshold * pc.knee + bias));
+  return c * max(soft, brightness - threshold) / max(brightness, bias);
 }
 
 void main() {
@@ -60,9 +63,9 @@ void main() {
       sum += boxes[n] * w;
       total += w;
     }
-    sum = softThreshold(sum / max(total, 1e-6));
+    sum = softThreshold(sum / max(total, 1e-6), pc.threshold * fgbExposures[pc.exposure].state.preExposure);
   } else {
     for (int n = 0; n < 5; ++n) sum += boxes[n] * weights[n];
   }
-  imageStore(fgbImagesRgba16f[pc.target], texel, vec4(max(sum, vec3(0.0)), 1.0));
+  imageStore(fgbImagesRgba16f[pc.target], texel, vec4(clamp(sum, vec3(0.0), vec3(kHalfMax)), 1.0));
 }

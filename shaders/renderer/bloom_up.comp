@@ -26,5 +26,6 @@ void main() {
   vec3 sum = tap(-1, -1) + 2.0 * tap(0, -1) + tap(1, -1) + 2.0 * tap(-1, 0) + 4.0 * tap(0, 0) + 2.0 * tap(1, 0) +
              tap(-1, 1) + 2.0 * tap(0, 1) + tap(1, 1);
   const vec4 below = imageLoad(fgbImagesRgba16f[pc.target], texel);
-  imageStore(fgbImagesRgba16f[pc.target], texel, vec4(below.rgb + sum / 16.0, 1.0));
+  // Adding levels can pass the half-float maximum: saturate rather than store Inf.
+  imageStore(fgbImagesRgba16f[pc.target], texel, vec4(min(below.rgb + sum / 16.0, vec3(kHalfMax)), 1.0));
 }

@@ -15,7 +15,7 @@ layout(push_constant) uniform Push {
 // View-space point on the ray through a pixel, at view depth `depth` (positive distance).
 vec3 pointAtDepth(FrameConstants frame, vec2 pixel, float depth) {
   vec2 ndc = pixel * frame.viewport.zw * 2.0 - 1.0;
-  vec4 onNear = frame.invProj * vec4(ndc, 0.0, 1.0);
+  vec4 onNear = frame.invProj * vec4(ndc, 1.0, 1.0);  // reversed-Z: depth 1 is the near plane
   vec3 ray = onNear.xyz / onNear.w;
   return ray * (depth / -ray.z);
 }

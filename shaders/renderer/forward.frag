@@ -21,8 +21,11 @@ vec4 sampleSurfaceTexture(int textureIndex, vec2 uv) {
 void main() {
   FrameConstants frame = fgbFrames[pc.frame].frame;
   Material m = fgbMaterials[pc.materials].materials[inMaterial];
-  vec4 base = surfaceBaseColor(m, inUv);
+  vec2 uv = safeUv(inUv);
+  vec4 base = surfaceBaseColor(m, uv);
   if (m.alphaMode == 1u && base.a < m.alphaCutoff) discard;
-  SurfacePoint p = SurfacePoint(inWorldPosition, inNormal, inTangent, inUv, gl_FrontFacing, gl_FragCoord.xy);
+  vec3 geometricNormal = cross(dFdx(inWorldPosition), dFdy(inWorldPosition));
+  SurfacePoint p = SurfacePoint(inWorldPosition, inNormal, inTangent, uv, gl_FrontFacing, gl_FragCoord.xy,
+                                geometricNormal);
   outColor = shadeSurface(frame, m, base, p, LightLists(pc.lights, pc.clusterCounts, pc.clusterIndices));
 }

@@ -15,7 +15,7 @@ layout(location = 1) out vec3 outNormal;
 layout(location = 2) out vec4 outTangent;
 layout(location = 3) out vec2 outUv;
 layout(location = 4) flat out uint outMaterial;
-// The depth prepass and Mesh Render must produce bit-identical depth (LessOrEqual test).
+// The depth prepass and Mesh Render must produce bit-identical depth (GreaterOrEqual test, reversed-Z).
 invariant gl_Position;
 
 void main() {

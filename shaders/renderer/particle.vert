@@ -25,6 +25,8 @@ void main() {
   vec3 up = vec3(frame.view[0][1], frame.view[1][1], frame.view[2][1]);
   vec3 world = p.positionAge.xyz + (right * corner.x + up * corner.y) * size;
   outColor = mix(e.colorStart, e.colorEnd, t);
+  // Emitted radiance, pre-exposed like all lighting and kept within R16F's range.
+  outColor.rgb = min(outColor.rgb * preExposure(frame), vec3(kHalfMax));
   outCorner = corner;
   gl_Position = frame.viewProj * vec4(world, 1.0);
 }

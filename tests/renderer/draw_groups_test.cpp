@@ -6,6 +6,9 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <cmath>
+#include <limits>
+
 namespace fgb::render {
 namespace {
 
@@ -70,8 +73,28 @@ TEST(FrameConstants, ClusterGridCoversTheImageAndSlicesSpanNearToFar) {
   EXPECT_NEAR(std::log(0.1f) * c.depthRange.z + c.depthRange.w, 0.0f, 1e-4f);
   EXPECT_NEAR(std::log(100.0f) * c.depthRange.z + c.depthRange.w, 24.0f, 1e-3f);
   // Y is flipped so that +Y world maps to the top of the image (negative clip Y).
-  const glm::vec4 up = c.viewProj * glm::vec4(s.camera.target + glm::vec3(0, 1, 0), 1.0f);
+  // Render space is camera-relative: the camera sits at the origin.
+  EXPECT_EQ(c.cameraPosition, glm::vec4(0, 0, 0, 1));
+  const glm::vec4 up = c.viewProj * glm::vec4(glm::vec3(s.camera.target - s.camera.position) + glm::vec3(0, 1, 0), 1.0f);
   EXPECT_LT(up.y, 0.0f);
+}
+
+TEST(FrameConstants, InfiniteFarSlicesClustersUpToTheSceneAndFarFromTheOriginNothingIsLarge) {
+  scene::Scene s = makeScene();
+  const glm::dvec3 offset(1e7, 0.0, 1e7);
+  for (auto& instance : s.instances) instance.worldBounds = {instance.worldBounds.min + offset, instance.worldBounds.max + offset};
+  s.camera.position = offset + glm::dvec3(0, 0, 10);
+  s.camera.target = offset;
+  s.camera.nearPlane = 1e-4f;
+  s.camera.farPlane = std::numeric_limits<float>::infinity();
+  features::RenderSettings settings;
+  const auto c = makeFrameConstants(s, settings);
+  // The farthest box corner is ~61 m away (instance 3 spans z -51..-49 around the offset).
+  EXPECT_GT(c.depthRange.y, 60.0f);
+  EXPECT_LT(c.depthRange.y, 62.0f);
+  EXPECT_TRUE(std::isfinite(c.depthRange.z) && std::isfinite(c.depthRange.w));
+  for (int column = 0; column < 4; ++column)
+    for (int row = 0; row < 4; ++row) EXPECT_LT(std::abs(c.viewProj[column][row]), 10.0f) << column << "," << row;
 }
 
 }  // namespace

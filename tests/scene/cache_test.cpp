@@ -10,6 +10,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <fstream>
 
 using namespace fgb::scene;
@@ -151,6 +153,18 @@ TEST(LoadScene, OverridesAndKnobsApplyAfterTheCache) {
   EXPECT_FALSE(loaded.scene.post.bloom.enabled);
   options.knobs = {"scene.lights=0", "scene.particles=0"};
   EXPECT_TRUE(loadScene(file, options).scene.lights.empty());
+
+  // Stability knobs: infinite far plane, auto exposure, light and emissive scales.
+  options.knobs = {"camera.far=inf", "post.exposure=auto", "scene.light_scale=1e3", "scene.emissive_scale=2"};
+  const Scene scaled = loadScene(file, options).scene;
+  EXPECT_TRUE(std::isinf(scaled.camera.farPlane));
+  EXPECT_TRUE(scaled.post.autoExposure);
+  EXPECT_FLOAT_EQ(scaled.post.lightScale, 1e3f);
+  EXPECT_FLOAT_EQ(scaled.post.bloom.threshold, loaded.scene.post.bloom.threshold * 1e3f);
+  EXPECT_FLOAT_EQ(scaled.lights[0].intensity, loaded.scene.lights[0].intensity * 1e3f);
+  EXPECT_FLOAT_EQ(scaled.sun.intensity, loaded.scene.sun.intensity * 1e3f);
+  options.knobs = {"post.exposure=0"};
+  EXPECT_THROW(loadScene(file, options), fgb::InputError);
 }
 
 TEST(LoadScene, ModelWithoutImporterOrCacheIsAClearInputError) {

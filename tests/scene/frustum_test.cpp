@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 using namespace fgb::scene;
 
 namespace {
@@ -51,4 +53,42 @@ TEST(Frustum, CountVisibleSumsTriangles) {
   const Visibility v = countVisible(scene, lookingDownMinusZ(), 1.0f);
   EXPECT_EQ(v.instances, 2u);
   EXPECT_EQ(v.triangles, 2u);
+}
+
+TEST(Projection, ReversedZMapsNearToOneAndFarToZero) {
+  Camera c = lookingDownMinusZ();
+  auto depthAt = [&](double distance) {
+    const glm::vec4 clip = projectionMatrix(c, 1.0f) * glm::vec4(0.0f, 0.0f, float(-distance), 1.0f);
+    return clip.z / clip.w;
+  };
+  EXPECT_NEAR(depthAt(0.1), 1.0f, 1e-6f);
+  EXPECT_NEAR(depthAt(100.0), 0.0f, 1e-6f);
+  EXPECT_GT(depthAt(1.0), depthAt(2.0));  // nearer is greater
+  c.farPlane = std::numeric_limits<float>::infinity();
+  EXPECT_NEAR(depthAt(0.1), 1.0f, 1e-6f);
+  EXPECT_NEAR(depthAt(1e5), 1e-6f, 1e-9f);  // near / d: never reaches 0
+  const Frustum f = Frustum::fromCamera(c, 1.0f);
+  EXPECT_TRUE(f.intersects(boxAt({0, 0, -1e6f})));  // nothing is past an infinite far plane
+  EXPECT_FALSE(f.intersects(boxAt({0, 0, -0.01f}, 0.005f)));
+}
+
+TEST(Frustum, CameraRelativeCullingDoesNotDependOnTheDistanceFromTheOrigin) {
+  Scene scene;
+  scene.meshes.push_back(Mesh{"m", 0, 3, 0, 3, {{-1, -1, -1}, {1, 1, 1}}});
+  // 1 cm boxes just inside and just outside the 45-degree right plane (x = 10 at z = -10).
+  for (double x : {9.99, 10.02}) {
+    Instance i;
+    i.worldBounds = boxAt({float(x), 0, -10}, 0.005f);
+    scene.instances.push_back(i);
+  }
+  Camera camera = lookingDownMinusZ();
+  const Visibility atOrigin = countVisible(scene, camera, 1.0f);
+  const glm::dvec3 offset(1e7, 0.0, -1e7);  // float steps by 1 m out there
+  for (Instance& i : scene.instances) i.worldBounds = Aabb{i.worldBounds.min + offset, i.worldBounds.max + offset};
+  camera.position += offset;
+  camera.target += offset;
+  EXPECT_EQ(atOrigin.instances, 1u);
+  EXPECT_EQ(countVisible(scene, camera, 1.0f).instances, atOrigin.instances);
+  const glm::mat4 view = viewMatrix(camera);
+  EXPECT_EQ(view[3], glm::vec4(0, 0, 0, 1));  // camera-relative: no translation
 }

@@ -90,7 +90,7 @@ TEST(SceneFile, MissingFileIsInputError) {
 TEST(Knobs, OwnedKeysAreValidatedOthersIgnored) {
   const Knobs knobs = Knobs::parse({"atrium.scale=2", "camera.position=1,2,3", "bloom.passes=4", "msaa=8"});
   EXPECT_EQ(knobs.number("atrium.scale"), 2.0);
-  EXPECT_EQ(knobs.vec3("camera.position"), glm::vec3(1, 2, 3));
+  EXPECT_EQ(knobs.vec3("camera.position"), glm::dvec3(1, 2, 3));
   EXPECT_FALSE(knobs.has("bloom.passes"));
   try {
     Knobs::parse({"atrium.sclae=2"});
@@ -112,4 +112,17 @@ TEST(Knobs, OwnedKeysAreValidatedOthersIgnored) {
   EXPECT_THROW(Knobs::parse({"camera.position=1,2"}), fgb::InputError);
   EXPECT_THROW(Knobs::parse({"scene.lights=maybe"}), fgb::InputError);
   EXPECT_THROW(Knobs::parse({"noequals"}), fgb::InputError);
+}
+
+TEST(Knobs, WordsAndScalesOfTheStabilityKnobs) {
+  const Knobs knobs = Knobs::parse({"camera.far=inf", "post.exposure=auto", "scene.light_scale=1e6"});
+  EXPECT_TRUE(knobs.isWord("camera.far", "inf"));
+  EXPECT_EQ(knobs.numberOr("camera.far", "inf"), std::nullopt);
+  EXPECT_TRUE(knobs.isWord("post.exposure", "auto"));
+  EXPECT_EQ(knobs.scale("scene.light_scale"), 1e6);
+  EXPECT_EQ(Knobs::parse({"camera.far=500"}).numberOr("camera.far", "inf"), 500.0);
+  for (const char* bad : {"camera.far=infinite", "post.exposure=automatic", "scene.light_scale=0",
+                          "scene.light_scale=-2", "scene.emissive_scale=1e13", "scene.light_scale=x"}) {
+    EXPECT_THROW(Knobs::parse({bad}), fgb::InputError) << bad;
+  }
 }

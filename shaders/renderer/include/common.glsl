@@ -19,10 +19,19 @@ struct FrameConstants {
   vec4 sunDirection;  // w: 1 when enabled
   vec4 sunColor;
   vec4 viewport;      // w, h, 1/w, 1/h
-  vec4 depthRange;    // near, far, slice scale, slice bias
+  vec4 depthRange;    // near, cluster far (finite), slice scale, slice bias
   uvec4 clusterGrid;  // tiles x, tiles y, slices, tile size
   uvec4 counts;       // lights, instances, max lights per cluster, debug view
   vec4 ambient;
+  uvec4 buffers;      // x: exposure state (Exposure)
+};
+
+// Pre-exposure state (mirrors ExposureGpu in gpu_types.hpp; see there).
+struct Exposure {
+  float preExposure;
+  float tonemapScale;
+  float exposure;
+  float averageLuminance;
 };
 
 struct Instance {
@@ -66,6 +75,7 @@ FGB_READONLY_STORAGE_BUFFER(FrameBlock, fgbFrames) { FrameConstants frame; } fgb
 FGB_READONLY_STORAGE_BUFFER(InstanceBlock, fgbInstances) { Instance instances[]; } fgbInstances[FGB_MAX_STORAGE_BUFFERS];
 FGB_READONLY_STORAGE_BUFFER(MaterialBlock, fgbMaterials) { Material materials[]; } fgbMaterials[FGB_MAX_STORAGE_BUFFERS];
 FGB_READONLY_STORAGE_BUFFER(LightBlock, fgbLights) { PointLight lights[]; } fgbLights[FGB_MAX_STORAGE_BUFFERS];
+FGB_READONLY_STORAGE_BUFFER(ExposureBlock, fgbExposures) { Exposure state; } fgbExposures[FGB_MAX_STORAGE_BUFFERS];
 FGB_STORAGE_BUFFER(CommandBlock, fgbCommands, ) { DrawCommand commands[]; } fgbCommands[FGB_MAX_STORAGE_BUFFERS];
 FGB_STORAGE_BUFFER(UintBlock, fgbUints, ) { uint values[]; } fgbUints[FGB_MAX_STORAGE_BUFFERS];
 FGB_STORAGE_BUFFER(Vec4Block, fgbVec4s, ) { vec4 values[]; } fgbVec4s[FGB_MAX_STORAGE_BUFFERS];
@@ -80,10 +90,25 @@ vec4 sampleMaterialTexture(int textureIndex, uint samplerIndex, vec2 uv) {
 
 float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 
-// Thesis attenuation max(1 - d/R, 0) / d^2, with d clamped to avoid the singularity at the light.
+// normalize() without the 0/0: a (near) zero-length vector gives `fallback` (already unit).
+// Interpolated normals and tangents can cancel out, a fragment can sit on a light or the camera.
+vec3 safeNormalize(vec3 v, vec3 fallback) {
+  float lengthSquared = dot(v, v);
+  return lengthSquared > 1e-20 ? v * inversesqrt(lengthSquared) : fallback;
+}
+
+// R16F's largest finite value: radiance written to the HDR target is clamped to it, so an
+// out-of-range value saturates instead of becoming Inf (which bloom would spread).
+const float kHalfMax = 65504.0;
+
+// The factor radiance is multiplied by before it is written to the HDR target.
+float preExposure(FrameConstants frame) { return fgbExposures[frame.buffers.x].state.preExposure; }
+
+// Thesis attenuation max(1 - d/R, 0) / d^2, with d clamped to avoid the singularity at the light
+// (and a zero or negative radius giving no light rather than a NaN).
 float pointLightAttenuation(float distance, float radius) {
   float d = max(distance, 0.05);
-  return max(1.0 - distance / radius, 0.0) / (d * d);
+  return radius > 0.0 ? max(1.0 - distance / radius, 0.0) / (d * d) : 0.0;
 }
 
 // Cluster of a fragment: 16x16-pixel tile and exponential depth slice.

@@ -18,13 +18,18 @@ vec4 sampleSurfaceTexture(int textureIndex, vec2 uv);
 
 // The interpolated attributes of one surface point (world space).
 struct SurfacePoint {
-  vec3 worldPosition;
-  vec3 normal;   // not normalised
-  vec4 tangent;  // xyz not normalised, w: bitangent sign
+  vec3 worldPosition;    // render space (camera-relative)
+  vec3 normal;           // not normalised
+  vec4 tangent;          // xyz not normalised, w: bitangent sign
   vec2 uv;
   bool frontFacing;
-  vec2 fragCoord;  // pixel position (centre at +0.5), for the cluster lookup
+  vec2 fragCoord;        // pixel position (centre at +0.5), for the cluster lookup
+  vec3 geometricNormal;  // the face's own normal (any length, may vanish): the fallback when the
+                         // interpolated normal vanishes (opposite vertex normals across a crease)
 };
+
+// Texture coordinates: a NaN would make every lookup undefined.
+vec2 safeUv(vec2 uv) { return any(isnan(uv)) || any(isinf(uv)) ? vec2(0.0) : uv; }
 
 // Where the light lists live (bindless storage-buffer indices); clusterCounts FGB_NONE: every light.
 struct LightLists {
@@ -40,23 +45,28 @@ vec4 surfaceBaseColor(Material m, vec2 uv) {
   return base;
 }
 
-vec3 shadingNormal(Material m, SurfacePoint p) {
-  vec3 n = normalize(p.normal);
+// The geometric normal's derivatives vanish too on a degenerate (edge-on) triangle: then the view
+// direction stands in.
+vec3 shadingNormal(Material m, SurfacePoint p, vec3 towardsViewer) {
+  vec3 n = safeNormalize(p.normal, safeNormalize(p.geometricNormal, towardsViewer));
   if (!p.frontFacing) n = -n;
   if (m.normalTexture < 0 || dot(p.tangent.xyz, p.tangent.xyz) < 1e-12) return n;
-  vec3 t = normalize(p.tangent.xyz - n * dot(n, p.tangent.xyz));
+  vec3 tangent = p.tangent.xyz - n * dot(n, p.tangent.xyz);
+  if (dot(tangent, tangent) < 1e-12) return n;  // tangent along the normal: no tangent frame
+  vec3 t = normalize(tangent);
   vec3 b = cross(n, t) * p.tangent.w;
   vec3 tangentNormal = sampleSurfaceTexture(m.normalTexture, p.uv).xyz * 2.0 - 1.0;
   tangentNormal.xy *= m.emissive.w;
-  return normalize(mat3(t, b, n) * tangentNormal);
+  return safeNormalize(mat3(t, b, n) * tangentNormal, n);
 }
 
 vec3 pointLight(Surface s, vec3 worldPosition, PointLight light) {
   vec3 toLight = light.positionRadius.xyz - worldPosition;
   float distance = length(toLight);
   float attenuation = pointLightAttenuation(distance, light.positionRadius.w);
-  if (attenuation <= 0.0) return vec3(0.0);
-  return shadeLight(s, toLight / distance, light.color.rgb * attenuation);
+  if (!(attenuation > 0.0)) return vec3(0.0);
+  // A light on the surface (distance 0) lights it head-on rather than from a NaN direction.
+  return shadeLight(s, safeNormalize(toLight, s.normal), light.color.rgb * attenuation);
 }
 
 // Point lights of this point's cluster; also returns how many were considered (debug view).
@@ -78,8 +88,9 @@ vec3 pointLights(FrameConstants frame, Surface s, SurfacePoint p, LightLists lis
   return sum;
 }
 
-// Radiance leaving the surface towards the camera (rgb) and its coverage (a: base alpha for
-// blended materials, else 1). `base` is surfaceBaseColor(m, p.uv).
+// Radiance leaving the surface towards the camera (rgb), pre-exposed (ExposureGpu) and clamped to
+// R16F's range (too bright saturates, never Inf), and its coverage (a: base alpha for blended
+// materials, else 1). `base` is surfaceBaseColor(m, p.uv); p.uv is safeUv()'s.
 vec4 shadeSurface(FrameConstants frame, Material m, vec4 base, SurfacePoint p, LightLists lists) {
   Surface s;
   s.albedo = base.rgb;
@@ -90,9 +101,10 @@ vec4 shadeSurface(FrameConstants frame, Material m, vec4 base, SurfacePoint p, L
     s.roughness *= mr.g;
     s.metallic *= mr.b;
   }
-  s.roughness = clamp(s.roughness, 0.04, 1.0);
-  s.normal = shadingNormal(m, p);
-  s.view = normalize(frame.cameraPosition.xyz - p.worldPosition);
+  s.roughness = clamp(s.roughness, kMinRoughness, 1.0);
+  // Render space is camera-relative (the camera at the origin); a point at the camera sees +Z.
+  s.view = safeNormalize(frame.cameraPosition.xyz - p.worldPosition, vec3(0.0, 0.0, 1.0));
+  s.normal = shadingNormal(m, p, s.view);
 
   uint considered = 0u;
   vec3 color = pointLights(frame, s, p, lists, considered);
@@ -107,7 +119,7 @@ vec4 shadeSurface(FrameConstants frame, Material m, vec4 base, SurfacePoint p, L
     color = heatRamp(float(considered) / 16.0) * 4.0;
   }
   float alpha = m.alphaMode == 2u ? base.a : 1.0;
-  return vec4(color, alpha);
+  return vec4(min(color * preExposure(frame), vec3(kHalfMax)), alpha);
 }
 
 #endif

@@ -32,7 +32,7 @@ layout(push_constant) uniform Push {
   uint clusterCounts;   // FGB_NONE: no clustered lighting
   uint clusterIndices;
   uint flags;           // bit 0: reversed Z; bit 1: raster the large-triangle tiles (else small)
-  vec4 background;      // (at byte 112) HDR colour of pixels no triangle covers
+  vec4 background;      // (at byte 112) HDR clear of pixels no triangle covers (pre-exposed, alpha 0)
 } pc;
 
 const uint kFlagReversedZ = 1u;

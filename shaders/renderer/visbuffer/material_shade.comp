@@ -49,7 +49,10 @@ void main() {
   vec4 t0 = fetchVec4(pc.vertices, pc.tangents, v.x), t1 = fetchVec4(pc.vertices, pc.tangents, v.y),
        t2 = fetchVec4(pc.vertices, pc.tangents, v.z);
   p.tangent = vec4(mat3(inst.model) * interpolate3(t0.xyz, t1.xyz, t2.xyz, b), t0.w * b.x + t1.w * b.y + t2.w * b.z);
-  p.uv = interpolateUv(v, b, dbdx, dbdy);
+  p.uv = safeUv(interpolateUv(v, b, dbdx, dbdy));
+  // The screen derivatives of the position, as forward.frag's cross(dFdx, dFdy) sees them.
+  p.geometricNormal = cross(world0 * dbdx.x + world1 * dbdx.y + world2 * dbdx.z,
+                            world0 * dbdy.x + world1 * dbdy.y + world2 * dbdy.z);
   p.frontFacing = framebufferFront(screen);
   p.fragCoord = vec2(pixel) + 0.5;
 
@@ -57,5 +60,5 @@ void main() {
   Material m = fgbMaterials[pc.materials].materials[inst.material];
   vec4 base = surfaceBaseColor(m, p.uv);
   vec4 color = shadeSurface(frame, m, base, p, LightLists(pc.lights, pc.clusterCounts, pc.clusterIndices));
-  imageStore(fgbImagesRgba16f[pc.hdr], ivec2(pixel), vec4(color.rgb, 1.0));
+  imageStore(fgbImagesRgba16f[pc.hdr], ivec2(pixel), vec4(color.rgb, 1.0));  // alpha > 0: metered geometry
 }

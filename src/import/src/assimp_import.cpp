@@ -245,7 +245,7 @@ class SceneConverter {
       const glm::vec3 look(world * glm::vec4(camera.mLookAt.x, camera.mLookAt.y, camera.mLookAt.z, 0.0f));
       const glm::vec3 up(world * glm::vec4(camera.mUp.x, camera.mUp.y, camera.mUp.z, 0.0f));
       if (!(glm::length(look) > 0.0f) || !(camera.mClipPlaneNear > 0.0f) || camera.mClipPlaneFar <= camera.mClipPlaneNear) continue;
-      c.target = c.position + glm::normalize(look);
+      c.target = c.position + glm::dvec3(glm::normalize(look));
       c.up = glm::length(up) > 0.0f ? glm::normalize(up) : glm::vec3(0, 1, 0);
       const float aspect = camera.mAspect > 0.0f ? camera.mAspect : 16.0f / 9.0f;
       // Assimp gives the horizontal half-angle.

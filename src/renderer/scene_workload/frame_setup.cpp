@@ -26,6 +26,20 @@ DrawClass drawClassOf(const scene::Material& material) {
 
 constexpr uint32_t kTileSize = 16;
 
+// The far end of the cluster slices: the far plane, or with an infinite one the farthest corner
+// of the scene's bounds (no lit fragment lies beyond it).
+float clusterFar(const scene::Scene& scene) {
+  const scene::Camera& camera = scene.camera;
+  if (std::isfinite(camera.farPlane)) return camera.farPlane;
+  const scene::Aabb box = scene::relativeTo(scene.bounds(), camera.position);
+  double farthest = 0.0;
+  if (!box.isEmpty()) {
+    const glm::dvec3 reach = glm::max(glm::abs(box.min), glm::abs(box.max));
+    farthest = glm::length(reach);
+  }
+  return static_cast<float>(std::max(farthest, double(camera.nearPlane) * 1000.0));
+}
+
 }  // namespace
 
 features::FrameConstantsGpu makeFrameConstants(const scene::Scene& scene, const features::RenderSettings& settings) {
@@ -37,7 +51,8 @@ features::FrameConstantsGpu makeFrameConstants(const scene::Scene& scene, const 
   c.proj[1][1] = -c.proj[1][1];  // Vulkan's framebuffer Y points down; keep images upright
   c.viewProj = c.proj * c.view;
   c.invProj = glm::inverse(c.proj);
-  c.cameraPosition = glm::vec4(camera.position, 1.0f);
+  // Camera-relative render space: world axes, origin at the camera (the view matrix is a rotation).
+  c.cameraPosition = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
   if (scene.sun.enabled) {
     c.sunDirection = glm::vec4(glm::normalize(scene.sun.direction), 1.0f);
     c.sunColor = glm::vec4(scene.sun.color * scene.sun.intensity, 0.0f);
@@ -46,24 +61,36 @@ features::FrameConstantsGpu makeFrameConstants(const scene::Scene& scene, const 
   const uint32_t width = settings.sceneWidth();
   const uint32_t height = settings.sceneHeight();
   c.viewport = {float(width), float(height), 1.0f / float(width), 1.0f / float(height)};
-  // Exponential slices z = near * (far/near)^(slice/slices)  <=>  slice = log(z)*scale + bias.
-  const float logRatio = std::log(camera.farPlane / camera.nearPlane);
+  // Exponential slices z = near * (far/near)^(slice/slices)  <=>  slice = log(z)*scale + bias, up to
+  // a finite far (clusterFar) even when the projection's far plane is infinite.
+  const float far = clusterFar(scene);
+  const float logRatio = std::log(far / camera.nearPlane);
   const auto slices = float(settings.clusterSlices);
-  c.depthRange = {camera.nearPlane, camera.farPlane, slices / logRatio, -slices * std::log(camera.nearPlane) / logRatio};
+  c.depthRange = {camera.nearPlane, far, slices / logRatio, -slices * std::log(camera.nearPlane) / logRatio};
   // Tiles cover the same screen area at any render.ssaa (kTileSize output pixels), so SSAA changes
   // neither the cluster count (nor the dispatch size) nor which lights a screen region keeps.
   const uint32_t tile = kTileSize * settings.ssaa;
   c.clusterGrid = {(width + tile - 1) / tile, (height + tile - 1) / tile, settings.clusterSlices, tile};
   c.counts = {uint32_t(scene.lights.size()), uint32_t(scene.instances.size()), settings.maxLightsPerCluster,
               settings.debugView == features::DebugView::LightComplexity ? 1u : 0u};
-  c.ambient = {0.03f, 0.03f, 0.035f, 0.0f};
+  c.ambient = glm::vec4(glm::vec3(0.03f, 0.03f, 0.035f) * scene.post.lightScale, 0.0f);
   return c;
 }
 
-void buildDrawGroups(const scene::Scene& scene, const glm::vec3& cameraPosition, features::GpuScene& gpu) {
+features::ExposureGpu initialExposure(const scene::PostSettings& post) {
+  features::ExposureGpu state;
+  // Auto exposure starts from the scene's exposure, as if the light scale had been compensated;
+  // the first frame's measurement replaces it.
+  state.preExposure = post.autoExposure ? post.exposure / post.lightScale : post.exposure;
+  state.exposure = state.preExposure;
+  state.tonemapScale = 1.0f;
+  return state;
+}
+
+void buildDrawGroups(const scene::Scene& scene, const glm::dvec3& cameraPosition, features::GpuScene& gpu) {
   // Opaque and masked instances share a group per (class, mesh); transparent ones get one each.
   std::map<std::pair<DrawClass, uint32_t>, std::vector<uint32_t>> shared;
-  std::vector<std::pair<float, uint32_t>> transparent;
+  std::vector<std::pair<double, uint32_t>> transparent;
   for (uint32_t i = 0; i < scene.instances.size(); ++i) {
     const auto& instance = scene.instances[i];
     const DrawClass drawClass = drawClassOf(scene.materials.at(instance.material));
@@ -71,7 +98,7 @@ void buildDrawGroups(const scene::Scene& scene, const glm::vec3& cameraPosition,
       shared[{drawClass, instance.mesh}].push_back(i);
       continue;
     }
-    const glm::vec3 center = 0.5f * (instance.worldBounds.min + instance.worldBounds.max);
+    const glm::dvec3 center = 0.5 * (instance.worldBounds.min + instance.worldBounds.max);
     transparent.emplace_back(glm::distance(center, cameraPosition), i);
   }
   // Back to front: the multi-draw executes commands in order, which is the blend order.

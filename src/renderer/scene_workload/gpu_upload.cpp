@@ -3,11 +3,14 @@
 #include <fgb/core/error.hpp>
 #include <fgb/rhi/job_context.hpp>
 
+#include <glm/ext/matrix_transform.hpp>
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <tuple>
 #include <span>
 
 namespace fgb::render {
@@ -129,17 +132,31 @@ std::span<const std::byte> bytesOf(const std::vector<T>& values) {
   return std::as_bytes(std::span(values));
 }
 
+// A double-precision box moved into render space (camera at the origin), rounded outwards to float
+// so the GPU's frustum test stays conservative.
+std::pair<glm::vec4, glm::vec4> renderSpaceBounds(const scene::Aabb& box, const glm::dvec3& origin) {
+  if (box.isEmpty()) return {glm::vec4(1.0f, 1.0f, 1.0f, 0.0f), glm::vec4(-1.0f, -1.0f, -1.0f, 0.0f)};
+  glm::vec4 lo(0.0f), hi(0.0f);
+  for (int axis = 0; axis < 3; ++axis) {
+    lo[axis] = std::nextafter(static_cast<float>(box.min[axis] - origin[axis]), -HUGE_VALF);
+    hi[axis] = std::nextafter(static_cast<float>(box.max[axis] - origin[axis]), HUGE_VALF);
+  }
+  return {lo, hi};
+}
+
 std::vector<features::InstanceGpu> gpuInstances(const scene::Scene& scene, const GpuScene& gpu) {
+  const glm::dvec3 origin = scene.camera.position;
+  const glm::dmat4 toRenderSpace = glm::translate(glm::dmat4(1.0), -origin);
   std::vector<features::InstanceGpu> result(gpu.instanceOrder.size());
   for (uint32_t group = 0; group < gpu.groups.size(); ++group) {
     const auto& g = gpu.groups[group];
     for (uint32_t slot = g.firstSlot; slot < g.firstSlot + g.capacity; ++slot) {
       const auto& source = scene.instances[gpu.instanceOrder[slot]];
       auto& out = result[slot];
-      out.model = source.transform;
-      out.normalMatrix = glm::mat4(glm::transpose(glm::inverse(glm::mat3(source.transform))));
-      out.boundsMin = glm::vec4(source.worldBounds.min, 0.0f);
-      out.boundsMax = glm::vec4(source.worldBounds.max, 0.0f);
+      // Composed in double, then rounded: the float matrix holds only the camera-relative offset.
+      out.model = glm::mat4(toRenderSpace * source.transform);
+      out.normalMatrix = glm::mat4(glm::mat3(glm::transpose(glm::inverse(glm::dmat3(source.transform)))));
+      std::tie(out.boundsMin, out.boundsMax) = renderSpaceBounds(source.worldBounds, origin);
       out.material = source.material;
       out.drawGroup = group;
       out.triangles = scene.meshes[source.mesh].triangleCount();
@@ -179,8 +196,10 @@ std::vector<features::DrawIndexedCommand> commandTemplate(const scene::Scene& sc
 
 std::vector<features::PointLightGpu> gpuLights(const scene::Scene& scene) {
   std::vector<features::PointLightGpu> result;
-  for (const auto& light : scene.lights)
-    result.push_back({glm::vec4(light.position, light.radius), glm::vec4(light.color * light.intensity, 0.0f)});
+  for (const auto& light : scene.lights) {
+    const glm::vec3 renderSpace(light.position - scene.camera.position);
+    result.push_back({glm::vec4(renderSpace, light.radius), glm::vec4(light.color * light.intensity, 0.0f)});
+  }
   if (result.empty()) result.emplace_back();  // a valid (unused) buffer keeps descriptors simple
   return result;
 }
@@ -255,6 +274,9 @@ GpuScene uploadScene(rhi::Device& device, const scene::Scene& scene, const featu
   gpu.instances = uploader.buffer("scene instances", bytesOf(gpuInstances(scene, gpu)), rhi::kBufferStorage);
   gpu.materials = uploader.buffer("scene materials", bytesOf(gpuMaterials(scene, textureIndices)), rhi::kBufferStorage);
   gpu.lights = uploader.buffer("scene lights", bytesOf(gpuLights(scene)), rhi::kBufferStorage);
+  const features::ExposureGpu exposure = initialExposure(scene.post);
+  gpu.exposure = uploader.buffer("exposure", std::as_bytes(std::span(&exposure, 1)), rhi::kBufferStorage);
+  gpu.constants.buffers.x = device.storageBufferIndex(gpu.exposure);
   gpu.frameConstants = uploader.buffer("frame constants", std::as_bytes(std::span(&gpu.constants, 1)), rhi::kBufferStorage);
   gpu.commandTemplate = uploader.buffer("draw command template", bytesOf(commandTemplate(scene, gpu)),
                                         rhi::kBufferTransferSrc | rhi::kBufferStorage);

@@ -14,8 +14,11 @@ namespace fgb::render {
 // Camera, sun and cluster parameters for the scene's camera at the run's resolution.
 features::FrameConstantsGpu makeFrameConstants(const scene::Scene& scene, const features::RenderSettings& settings);
 
+// The exposure state before the first frame: pre-exposed with post.exposure (see ExposureGpu).
+features::ExposureGpu initialExposure(const scene::PostSettings& post);
+
 // Instances grouped into indirect draw groups (opaque, masked, transparent back to front).
-void buildDrawGroups(const scene::Scene& scene, const glm::vec3& cameraPosition, features::GpuScene& gpu);
+void buildDrawGroups(const scene::Scene& scene, const glm::dvec3& cameraPosition, features::GpuScene& gpu);
 
 // Creates the GPU objects and runs the upload graph to completion.
 features::GpuScene uploadScene(rhi::Device& device, const scene::Scene& scene, const features::RenderSettings& settings);

@@ -1,6 +1,7 @@
 #include "render_paths.hpp"
 
 #include "../features/bloom/bloom_feature.hpp"
+#include "../features/exposure/exposure_feature.hpp"
 #include "../features/lighting/clustered_lighting.hpp"
 #include "../features/meshes/mesh_feature.hpp"
 #include "../features/particles/particle_feature.hpp"
@@ -27,6 +28,7 @@ RenderPathPlan planRenderPath(const features::RenderSettings& settings) {
   list.push_back(std::make_unique<features::ParticleFeature>());
   list.push_back(std::make_unique<features::SsaaResolveFeature>());
   list.push_back(std::make_unique<features::BloomFeature>());
+  list.push_back(std::make_unique<features::ExposureFeature>());  // after bloom: see there
   list.push_back(std::make_unique<features::TonemapFeature>());
   return plan;
 }

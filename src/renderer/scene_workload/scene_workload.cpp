@@ -5,6 +5,7 @@
 #include "render_paths.hpp"
 
 #include "../features/context/render_feature.hpp"
+#include "../features/exposure/exposure_feature.hpp"
 
 #include <fgb/core/error.hpp>
 #include <fgb/core/stopwatch.hpp>
@@ -15,6 +16,8 @@
 #include <fgb/scene/stats.hpp>
 #include <fgb/vulkan/backend.hpp>
 
+#include <algorithm>
+#include <array>
 #include <deque>
 #include <filesystem>
 #include <iostream>
@@ -31,6 +34,21 @@ constexpr graph::ImportState kDisplayFinal{graph::kStageColorAttachmentOutput, g
                                            graph::Layout::ColorAttachment, graph::QueueClass::Graphics};
 constexpr graph::ImportState kDiscard{graph::kStageNone, graph::kAccessNone, graph::Layout::Undefined,
                                       graph::QueueClass::Graphics};
+
+constexpr graph::ImportState kExposureState{
+    graph::kStageVertexShader | graph::kStageFragmentShader | graph::kStageComputeShader,
+    graph::kAccessShaderStorageRead | graph::kAccessShaderStorageWrite, graph::Layout::Undefined,
+    graph::QueueClass::Graphics};
+
+// The HDR clear: the background radiance, scaled with the lights and pre-exposed. With auto
+// exposure it is pre-exposed with the starting exposure, so the backdrop keeps a fixed display
+// value; its alpha of 0 keeps it out of the exposure measurement (geometry writes alpha > 0).
+std::array<float, 4> backgroundClear(const scene::PostSettings& post) {
+  const float scale = post.lightScale * initialExposure(post).preExposure;
+  const auto& b = features::kBackgroundRadiance;
+  const auto channel = [&](float radiance) { return std::min(radiance * scale, 65504.0f); };  // R16F max
+  return {channel(b[0]), channel(b[1]), channel(b[2]), 0.0f};
+}
 
 DeviceDescription describe(const rhi::AdapterInfo& adapter) {
   return {adapter.index, adapter.name, adapter.driver, adapter.type, adapter.apiVersion, adapter.timestampPeriodNs,
@@ -168,6 +186,13 @@ class SceneWorkload final : public Workload {
     targets.outputExtent = extent;
     targets.extent = {settings_.sceneWidth(), settings_.sceneHeight(), 1};
     targets.samples = settings_.msaa;
+    targets.background = backgroundClear(loaded_.scene.post);
+    if (loaded_.scene.post.autoExposure) {
+      // Written by the "Exposure" node, read by the next frame's colour passes: the state carries
+      // over between frames, all on the graphics queue.
+      targets.exposure = graph.importBuffer("exposure", {sizeof(features::ExposureGpu), {}}, rhi::external(gpu_.exposure),
+                                            kExposureState, kExposureState);
+    }
     const graph::TextureHandle hdr = graph.importTexture("hdr", {features::kHdrFormat, extent, 1, 1, 1, {}, 0},
                                                          rhi::external(hdrTexture_), kDiscard, kHdrFinal);
     if (settings_.ssaa == 1) {

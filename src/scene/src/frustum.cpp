@@ -1,7 +1,6 @@
 // Frustum extraction and the AABB visibility test.
 #include <fgb/scene/frustum.hpp>
 
-#include <glm/ext/matrix_clip_space.hpp>
 #include <glm/ext/matrix_transform.hpp>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
@@ -11,11 +10,29 @@
 namespace fgb::scene {
 
 glm::mat4 viewMatrix(const Camera& camera) {
-  return glm::lookAtRH(camera.position, camera.target, camera.up);
+  // In double: the direction target - position keeps its precision far from the origin.
+  return glm::mat4(glm::lookAtRH(glm::dvec3(0.0), camera.target - camera.position, glm::dvec3(camera.up)));
+}
+
+Aabb relativeTo(const Aabb& box, const glm::dvec3& origin) {
+  if (box.isEmpty()) return box;
+  return Aabb{box.min - origin, box.max - origin};
 }
 
 glm::mat4 projectionMatrix(const Camera& camera, float aspect) {
-  return glm::perspectiveRH_ZO(glm::radians(camera.verticalFovDeg), aspect, camera.nearPlane, camera.farPlane);
+  // Reversed-Z: depth = near / d at view distance d with an infinite far plane, or
+  // near * (far - d) / (d * (far - near)) with a finite one; 1 at the near plane, 0 at the far one.
+  // With a float depth buffer the exponent spreads the precision evenly over distance.
+  const double focal = 1.0 / std::tan(glm::radians(double(camera.verticalFovDeg)) * 0.5);
+  const double n = camera.nearPlane;
+  const double f = camera.farPlane;
+  glm::dmat4 m(0.0);
+  m[0][0] = focal / double(aspect);
+  m[1][1] = focal;
+  m[2][3] = -1.0;
+  m[2][2] = std::isinf(f) ? 0.0 : n / (f - n);
+  m[3][2] = std::isinf(f) ? n : n * f / (f - n);
+  return glm::mat4(m);
 }
 
 Frustum Frustum::fromMatrix(const glm::mat4& m) {
@@ -39,9 +56,9 @@ bool Frustum::intersects(const Aabb& box) const {
   if (box.isEmpty()) return false;
   for (const glm::vec4& plane : planes) {
     // The box corner furthest along the plane normal: if even it is outside, the box is.
-    const glm::vec3 farthest(plane.x >= 0.0f ? box.max.x : box.min.x, plane.y >= 0.0f ? box.max.y : box.min.y,
-                             plane.z >= 0.0f ? box.max.z : box.min.z);
-    if (glm::dot(glm::vec3(plane), farthest) + plane.w < 0.0f) return false;
+    const glm::dvec3 farthest(plane.x >= 0.0f ? box.max.x : box.min.x, plane.y >= 0.0f ? box.max.y : box.min.y,
+                              plane.z >= 0.0f ? box.max.z : box.min.z);
+    if (glm::dot(glm::dvec3(plane), farthest) + plane.w < 0.0) return false;
   }
   return true;
 }
@@ -50,7 +67,7 @@ Visibility countVisible(const Scene& scene, const Camera& camera, float aspect) 
   const Frustum frustum = Frustum::fromCamera(camera, aspect);
   Visibility visibility;
   for (const Instance& instance : scene.instances) {
-    if (!frustum.intersects(instance.worldBounds)) continue;
+    if (!frustum.intersects(relativeTo(instance.worldBounds, camera.position))) continue;
     ++visibility.instances;
     visibility.triangles += scene.meshes[instance.mesh].triangleCount();
   }

@@ -272,7 +272,7 @@ uint32_t appendMesh(Scene& scene, MeshData&& data) {
   return static_cast<uint32_t>(scene.meshes.size() - 1);
 }
 
-uint32_t addInstance(Scene& scene, uint32_t mesh, uint32_t material, const glm::mat4& transform) {
+uint32_t addInstance(Scene& scene, uint32_t mesh, uint32_t material, const glm::dmat4& transform) {
   Instance instance;
   instance.mesh = mesh;
   instance.material = material;
@@ -295,8 +295,8 @@ void updateBounds(Scene& scene) {
 namespace {
 
 // The uniform scale that best describes a transform (for light radii and particle sizes).
-float uniformScale(const glm::mat4& m) {
-  return std::cbrt(std::abs(glm::determinant(glm::mat3(m))));
+float uniformScale(const glm::dmat4& m) {
+  return static_cast<float>(std::cbrt(std::abs(glm::determinant(glm::dmat3(m)))));
 }
 
 template <typename T>
@@ -310,7 +310,7 @@ void shiftTexture(int32_t& index, int32_t offset) {
 
 }  // namespace
 
-void mergeScene(Scene& into, Scene&& part, const glm::mat4& placement) {
+void mergeScene(Scene& into, Scene&& part, const glm::dmat4& placement) {
   const auto vertexOffset = static_cast<uint32_t>(into.positions.size());
   const auto indexOffset = static_cast<uint32_t>(into.indices.size());
   const auto meshOffset = static_cast<uint32_t>(into.meshes.size());
@@ -319,7 +319,8 @@ void mergeScene(Scene& into, Scene&& part, const glm::mat4& placement) {
   const auto materialOffset = static_cast<uint32_t>(into.materials.size());
   const auto textureOffset = static_cast<int32_t>(into.textures.size());
   const float scale = uniformScale(placement);
-  const glm::mat3 rotation = glm::mat3(placement);
+  const glm::mat3 rotation = glm::mat3(glm::dmat3(placement));
+  const auto place = [&](const glm::dvec3& p) { return glm::dvec3(placement * glm::dvec4(p, 1.0)); };
 
   appendMoved(into.positions, part.positions);
   appendMoved(into.normals, part.normals);
@@ -351,12 +352,12 @@ void mergeScene(Scene& into, Scene&& part, const glm::mat4& placement) {
   }
   appendMoved(into.instances, part.instances);
   for (PointLight& light : part.lights) {
-    light.position = glm::vec3(placement * glm::vec4(light.position, 1.0f));
+    light.position = place(light.position);
     light.radius *= scale;
   }
   appendMoved(into.lights, part.lights);
   for (Emitter& emitter : part.emitters) {
-    emitter.position = glm::vec3(placement * glm::vec4(emitter.position, 1.0f));
+    emitter.position = place(emitter.position);
     emitter.direction = glm::normalize(rotation * emitter.direction);
     emitter.sizeStart *= scale;
     emitter.sizeEnd *= scale;
@@ -368,8 +369,8 @@ void mergeScene(Scene& into, Scene&& part, const glm::mat4& placement) {
   }
   if (!into.hasCamera && part.hasCamera) {
     into.camera = part.camera;
-    into.camera.position = glm::vec3(placement * glm::vec4(part.camera.position, 1.0f));
-    into.camera.target = glm::vec3(placement * glm::vec4(part.camera.target, 1.0f));
+    into.camera.position = place(part.camera.position);
+    into.camera.target = place(part.camera.target);
     into.camera.up = glm::normalize(rotation * part.camera.up);
     into.hasCamera = true;
   }

@@ -3,6 +3,7 @@
 
 #include <fgb/core/error.hpp>
 
+#include <glm/ext/vector_double3.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 #include <nlohmann/json.hpp>
@@ -63,6 +64,11 @@ class Fields {
     return value.get<std::string>();
   }
   glm::vec3 vec3(const nlohmann::json& value, const std::string& field) const {
+    if (!value.is_array() || value.size() != 3) fail(field, "an array of 3 numbers", &value);
+    return {number(value[0], field + "[0]"), number(value[1], field + "[1]"), number(value[2], field + "[2]")};
+  }
+  // World positions: double, so a scene far from the origin keeps its precision.
+  glm::dvec3 dvec3(const nlohmann::json& value, const std::string& field) const {
     if (!value.is_array() || value.size() != 3) fail(field, "an array of 3 numbers", &value);
     return {number(value[0], field + "[0]"), number(value[1], field + "[1]"), number(value[2], field + "[2]")};
   }

@@ -52,6 +52,11 @@ const KnobRegistry& sceneRegistry() {
 
 }  // namespace
 
+KnobSpec withWords(KnobSpec spec, std::vector<std::string> words) {
+  spec.words = std::move(words);
+  return spec;
+}
+
 std::vector<KnobSpec> knobSpecs() {
   KnobSpec fov = number("camera.fov", 0.0, 179.0, true, "vertical field of view, degrees");
   fov.maxExclusive = true;
@@ -63,10 +68,10 @@ std::vector<KnobSpec> knobSpecs() {
       integer("stress.seed", 0, 1000000, "stress scenes' seed"),
       fov,
       number("camera.near", 0.0, kInf, true, "near plane, m"),
-      number("camera.far", 0.0, kInf, true, "far plane, m"),
+      withWords(number("camera.far", 0.0, kInf, true, "far plane, m, or inf (infinite, reversed Z)"), {"inf"}),
       typed("camera.position", KnobType::Vec3, "camera position x,y,z"),
       typed("camera.target", KnobType::Vec3, "camera target x,y,z"),
-      number("post.exposure", 0.0, kInf, true, "tone-mapping exposure"),
+      withWords(number("post.exposure", 0.0, kInf, true, "tone-mapping exposure, or auto (metered)"), {"auto"}),
       typed("post.bloom", KnobType::Flag, "bloom on/off"),
       number("post.bloom_threshold", 0.0, kInf, false, "bloom threshold"),
       number("post.bloom_knee", 0.0, kInf, false, "bloom soft knee"),
@@ -75,6 +80,8 @@ std::vector<KnobSpec> knobSpecs() {
       typed("scene.lights", KnobType::Flag, "0 drops the point lights"),
       typed("scene.particles", KnobType::Flag, "0 drops the particle emitters"),
       typed("scene.sun", KnobType::Flag, "sun on/off"),
+      number("scene.light_scale", 1e-12, 1e12, false, "factor on every light, emissive, particles, ambient, background"),
+      number("scene.emissive_scale", 1e-12, 1e12, false, "factor on emissive materials and particles"),
   };
 }
 
@@ -112,6 +119,27 @@ std::optional<double> Knobs::number(const std::string& key) const {
   return value;
 }
 
+std::optional<double> Knobs::numberOr(const std::string& key, const std::string& word) const {
+  const auto it = values_.find(key);
+  if (it == values_.end() || it->second == word) return std::nullopt;
+  const auto value = parseNumber(it->second);
+  if (!value) throw InputError(describe(key, it->second) + ": expected a finite number or '" + word + "'");
+  return value;
+}
+
+bool Knobs::isWord(const std::string& key, const std::string& word) const {
+  const auto it = values_.find(key);
+  return it != values_.end() && it->second == word;
+}
+
+std::optional<double> Knobs::scale(const std::string& key) const {
+  const auto value = number(key);
+  if (value && !(*value >= 1e-12 && *value <= 1e12)) {
+    throw InputError(describe(key, values_.at(key)) + ": expected a factor in [1e-12, 1e12]");
+  }
+  return value;
+}
+
 std::optional<bool> Knobs::flag(const std::string& key) const {
   const auto it = values_.find(key);
   if (it == values_.end()) return std::nullopt;
@@ -121,10 +149,10 @@ std::optional<bool> Knobs::flag(const std::string& key) const {
   throw InputError(describe(key, v) + ": expected 0|1|true|false|on|off");
 }
 
-std::optional<glm::vec3> Knobs::vec3(const std::string& key) const {
+std::optional<glm::dvec3> Knobs::vec3(const std::string& key) const {
   const auto it = values_.find(key);
   if (it == values_.end()) return std::nullopt;
-  glm::vec3 result(0.0f);
+  glm::dvec3 result(0.0);
   std::string_view rest = it->second;
   for (int axis = 0; axis < 3; ++axis) {
     const size_t comma = rest.find(',');
@@ -132,7 +160,7 @@ std::optional<glm::vec3> Knobs::vec3(const std::string& key) const {
     if (!component || (axis < 2) != (comma != std::string_view::npos)) {
       throw InputError(describe(key, it->second) + ": expected three numbers x,y,z");
     }
-    result[axis] = static_cast<float>(*component);
+    result[axis] = *component;
     rest = comma == std::string_view::npos ? std::string_view{} : rest.substr(comma + 1);
   }
   return result;

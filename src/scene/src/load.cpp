@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include <chrono>
+#include <limits>
 #include <mutex>
 
 namespace fgb::scene {
@@ -136,18 +137,43 @@ Scene loadModel(PartLoader& loader, const SceneDescription& d, const ModelRef& m
   });
 }
 
+// Emissive materials and particles (whose colours are emitted radiance).
+void scaleEmissive(Scene& scene, float factor) {
+  for (Material& material : scene.materials) material.emissiveStrength *= factor;
+  for (Emitter& emitter : scene.emitters) {
+    emitter.colorStart = glm::vec4(glm::vec3(emitter.colorStart) * factor, emitter.colorStart.a);
+    emitter.colorEnd = glm::vec4(glm::vec3(emitter.colorEnd) * factor, emitter.colorEnd.a);
+  }
+}
+
+// Every source of radiance, and the bloom threshold (a radiance level): with the exposure divided
+// by the same factor the image should not change (the `light-scale` stress ladder).
+void scaleLights(Scene& scene, float factor) {
+  for (PointLight& light : scene.lights) light.intensity *= factor;
+  scene.sun.intensity *= factor;
+  scaleEmissive(scene, factor);
+  scene.post.lightScale *= factor;
+  scene.post.bloom.threshold *= factor;
+}
+
 void applyKnobs(Scene& scene, const Knobs& knobs) {
   Camera& c = scene.camera;
   if (auto v = knobs.number("camera.fov")) c.verticalFovDeg = static_cast<float>(*v);
   if (auto v = knobs.number("camera.near")) c.nearPlane = static_cast<float>(*v);
-  if (auto v = knobs.number("camera.far")) c.farPlane = static_cast<float>(*v);
+  if (auto v = knobs.numberOr("camera.far", "inf")) c.farPlane = static_cast<float>(*v);
+  if (knobs.isWord("camera.far", "inf")) c.farPlane = std::numeric_limits<float>::infinity();
   if (auto v = knobs.vec3("camera.position")) c.position = *v;
   if (auto v = knobs.vec3("camera.target")) c.target = *v;
   if (!(c.verticalFovDeg > 0.0f && c.verticalFovDeg < 179.0f)) throw InputError("--set camera.fov: expected degrees in (0, 179)");
   if (!(c.nearPlane > 0.0f && c.farPlane > c.nearPlane)) throw InputError("--set camera.near/far: expected 0 < near < far");
   if (glm::length(c.target - c.position) <= 0.0f) throw InputError("--set camera.target: must differ from the position");
   PostSettings& p = scene.post;
-  if (auto v = knobs.number("post.exposure")) p.exposure = static_cast<float>(*v);
+  if (auto v = knobs.numberOr("post.exposure", "auto")) {
+    if (!(*v > 0.0)) throw InputError("--set post.exposure=" + std::to_string(*v) + ": expected a positive number or 'auto'");
+    p.exposure = static_cast<float>(*v);
+    p.autoExposure = false;
+  }
+  if (knobs.isWord("post.exposure", "auto")) p.autoExposure = true;
   if (auto v = knobs.flag("post.bloom")) p.bloom.enabled = *v;
   if (auto v = knobs.number("post.bloom_threshold")) p.bloom.threshold = static_cast<float>(*v);
   if (auto v = knobs.number("post.bloom_knee")) p.bloom.knee = static_cast<float>(*v);
@@ -156,6 +182,8 @@ void applyKnobs(Scene& scene, const Knobs& knobs) {
   if (knobs.flag("scene.lights") == false) scene.lights.clear();
   if (knobs.flag("scene.particles") == false) scene.emitters.clear();
   if (auto v = knobs.flag("scene.sun")) scene.sun.enabled = *v;
+  if (auto v = knobs.scale("scene.light_scale")) scaleLights(scene, static_cast<float>(*v));
+  if (auto v = knobs.scale("scene.emissive_scale")) scaleEmissive(scene, static_cast<float>(*v));
 }
 
 void applyDescription(Scene& scene, const SceneDescription& d) {
@@ -188,12 +216,12 @@ bool hasModelImporter() {
 Camera fitCamera(const Aabb& bounds) {
   Camera camera;
   if (bounds.isEmpty()) return camera;
-  const glm::vec3 centre = (bounds.min + bounds.max) * 0.5f;
-  const float radius = std::max(0.5f * glm::length(bounds.max - bounds.min), 1e-3f);
+  const glm::dvec3 centre = (bounds.min + bounds.max) * 0.5;
+  const double radius = std::max(0.5 * glm::length(bounds.max - bounds.min), 1e-3);
   camera.target = centre;
-  camera.position = centre + glm::vec3(0.0f, 0.35f, 1.0f) * (radius * 2.0f);
-  camera.nearPlane = radius * 0.01f;
-  camera.farPlane = radius * 20.0f;
+  camera.position = centre + glm::dvec3(0.0, 0.35, 1.0) * (radius * 2.0);
+  camera.nearPlane = static_cast<float>(radius * 0.01);
+  camera.farPlane = static_cast<float>(radius * 20.0);
   return camera;
 }
 

@@ -9,11 +9,11 @@
 namespace fgb::scene {
 
 Aabb Aabb::empty() {
-  constexpr float inf = std::numeric_limits<float>::infinity();
-  return Aabb{glm::vec3(inf), glm::vec3(-inf)};
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  return Aabb{glm::dvec3(inf), glm::dvec3(-inf)};
 }
 
-void Aabb::extend(const glm::vec3& point) {
+void Aabb::extend(const glm::dvec3& point) {
   min = glm::min(min, point);
   max = glm::max(max, point);
 }
@@ -24,16 +24,16 @@ void Aabb::extend(const Aabb& other) {
   max = glm::max(max, other.max);
 }
 
-Aabb Aabb::transformed(const glm::mat4& transform) const {
+Aabb Aabb::transformed(const glm::dmat4& transform) const {
   if (isEmpty()) return *this;
   // Arvo's method: the transformed box is the translation plus, per axis, the sum of the
   // smaller/larger products -- exact for the eight corners, without enumerating them.
-  const glm::vec3 translation(transform[3]);
+  const glm::dvec3 translation(transform[3]);
   Aabb result{translation, translation};
   for (int column = 0; column < 3; ++column) {
     for (int row = 0; row < 3; ++row) {
-      const float a = transform[column][row] * min[column];
-      const float b = transform[column][row] * max[column];
+      const double a = transform[column][row] * min[column];
+      const double b = transform[column][row] * max[column];
       result.min[row] += a < b ? a : b;
       result.max[row] += a < b ? b : a;
     }

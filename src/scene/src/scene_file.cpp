@@ -25,22 +25,23 @@ bool isPassThrough(const std::string& key) {
          key == "tags";
 }
 
-glm::mat4 parsePlacement(const Fields& f, const json& model, const std::string& field) {
-  glm::mat4 placement(1.0f);
-  if (model.contains("position")) placement = glm::translate(placement, f.vec3(model["position"], field + ".position"));
+glm::dmat4 parsePlacement(const Fields& f, const json& model, const std::string& field) {
+  glm::dmat4 placement(1.0);
+  if (model.contains("position")) placement = glm::translate(placement, f.dvec3(model["position"], field + ".position"));
   if (model.contains("rotation_deg")) {
     const glm::vec3 degrees = f.vec3(model["rotation_deg"], field + ".rotation_deg");
     // Applied Y (yaw), then X (pitch), then Z (roll), all in the model's parent frame.
-    placement = glm::rotate(placement, glm::radians(degrees.y), glm::vec3(0, 1, 0));
-    placement = glm::rotate(placement, glm::radians(degrees.x), glm::vec3(1, 0, 0));
-    placement = glm::rotate(placement, glm::radians(degrees.z), glm::vec3(0, 0, 1));
+    const glm::dvec3 radians = glm::radians(glm::dvec3(degrees));
+    placement = glm::rotate(placement, radians.y, glm::dvec3(0, 1, 0));
+    placement = glm::rotate(placement, radians.x, glm::dvec3(1, 0, 0));
+    placement = glm::rotate(placement, radians.z, glm::dvec3(0, 0, 1));
   }
   if (model.contains("scale")) {
     const json& scale = model["scale"];
     const glm::vec3 factors = scale.is_array() ? f.vec3(scale, field + ".scale")
                                                : glm::vec3(f.positive(scale, field + ".scale"));
     if (!(factors.x > 0 && factors.y > 0 && factors.z > 0)) f.fail(field + ".scale", "positive factors", &scale);
-    placement = glm::scale(placement, factors);
+    placement = glm::scale(placement, glm::dvec3(factors));
   }
   return placement;
 }
@@ -65,7 +66,7 @@ PointLight parseLight(const Fields& f, const json& value, const std::string& fie
   f.onlyKeys(value, field, {"position", "color", "intensity", "radius"});
   PointLight light;
   if (!value.contains("position")) f.fail(field + ".position", "an array of 3 numbers", nullptr);
-  light.position = f.vec3(value["position"], field + ".position");
+  light.position = f.dvec3(value["position"], field + ".position");
   if (value.contains("color")) light.color = f.vec3(value["color"], field + ".color");
   if (value.contains("intensity")) light.intensity = f.nonNegative(value["intensity"], field + ".intensity");
   if (value.contains("radius")) light.radius = f.positive(value["radius"], field + ".radius");
@@ -95,7 +96,7 @@ Emitter parseEmitter(const Fields& f, const json& value, const std::string& fiel
   Emitter e;
   e.name = value.contains("name") ? f.string(value["name"], field + ".name") : field;
   if (!value.contains("position")) f.fail(field + ".position", "an array of 3 numbers", nullptr);
-  e.position = f.vec3(value["position"], field + ".position");
+  e.position = f.dvec3(value["position"], field + ".position");
   if (value.contains("rate")) e.rate = f.nonNegative(value["rate"], field + ".rate");
   if (value.contains("lifetime")) e.lifetime = f.positive(value["lifetime"], field + ".lifetime");
   if (value.contains("direction")) {
@@ -150,8 +151,8 @@ void applyCameraOverrides(Camera& camera, const json& overrides, const std::stri
   const Fields f(where);
   f.object(overrides, "camera");
   f.onlyKeys(overrides, "camera", {"position", "target", "up", "fov_deg", "near", "far"});
-  if (overrides.contains("position")) camera.position = f.vec3(overrides["position"], "camera.position");
-  if (overrides.contains("target")) camera.target = f.vec3(overrides["target"], "camera.target");
+  if (overrides.contains("position")) camera.position = f.dvec3(overrides["position"], "camera.position");
+  if (overrides.contains("target")) camera.target = f.dvec3(overrides["target"], "camera.target");
   if (overrides.contains("up")) camera.up = f.vec3(overrides["up"], "camera.up");
   if (overrides.contains("fov_deg")) {
     camera.verticalFovDeg = f.positive(overrides["fov_deg"], "camera.fov_deg");
@@ -170,7 +171,11 @@ void applyPostOverrides(PostSettings& post, const json& overrides, const std::st
   const Fields f(where);
   f.object(overrides, "post");
   f.onlyKeys(overrides, "post", {"exposure", "bloom"});
-  if (overrides.contains("exposure")) post.exposure = f.positive(overrides["exposure"], "post.exposure");
+  if (overrides.contains("exposure")) {
+    const json& exposure = overrides["exposure"];
+    post.autoExposure = exposure == "auto";
+    if (!post.autoExposure) post.exposure = f.positive(exposure, "post.exposure");
+  }
   if (!overrides.contains("bloom")) return;
   const json& bloom = overrides["bloom"];
   if (bloom.is_boolean()) {

@@ -111,7 +111,7 @@ void writeEmitter(Writer<Sink>& w, const Emitter& e) {
 Emitter readEmitter(Reader& r) {
   Emitter e;
   e.name = r.string();
-  e.position = r.pod<glm::vec3>();
+  e.position = r.pod<glm::dvec3>();
   e.rate = r.pod<float>();
   e.lifetime = r.pod<float>();
   e.direction = r.pod<glm::vec3>();
@@ -125,6 +125,24 @@ Emitter readEmitter(Reader& r) {
   e.maxParticles = r.pod<uint32_t>();
   e.seed = r.pod<uint32_t>();
   return e;
+}
+
+// Field by field: PointLight has padding after its double position.
+template <typename Sink>
+void writeLight(Writer<Sink>& w, const PointLight& l) {
+  w.pod(l.position);
+  w.pod(l.color);
+  w.pod(l.intensity);
+  w.pod(l.radius);
+}
+
+PointLight readLight(Reader& r) {
+  PointLight l;
+  l.position = r.pod<glm::dvec3>();
+  l.color = r.pod<glm::vec3>();
+  l.intensity = r.pod<float>();
+  l.radius = r.pod<float>();
+  return l;
 }
 
 template <typename Sink>
@@ -147,6 +165,8 @@ DirectionalLight readSun(Reader& r) {
 template <typename Sink>
 void writePost(Writer<Sink>& w, const PostSettings& p) {
   w.pod(p.exposure);
+  w.pod(static_cast<uint8_t>(p.autoExposure));
+  w.pod(p.lightScale);
   w.pod(static_cast<uint8_t>(p.bloom.enabled));
   w.pod(p.bloom.threshold);
   w.pod(p.bloom.knee);
@@ -157,6 +177,8 @@ void writePost(Writer<Sink>& w, const PostSettings& p) {
 PostSettings readPost(Reader& r) {
   PostSettings p;
   p.exposure = r.pod<float>();
+  p.autoExposure = r.pod<uint8_t>() != 0;
+  p.lightScale = r.pod<float>();
   p.bloom.enabled = r.pod<uint8_t>() != 0;
   p.bloom.threshold = r.pod<float>();
   p.bloom.knee = r.pod<float>();
@@ -236,7 +258,7 @@ void writeScene(Writer<Sink>& w, const Scene& s) {
   w.array(s.instances);
   writeList(w, s.materials, [](auto& out, const Material& m) { writeMaterial(out, m); });
   writeList(w, s.textures, [](auto& out, const Texture& t) { writeTexture(out, t); });
-  w.array(s.lights);
+  writeList(w, s.lights, [](auto& out, const PointLight& l) { writeLight(out, l); });
   writeSun(w, s.sun);
   writeList(w, s.emitters, [](auto& out, const Emitter& e) { writeEmitter(out, e); });
   w.pod(s.camera);
@@ -262,7 +284,7 @@ Scene readScene(Reader& r) {
   s.instances = r.array<Instance>();
   s.materials = readList(r, readMaterial);
   s.textures = readList(r, readTexture);
-  s.lights = r.array<PointLight>();
+  s.lights = readList(r, readLight);
   s.sun = readSun(r);
   s.emitters = readList(r, readEmitter);
   s.camera = r.pod<Camera>();

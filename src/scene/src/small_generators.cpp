@@ -98,9 +98,10 @@ Scene buildShowcase(const ShowcaseParams& p, const std::string& context, const s
 
 Scene buildStressFar(const AtriumParams& atrium, double offset) {
   Scene placed;
-  const auto d = static_cast<float>(offset);
-  mergeScene(placed, buildAtrium(atrium), glm::translate(glm::mat4(1.0f), {d, 0.0f, d}));
-  placed.post = PostSettings{0.6f, BloomSettings{}};
+  // In double: the scene model keeps world placement in double, so 1e7 m loses nothing here.
+  mergeScene(placed, buildAtrium(atrium), glm::translate(glm::dmat4(1.0), glm::dvec3(offset, 0.0, offset)));
+  placed.post = PostSettings{};
+  placed.post.exposure = 0.6f;
   return placed;
 }
 
@@ -182,7 +183,14 @@ Scene buildStressNan(double fraction, uint32_t seed) {
   };
   ShowcaseParams params;
   params.seed = seed;
-  return buildShowcase(params, "generator 'stress-nan'", lace);
+  Scene scene = buildShowcase(params, "generator 'stress-nan'", lace);
+  // Shading singularities the renderer must survive without a NaN: a light lying on the floor
+  // (distance -> 0 for the fragments around it) and mirror-smooth materials (roughness 0).
+  scene.lights.push_back({{0.0, 0.0, 1.0}, glm::vec3(1.0f), 4.0f, 3.0f});
+  for (Material& material : scene.materials) {
+    if (material.name == "object-0" || material.name == "object-1") material.roughnessFactor = 0.0f;
+  }
+  return scene;
 }
 
 }  // namespace fgb::scene

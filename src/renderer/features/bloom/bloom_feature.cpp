@@ -23,6 +23,7 @@ struct DownPush {
   uint32_t firstMip;
   float threshold;
   float knee;
+  uint32_t exposure;
 };
 struct UpPush {
   uint32_t source;
@@ -59,6 +60,7 @@ void BloomFeature::initialize(FeatureInit& init) {
   downPipeline_ = init.device.createComputePipeline({"bloom downsample", "renderer/bloom_down.comp"});
   upPipeline_ = init.device.createComputePipeline({"bloom upsample", "renderer/bloom_up.comp"});
   samplerIndex_ = init.device.samplerIndex(init.scene.linearClampSampler);
+  exposureIndex_ = init.device.storageBufferIndex(init.scene.exposure);
 }
 
 void BloomFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
@@ -66,6 +68,7 @@ void BloomFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
   const auto& targets = board.get<FrameTargets>();
   auto node = graph.addNode("Bloom", graph::NodeType::Compute, graph::QueueClass::Graphics);
   const auto hdr = node.read(targets.hdr, graph::Access::Sampled);
+  if (targets.exposure.valid()) node.read(targets.exposure, graph::Access::StorageRead);
   std::vector<graph::TextureHandle> levels(size_t{mips_} + 1);  // [0] unused: the HDR image
   for (uint32_t level = 1; level <= mips_; ++level) {
     const auto texture = graph.createTexture("bloom " + std::to_string(level), {kHdrFormat, {}, 1, 1, 1, targets.hdr, level});
@@ -76,7 +79,7 @@ void BloomFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
   for (uint32_t level = 0; level <= mips_; ++level) sizes[level] = levelExtent(targets.extent, level);
 
   node.setJob([down = downPipeline_, up = upPipeline_, sampler = samplerIndex_, bloom = bloom_, mips = mips_, hdr,
-               levels, sizes](graph::JobContext& context) {
+               levels, sizes, exposure = exposureIndex_](graph::JobContext& context) {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
     const auto xy = [](const graph::Extent& e) { return std::array{int32_t(e.width), int32_t(e.height)}; };
@@ -86,7 +89,7 @@ void BloomFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
       const bool first = level == 1;
       DownPush push{first ? ctx.sampledTextureIndex(hdr) : ctx.storageTextureIndex(levels[level - 1]),
                     first ? 0u : 1u, sampler, ctx.storageTextureIndex(levels[level]), {}, {},
-                    first ? 1u : 0u, bloom.threshold, bloom.knee};
+                    first ? 1u : 0u, bloom.threshold, bloom.knee, exposure};
       std::ranges::copy(xy(sizes[level - 1]), push.sourceSize);
       std::ranges::copy(xy(sizes[level]), push.targetSize);
       cmd.push(push);

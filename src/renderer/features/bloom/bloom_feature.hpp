@@ -23,6 +23,7 @@ class BloomFeature final : public IRenderFeature {
   rhi::PipelineId downPipeline_;
   rhi::PipelineId upPipeline_;
   uint32_t samplerIndex_ = 0;
+  uint32_t exposureIndex_ = 0;  // the exposure state (the threshold is applied pre-exposed)
   uint32_t mips_ = 0;
   scene::BloomSettings bloom_;
   bool enabled_ = false;

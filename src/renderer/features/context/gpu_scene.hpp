@@ -9,6 +9,7 @@
 #include <fgb/rhi/types.hpp>
 #include <fgb/scene/scene.hpp>
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -54,6 +55,7 @@ struct GpuScene {
   rhi::BufferId materials;         // MaterialGpu[]
   rhi::BufferId lights;            // PointLightGpu[] (at least one entry)
   rhi::BufferId frameConstants;    // FrameConstantsGpu
+  rhi::BufferId exposure;          // ExposureGpu (written by the "Exposure" node with auto exposure)
   rhi::BufferId commandTemplate;   // DrawIndexedCommand[] with instanceCount 0 (reset source)
   rhi::SamplerId materialSampler;
   rhi::SamplerId linearClampSampler;
@@ -83,6 +85,9 @@ struct FrameTargets {
   graph::TextureHandle hdr;    // the resolved HDR image; written by the last colour pass
   graph::TextureHandle outputHdr;  // SSAA only: the imported HDR image "SSAA Resolve" writes
   graph::TextureHandle display;  // tone-mapped output (imported)
+  graph::BufferHandle exposure;  // the exposure state, when a node writes it (auto exposure);
+                                 // invalid with a fixed exposure (then it never changes)
+  std::array<float, 4> background{};  // HDR clear colour: background radiance, pre-exposed
   uint32_t colorPasses = 0;  // forward passes still to declare; the last one resolves
   bool colorCleared = false;     // the first colour pass clears colour
   bool depthCleared = false;     // the first pass using depth (maybe a depth prepass) clears it
@@ -90,6 +95,12 @@ struct FrameTargets {
 
 inline constexpr graph::Format kHdrFormat = graph::Format::R16G16B16A16Sfloat;
 inline constexpr graph::Format kDepthFormat = graph::Format::D32Sfloat;
+// Reversed-Z (scene::projectionMatrix): depth 1 at the near plane, 0 at the far plane (or
+// infinity). Depth clears to the far value and nearer fragments pass GREATER_OR_EQUAL.
+inline constexpr float kDepthClear = 0.0f;
+// Radiance behind every object (the open sky of the courtyards), before light scale and exposure.
+inline constexpr std::array<float, 4> kBackgroundRadiance{0.02f, 0.025f, 0.035f, 1.0f};
+inline constexpr rhi::CompareOp kDepthCompare = rhi::CompareOp::GreaterOrEqual;
 inline constexpr graph::Format kDisplayFormat = graph::Format::R8G8B8A8Srgb;
 
 }  // namespace fgb::features

@@ -11,25 +11,43 @@ namespace fgb::features {
 
 // Camera and view data, uploaded once per run (the benchmark camera does not move).
 struct FrameConstantsGpu {
-  glm::mat4 view{1.0f};
-  glm::mat4 proj{1.0f};      // Vulkan clip space, Y flipped for a top-left origin
+  glm::mat4 view{1.0f};      // camera-relative: a rotation only (render space -> view space)
+  glm::mat4 proj{1.0f};      // Vulkan clip space, Y flipped for a top-left origin; reversed-Z
+                             // (near -> 1, far -> 0), the far plane possibly infinite
   glm::mat4 viewProj{1.0f};
   glm::mat4 invProj{1.0f};
-  glm::vec4 cameraPosition{0.0f};
+  glm::vec4 cameraPosition{0.0f};  // always (0, 0, 0, 1): render space is camera-relative
   glm::vec4 sunDirection{0.0f};  // xyz: direction light travels; w: 1 when enabled
   glm::vec4 sunColor{0.0f};      // rgb * intensity
   glm::vec4 viewport{0.0f};      // width, height, 1/width, 1/height
-  glm::vec4 depthRange{0.0f};    // near, far, slice scale, slice bias (clusters)
+  glm::vec4 depthRange{0.0f};    // near, cluster far (finite), slice scale, slice bias (clusters)
   glm::uvec4 clusterGrid{0u};    // tiles x, tiles y, slices, tile size in pixels
   glm::uvec4 counts{0u};         // lights, instances, max lights per cluster, debug view
-  glm::vec4 ambient{0.0f};       // rgb: constant ambient term
+  glm::vec4 ambient{0.0f};       // rgb: constant ambient term (radiance, times the light scale)
+  glm::uvec4 buffers{0u};        // x: storage-buffer index of the ExposureGpu state
 };
-static_assert(sizeof(FrameConstantsGpu) == 4 * 64 + 8 * 16);
+static_assert(sizeof(FrameConstantsGpu) == 4 * 64 + 9 * 16);
+
+// Exposure state (Frostbite's pre-exposure, "Moving Frostbite to PBR" 2014). Lighting, emissive,
+// particles and the background are multiplied by preExposure before they are written to the R16F
+// HDR target, so the stored values stay in range whatever the scene's absolute radiance; bloom's
+// threshold is applied in the same pre-exposed units and tone mapping multiplies the HDR value by
+// tonemapScale (= exposure / preExposure). Fixed exposure: preExposure = exposure = post.exposure,
+// tonemapScale = 1, written once at upload. Auto exposure: the "Exposure" node measures the frame,
+// writes exposure and tonemapScale for this frame's tone mapping and sets preExposure = exposure
+// for the next frame.
+struct ExposureGpu {
+  float preExposure = 1.0f;
+  float tonemapScale = 1.0f;
+  float exposure = 1.0f;
+  float averageLuminance = 0.0f;  // scene-referred log-average luminance the exposure came from
+};
+static_assert(sizeof(ExposureGpu) == 16);
 
 struct InstanceGpu {
-  glm::mat4 model{1.0f};
+  glm::mat4 model{1.0f};         // mesh -> render space (world minus the camera position)
   glm::mat4 normalMatrix{1.0f};  // inverse transpose of the model's 3x3, in a mat4
-  glm::vec4 boundsMin{0.0f};     // world AABB
+  glm::vec4 boundsMin{0.0f};     // render-space AABB
   glm::vec4 boundsMax{0.0f};
   uint32_t material = 0;
   uint32_t drawGroup = 0;        // index of the indirect command drawing this instance
@@ -53,7 +71,7 @@ struct MaterialGpu {
 static_assert(sizeof(MaterialGpu) == 64);
 
 struct PointLightGpu {
-  glm::vec4 positionRadius{0.0f};
+  glm::vec4 positionRadius{0.0f};  // render-space position
   glm::vec4 color{0.0f};  // rgb * intensity
 };
 static_assert(sizeof(PointLightGpu) == 32);

@@ -1,12 +1,6 @@
 #include "render_feature.hpp"
 
 namespace fgb::features {
-namespace {
-
-constexpr graph::ClearValue kBackground{{0.02f, 0.025f, 0.035f, 1.0f}, 1.0f, 0};
-
-}  // namespace
-
 std::pair<uint32_t, uint32_t> GpuScene::groupRange(DrawClass drawClass) const {
   uint32_t first = 0;
   while (first < groups.size() && groups[first].drawClass < drawClass) ++first;
@@ -22,24 +16,28 @@ graph::NodeBuilder addForwardPass(graph::FrameGraph& graph, FrameTargets& target
   const bool first = !targets.colorCleared;
   const bool last = --targets.colorPasses == 0;
   const graph::LoadOp load = first ? graph::LoadOp::Clear : graph::LoadOp::Load;
+  const graph::ClearValue clear{targets.background, kDepthClear, 0};
 
   if (targets.samples == 1) {
     // Single-sampled: the HDR image is the colour target itself.
-    targets.color = node.addColorTarget(targets.color, load, kBackground);
+    targets.color = node.addColorTarget(targets.color, load, clear);
     targets.hdr = targets.color;
   } else if (last) {
     graph::TextureHandle newColor;
-    targets.hdr = node.addColorTargetWithResolve(targets.color, targets.hdr, &newColor, load, kBackground);
+    targets.hdr = node.addColorTargetWithResolve(targets.color, targets.hdr, &newColor, load, clear);
     targets.color = newColor;
   } else {
-    targets.color = node.addColorTarget(targets.color, load, kBackground);
+    targets.color = node.addColorTarget(targets.color, load, clear);
   }
 
-  if (!targets.depthCleared) targets.depth = node.setDepthStencil(targets.depth, graph::LoadOp::Clear, kBackground);
+  if (!targets.depthCleared) targets.depth = node.setDepthStencil(targets.depth, graph::LoadOp::Clear, clear);
   else if (writesDepth) targets.depth = node.setDepthStencil(targets.depth, graph::LoadOp::Load);
   else node.setDepthStencilReadOnly(targets.depth);
   targets.colorCleared = true;
   targets.depthCleared = true;
+  // Every colour pass pre-exposes what it writes (forward: fragment stage; particles: vertex).
+  if (targets.exposure.valid())
+    node.read(targets.exposure, graph::Access::StorageRead, graph::kStageVertexShader | graph::kStageFragmentShader);
   return node;
 }
 

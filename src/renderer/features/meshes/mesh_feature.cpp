@@ -69,7 +69,7 @@ rhi::GraphicsPipelineDesc forwardPipeline(const RenderSettings& settings, bool t
   desc.depthFormat = kDepthFormat;
   desc.depthTest = true;
   desc.depthWrite = !transparent;
-  desc.depthCompare = rhi::CompareOp::LessOrEqual;
+  desc.depthCompare = kDepthCompare;
   desc.samples = settings.msaa;
   return desc;
 }
@@ -280,7 +280,7 @@ void MeshFeature::declareDepthPrepass(graph::FrameGraph& graph, Blackboard& boar
   auto node = graph.addNode("Depth Prepass", graph::NodeType::Graphics);
   readDrawCommands(node, cull, drawCount_);
   node.read(cull.visible, graph::Access::StorageRead, kStageVertexShader);
-  targets.depth = node.setDepthStencil(targets.depth, graph::LoadOp::Clear);
+  targets.depth = node.setDepthStencil(targets.depth, graph::LoadOp::Clear, graph::ClearValue{{}, kDepthClear, 0});
   targets.depthCleared = true;
   ForwardPush push{};
   push.frame = device_->storageBufferIndex(scene.frameConstants);

@@ -61,9 +61,10 @@ constexpr graph::ImportState kPoolFinal{graph::kStageComputeShader,
                                         graph::kAccessShaderStorageRead | graph::kAccessShaderStorageWrite,
                                         graph::Layout::Undefined, graph::QueueClass::Compute};
 
-EmitterGpu toGpu(const scene::Emitter& e, uint32_t seedOffset) {
+// Emitters (and so the particles they spawn) live in camera-relative render space.
+EmitterGpu toGpu(const scene::Emitter& e, const glm::dvec3& cameraPosition, uint32_t seedOffset) {
   EmitterGpu out{};
-  out.positionRate = glm::vec4(e.position, e.rate);
+  out.positionRate = glm::vec4(glm::vec3(e.position - cameraPosition), e.rate);
   out.directionCone = glm::vec4(glm::normalize(e.direction), std::cos(glm::radians(e.coneAngleDeg)));
   out.colorStart = e.colorStart;
   out.colorEnd = e.colorEnd;
@@ -100,7 +101,7 @@ void ParticleFeature::createState(rhi::Device& device, const scene::Scene& scene
   freeList.resize(size_t{poolSize_} + 1);
   std::iota(freeList.begin() + 1, freeList.end(), 0u);
   std::vector<EmitterGpu> emitters;
-  for (const auto& emitter : scene.emitters) emitters.push_back(toGpu(emitter, seedOffset));
+  for (const auto& emitter : scene.emitters) emitters.push_back(toGpu(emitter, scene.camera.position, seedOffset));
   rhi::uploadBuffer(device, pool_, bytesOf(std::vector<ParticleGpu>(poolSize_)));
   rhi::uploadBuffer(device, freeList_, bytesOf(freeList));
   rhi::uploadBuffer(device, emitters_, bytesOf(emitters));
@@ -125,7 +126,7 @@ void ParticleFeature::initialize(FeatureInit& init) {
   desc.depthFormat = kDepthFormat;
   desc.depthTest = true;
   desc.depthWrite = false;
-  desc.depthCompare = rhi::CompareOp::LessOrEqual;
+  desc.depthCompare = kDepthCompare;
   desc.samples = init.settings.msaa;
   renderPipeline_ = init.device.createGraphicsPipeline(desc);
 }

@@ -12,7 +12,7 @@ struct TonemapPush {
   uint32_t hdrTexture;
   uint32_t bloomTexture;
   uint32_t linearSampler;
-  float exposure;
+  uint32_t exposure;
   float bloomIntensity;
 };
 
@@ -26,7 +26,7 @@ void TonemapFeature::initialize(FeatureInit& init) {
   desc.colorFormats = {kDisplayFormat};
   pipeline_ = init.device.createGraphicsPipeline(desc);
   samplerIndex_ = init.device.samplerIndex(init.scene.linearClampSampler);
-  exposure_ = init.scene.scene->post.exposure;
+  exposureBuffer_ = init.device.storageBufferIndex(init.scene.exposure);
   bloomIntensity_ = init.scene.scene->post.bloom.intensity;
 }
 
@@ -39,8 +39,9 @@ void TonemapFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
     bloom = published->texture;
     node.read(bloom, graph::Access::Sampled, graph::kStageFragmentShader);
   }
+  if (targets.exposure.valid()) node.read(targets.exposure, graph::Access::StorageRead, graph::kStageFragmentShader);
   targets.display = node.addColorTarget(targets.display, graph::LoadOp::DontCare);
-  TonemapPush push{0, rhi::kInvalidId, samplerIndex_, exposure_, bloomIntensity_};
+  TonemapPush push{0, rhi::kInvalidId, samplerIndex_, exposureBuffer_, bloomIntensity_};
   node.setJob([push, pipeline = pipeline_, hdr, bloom](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
     push.hdrTexture = ctx.sampledTextureIndex(hdr);

@@ -1,5 +1,6 @@
 // "Tone mapping": L = 1 - exp(-L_hdr * exposure) (thesis), adding the bloom texture when the bloom
-// feature published one, into the sRGB display image.
+// feature published one, into the sRGB display image. The HDR image is pre-exposed; the shader
+// applies the exposure state's tonemapScale (ExposureGpu).
 #pragma once
 
 #include "../context/render_feature.hpp"
@@ -15,7 +16,7 @@ class TonemapFeature final : public IRenderFeature {
  private:
   rhi::PipelineId pipeline_;
   uint32_t samplerIndex_ = 0;
-  float exposure_ = 0.6f;
+  uint32_t exposureBuffer_ = 0;
   float bloomIntensity_ = 0.0f;
 };
 

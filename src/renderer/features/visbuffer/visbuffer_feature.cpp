@@ -67,8 +67,6 @@ constexpr uint32_t kFlagReversedZ = 1;
 constexpr uint32_t kFlagLargeTiles = 2;
 constexpr uint32_t kRasterGroupSize = 64;  // visibility_raster.comp's local size
 constexpr uint32_t kShadeGroupSize = 8;    // material_shade.comp: 8 x 8
-// The forward path's clear colour (render_feature.cpp kBackground), for pixels nothing covers.
-constexpr glm::vec4 kBackground{0.02f, 0.025f, 0.035f, 1.0f};
 
 // Reversed Z: the projection maps nearer points to larger depth.
 bool projectsReversedZ(const FrameConstantsGpu& constants) {
@@ -151,7 +149,7 @@ VisBufferFeature::Buffers VisBufferFeature::declareBuffers(graph::FrameGraph& gr
   p.lights = device_->storageBufferIndex(scene.lights);
   p.clusterCounts = p.clusterIndices = rhi::kInvalidId;
   p.flags = reversedZ_ ? kFlagReversedZ : 0u;
-  p.background = kBackground;
+  p.background = {targets.background[0], targets.background[1], targets.background[2], targets.background[3]};
   return b;
 }
 
@@ -269,6 +267,8 @@ void VisBufferFeature::declareShade(graph::FrameGraph& graph, Blackboard& board,
     node.read(clusters.counts, Access::StorageRead);
     node.read(clusters.indices, Access::StorageRead);
   }
+  // Shading pre-exposes what it writes, like every colour pass (auto exposure: this frame's state).
+  if (targets.exposure.valid()) node.read(targets.exposure, Access::StorageRead);
   node.setJob([push = b.push, pipelines = pipelines_, b, hdr = targets.hdr, clusters](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();

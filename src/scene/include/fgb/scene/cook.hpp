@@ -11,7 +11,7 @@
 namespace fgb::scene {
 
 // Bump when the cooked output of the same input changes: it is part of every cache key.
-inline constexpr uint32_t kCookerVersion = 2;  // 2: clusters (meshopt_buildMeshlets)
+inline constexpr uint32_t kCookerVersion = 3;  // 2: world placement in double; 3: clusters (meshopt_buildMeshlets)
 
 void cookScene(Scene& scene);
 

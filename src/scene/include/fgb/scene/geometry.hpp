@@ -41,13 +41,13 @@ void computeTangents(MeshData& mesh, const std::vector<bool>& recompute = {});
 // appended too (callers usually skip them and count RepairCounters::emptyMeshes).
 uint32_t appendMesh(Scene& scene, MeshData&& mesh);
 // Adds an instance, computing its world bounds from the mesh's local bounds.
-uint32_t addInstance(Scene& scene, uint32_t mesh, uint32_t material, const glm::mat4& transform);
+uint32_t addInstance(Scene& scene, uint32_t mesh, uint32_t material, const glm::dmat4& transform);
 // Recomputes every mesh's local bounds and every instance's world bounds.
 void updateBounds(Scene& scene);
 
 // Moves `part` into `into`, placing it with `placement`: meshes, materials and textures are
 // renumbered, instances, lights and emitters transformed, repairs and warnings accumulated.
 // Camera, sun and post settings of `part` are taken only where `into` has none.
-void mergeScene(Scene& into, Scene&& part, const glm::mat4& placement);
+void mergeScene(Scene& into, Scene&& part, const glm::dmat4& placement);
 
 }  // namespace fgb::scene

@@ -5,15 +5,18 @@
 //
 // Keys: atrium.scale (geometry density multiplier, > 0), atrium.seed, atrium.texture_size,
 //       stress.offset (distance from the origin for stress-far), stress.seed,
-//       camera.fov (vertical, degrees), camera.near, camera.far, camera.position (x,y,z),
-//       camera.target (x,y,z), post.exposure, post.bloom (0|1), post.bloom_threshold,
-//       post.bloom_knee, post.bloom_intensity, post.bloom_radius,
-//       scene.lights (0 drops point lights), scene.particles (0 drops emitters), scene.sun (0|1).
+//       camera.fov (vertical, degrees), camera.near, camera.far (a number or inf: infinite far
+//       plane), camera.position (x,y,z), camera.target (x,y,z), post.exposure (a number or auto),
+//       post.bloom (0|1), post.bloom_threshold, post.bloom_knee, post.bloom_intensity,
+//       post.bloom_radius, scene.lights (0 drops point lights), scene.particles (0 drops
+//       emitters), scene.sun (0|1), scene.light_scale (factor on every light, emissive and
+//       particle radiance, the background and the bloom threshold), scene.emissive_scale (factor
+//       on emissive materials and particles only).
 #pragma once
 
 #include <fgb/core/knob_registry.hpp>
 
-#include <glm/vec3.hpp>
+#include <glm/ext/vector_double3.hpp>
 
 #include <map>
 #include <optional>
@@ -38,8 +41,13 @@ class Knobs {
   bool has(const std::string& key) const { return values_.count(key) != 0; }
   // Typed getters: nullopt when unset; InputError "--set key=value: expected ..." when malformed.
   std::optional<double> number(const std::string& key) const;
+  // A number, or nullopt when unset or set to `word` (camera.far=inf, post.exposure=auto).
+  std::optional<double> numberOr(const std::string& key, const std::string& word) const;
+  bool isWord(const std::string& key, const std::string& word) const;
+  // A positive factor in [1e-12, 1e12] (scene.light_scale, scene.emissive_scale).
+  std::optional<double> scale(const std::string& key) const;
   std::optional<bool> flag(const std::string& key) const;
-  std::optional<glm::vec3> vec3(const std::string& key) const;
+  std::optional<glm::dvec3> vec3(const std::string& key) const;  // double: camera positions far out
 
   // Owned knobs with a given prefix ("atrium."), without the prefix.
   std::map<std::string, std::string> withPrefix(const std::string& prefix) const;

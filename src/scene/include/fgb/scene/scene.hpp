@@ -9,11 +9,17 @@
 //   * Instances reference a mesh and a material; transforms map mesh-local to world space and may
 //     be non-uniformly scaled (use the inverse transpose for normals). worldBounds is the AABB of
 //     the transformed localBounds.
+//   * World-space placement (instance transforms, bounds, light, emitter and camera positions) is
+//     double precision: a scene may sit 1e7 m from the origin, where float steps by 1 m. Vertex
+//     data stays float (mesh-local). The renderer subtracts the camera position in double and
+//     sends everything to the GPU camera-relative (see src/renderer/scene_workload/frame_setup.cpp).
 //   * Materials are glTF metallic-roughness; a texture index of -1 means "no texture".
 //   * Textures are RGBA8 with a full mip chain down to 1x1, level 0 first, tightly packed.
 // Cooked scenes come from loadScene() (load.hpp); stats() (stats.hpp) summarises one.
 #pragma once
 
+#include <glm/ext/matrix_double4x4.hpp>
+#include <glm/ext/vector_double3.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -26,15 +32,15 @@
 namespace fgb::scene {
 
 struct Aabb {
-  glm::vec3 min{0.0f};
-  glm::vec3 max{0.0f};
+  glm::dvec3 min{0.0};
+  glm::dvec3 max{0.0};
 
   // An "empty" box that any extend() replaces.
   static Aabb empty();
   bool isEmpty() const { return min.x > max.x; }
-  void extend(const glm::vec3& point);
+  void extend(const glm::dvec3& point);
   void extend(const Aabb& other);
-  Aabb transformed(const glm::mat4& transform) const;
+  Aabb transformed(const glm::dmat4& transform) const;
 };
 
 struct Mesh {
@@ -70,7 +76,7 @@ static_assert(sizeof(Cluster) == 48);
 struct Instance {
   uint32_t mesh = 0;
   uint32_t material = 0;
-  glm::mat4 transform{1.0f};
+  glm::dmat4 transform{1.0};
   Aabb worldBounds;
 };
 
@@ -109,7 +115,7 @@ struct Texture {
 };
 
 struct PointLight {
-  glm::vec3 position{0.0f};
+  glm::dvec3 position{0.0};
   glm::vec3 color{1.0f};  // linear RGB
   float intensity = 1.0f; // candela-like scale, multiplied into color
   float radius = 10.0f;   // attenuation max(1 - d/R, 0) / d^2 reaches zero at R
@@ -124,7 +130,7 @@ struct DirectionalLight {
 
 struct Emitter {
   std::string name;
-  glm::vec3 position{0.0f};
+  glm::dvec3 position{0.0};
   float rate = 100.0f;                // particles per second
   float lifetime = 1.0f;              // seconds
   glm::vec3 direction{0.0f, 1.0f, 0.0f};  // cone axis, unit length
@@ -140,8 +146,8 @@ struct Emitter {
 };
 
 struct Camera {
-  glm::vec3 position{0.0f, 1.7f, 5.0f};
-  glm::vec3 target{0.0f, 1.7f, 0.0f};
+  glm::dvec3 position{0.0, 1.7, 5.0};
+  glm::dvec3 target{0.0, 1.7, 0.0};
   glm::vec3 up{0.0f, 1.0f, 0.0f};
   float verticalFovDeg = 60.0f;
   float nearPlane = 0.1f;
@@ -157,7 +163,10 @@ struct BloomSettings {
 };
 
 struct PostSettings {
-  float exposure = 0.6f;   // tone mapping L = 1 - exp(-L_hdr * exposure)
+  float exposure = 0.6f;      // tone mapping L = 1 - exp(-L_hdr * exposure); also the pre-exposure
+  bool autoExposure = false;  // post.exposure=auto: exposure from the frame's average log luminance
+  float lightScale = 1.0f;    // scene.light_scale, already applied to lights, emissive and bloom
+                              // threshold; the renderer scales the background radiance by it
   BloomSettings bloom;
 };
 

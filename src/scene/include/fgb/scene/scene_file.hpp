@@ -16,7 +16,7 @@ namespace fgb::scene {
 
 struct ModelRef {
   std::filesystem::path file;  // resolved against the scene file's directory
-  glm::mat4 placement{1.0f};
+  glm::dmat4 placement{1.0};
   std::string field;           // e.g. "models[1]", for messages
 };
 

@@ -181,4 +181,30 @@ vec3 coverage(EdgeSetup s, ScreenTriangle t, ivec2 pixel) {
   return t.area > 0 ? w : w.xzy;  // back to the triangle's own vertex order
 }
 
+// Small triangles travel from "Triangle Filter" to "Visibility Raster" already set up (two uvec4
+// per triangle), so the raster fetches nothing else: the id, the first covered pixel, the three
+// sub-pixel positions relative to that pixel (16 bits each) and the three NDC depths.
+uint packOffset(ivec2 offset) { return uint(offset.x & 0xffff) | (uint(offset.y) << 16); }
+ivec2 unpackOffset(uint packed) { return ivec2(int(packed << 16) >> 16, int(packed) >> 16); }
+
+// The packed offsets must stay within 16 sub-pixel pixels of the first pixel so 16 bits hold them
+// and 32-bit edge functions cannot overflow (a triangle clipped by the viewport edge can cover few
+// pixels yet reach far beyond them: it takes the tile path).
+bool packable(ScreenTriangle t) {
+  ivec2 origin = t.pixels.xy * kSubPixel;
+  for (int i = 0; i < 3; ++i)
+    if (any(greaterThan(abs(t.fixedPos[i] - origin), ivec2(16 * kSubPixel)))) return false;
+  return true;
+}
+
+const uint kSmallMasked = 0x80000000u;  // in a.y: alpha-masked (the raster loads its material)
+
+void packSmallTriangle(ScreenTriangle t, uint id, bool masked, out uvec4 a, out uvec4 b) {
+  ivec2 origin = t.pixels.xy * kSubPixel;
+  a = uvec4(id, uint(t.pixels.x) | (uint(t.pixels.y) << 16) | (masked ? kSmallMasked : 0u), packOffset(t.fixedPos[0] - origin),
+            packOffset(t.fixedPos[1] - origin));
+  b = uvec4(packOffset(t.fixedPos[2] - origin), floatBitsToUint(t.clip[0].z / t.clip[0].w),
+            floatBitsToUint(t.clip[1].z / t.clip[1].w), floatBitsToUint(t.clip[2].z / t.clip[2].w));
+}
+
 #endif

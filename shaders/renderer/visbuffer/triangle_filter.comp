@@ -74,9 +74,12 @@ void main() {
   }
   uint id = (clusterSlot << kClusterTriangleBits) | triangle;
   ivec2 span = t.pixels.zw - t.pixels.xy + 1;
-  if (t.projected && span.x <= kSmallPixels && span.y <= kSmallPixels) {
+  if (t.projected && span.x <= kSmallPixels && span.y <= kSmallPixels && packable(t)) {
     uint slot = atomicAdd(visCounters[pc.counters].c.smallTriangles, 1u);
-    fgbUints[pc.smallList].values[slot] = id;
+    uvec4 a, b;
+    packSmallTriangle(t, id, (tri.flags & kDrawAlphaMasked) != 0u, a, b);
+    visUvec4s[pc.smallList].values[2u * slot] = a;
+    visUvec4s[pc.smallList].values[2u * slot + 1u] = b;
   } else {
     appendLarge(id, t.pixels);
   }

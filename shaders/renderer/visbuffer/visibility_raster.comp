@@ -65,12 +65,50 @@ void rasterPixel(RasterTriangle r, ivec2 pixel) {
   atomicMax(visWords[pc.words].words[index], (uint64_t(depthKey(z, reversedZ())) << 32) | uint64_t(r.id));
 }
 
+int edge32(ivec2 a, ivec2 b, ivec2 p) { return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x); }
+
+// A small triangle, set up by "Triangle Filter" (packSmallTriangle): positions relative to its
+// first covered pixel fit 32-bit edge functions. Same coverage rule as coverage(): top-left, pixel
+// centres, and the same pixel range (pixelRange of the vertex box).
 void rasterSmall() {
   uint slot = linearGroup() * gl_WorkGroupSize.x + gl_LocalInvocationID.x;
   if (slot >= visCountersRead[pc.args].c.smallTriangles) return;
-  RasterTriangle r = loadTriangle(fgbUintsRead[pc.smallList].values[slot]);
-  for (int y = r.screen.pixels.y; y <= r.screen.pixels.w; ++y)
-    for (int x = r.screen.pixels.x; x <= r.screen.pixels.z; ++x) rasterPixel(r, ivec2(x, y));
+  uvec4 a = visUvec4sRead[pc.smallList].values[2u * slot];
+  if ((a.y & kSmallMasked) != 0u) {  // alpha-masked: the general path with its per-pixel test
+    RasterTriangle r = loadTriangle(a.x);
+    for (int y = r.screen.pixels.y; y <= r.screen.pixels.w; ++y)
+      for (int x = r.screen.pixels.x; x <= r.screen.pixels.z; ++x) rasterPixel(r, ivec2(x, y));
+    return;
+  }
+  uvec4 b = visUvec4sRead[pc.smallList].values[2u * slot + 1u];
+  ivec2 first = ivec2(a.y & 0xffffu, (a.y >> 16) & 0x7fffu);
+  ivec2 v[3] = ivec2[3](unpackOffset(a.z), unpackOffset(a.w), unpackOffset(b.x));
+  vec3 ndcZ = vec3(uintBitsToFloat(b.y), uintBitsToFloat(b.z), uintBitsToFloat(b.w));
+  int area = edge32(v[0], v[1], v[2]);
+  if (area < 0) {  // order the vertices so the area is positive (weights swapped back below)
+    ivec2 swap = v[1];
+    v[1] = v[2];
+    v[2] = swap;
+    ndcZ = ndcZ.xzy;
+  }
+  ivec3 bias = ivec3(isTopLeft(v[1], v[2]) ? 0 : -1, isTopLeft(v[2], v[0]) ? 0 : -1, isTopLeft(v[0], v[1]) ? 0 : -1);
+  ivec2 origin = first * kSubPixel;
+  vec2 lo = vec2(origin + min(v[0], min(v[1], v[2]))) / float(kSubPixel);
+  vec2 hi = vec2(origin + max(v[0], max(v[1], v[2]))) / float(kSubPixel);
+  ivec4 pixels = pixelRange(lo, hi);
+  float invArea = 1.0 / float(abs(area));
+  uint64_t id = uint64_t(a.x);
+  uint width = uint(viewportSize().x);
+  for (int y = pixels.y; y <= pixels.w; ++y) {
+    for (int x = pixels.x; x <= pixels.z; ++x) {
+      ivec2 p = (ivec2(x, y) - first) * kSubPixel + kSubPixel / 2;
+      ivec3 w = ivec3(edge32(v[1], v[2], p), edge32(v[2], v[0], p), edge32(v[0], v[1], p));
+      if (any(lessThan(w + bias, ivec3(0)))) continue;
+      float z = dot(vec3(w) * invArea, ndcZ);
+      if (!(z >= 0.0 && z <= 1.0)) continue;
+      atomicMax(visWords[pc.words].words[uint(y) * width + uint(x)], (uint64_t(depthKey(z, reversedZ())) << 32) | id);
+    }
+  }
 }
 
 // The large triangle whose tiles include job `job`: the last entry with firstJob <= job.

@@ -127,7 +127,7 @@ VisBufferFeature::Buffers VisBufferFeature::declareBuffers(graph::FrameGraph& gr
   b.cullArgs = graph.createBuffer("cluster cull args", {sizeof(VisCounters), {}});
   b.rasterArgs = graph.createBuffer("triangle filter args", {sizeof(VisCounters), {}});
   b.visible = graph.createBuffer("visible clusters", {uint64_t{4} * geometry.drawCount, {}});
-  b.smallList = graph.createBuffer("small triangles", {uint64_t{4} * geometry.triangles, {}});
+  b.smallList = graph.createBuffer("small triangles", {uint64_t{32} * geometry.triangles, {}});  // 2 uvec4 each
   b.largeList = graph.createBuffer("large triangles", {uint64_t{16} * largeCapacity_, {}});
   b.words = graph.createBuffer("visibility buffer", {uint64_t{8} * pixels, {}});
   b.depth = graph.createBuffer("visibility depth", {uint64_t{4} * pixels, {}});

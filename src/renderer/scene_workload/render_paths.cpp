@@ -1,5 +1,8 @@
 #include "render_paths.hpp"
 
+#include <fgb/core/error.hpp>
+#include <string>
+
 #include "../features/bloom/bloom_feature.hpp"
 #include "../features/exposure/exposure_feature.hpp"
 #include "../features/lighting/clustered_lighting.hpp"
@@ -8,10 +11,6 @@
 #include "../features/ssaa/ssaa_resolve_feature.hpp"
 #include "../features/tonemap/tonemap_feature.hpp"
 #include "../features/visbuffer/visbuffer_feature.hpp"
-
-#include <fgb/core/error.hpp>
-
-#include <string>
 
 namespace fgb::render {
 

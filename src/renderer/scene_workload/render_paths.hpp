@@ -5,10 +5,10 @@
 //   visbuffer: the compute nodes of features/visbuffer, then the forward passes for the rest.
 #pragma once
 
-#include "../features/context/render_feature.hpp"
-
 #include <memory>
 #include <vector>
+
+#include "../features/context/render_feature.hpp"
 
 namespace fgb::render {
 

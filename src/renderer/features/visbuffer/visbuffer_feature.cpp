@@ -1,13 +1,12 @@
 #include "visbuffer_feature.hpp"
 
-#include "../context/handles.hpp"
-
-#include <fgb/rhi/job_context.hpp>
-#include <fgb/scene/frustum.hpp>
-
 #include <algorithm>
 #include <cstddef>
 #include <cstring>
+#include <fgb/rhi/job_context.hpp>
+#include <fgb/scene/frustum.hpp>
+
+#include "../context/handles.hpp"
 
 namespace fgb::features {
 namespace {
@@ -110,14 +109,16 @@ void VisBufferFeature::initialize(FeatureInit& init) {
   pipelines_.cull = init.device.createComputePipeline({"cluster cull", "renderer/visbuffer/cluster_cull.comp"});
   pipelines_.args = init.device.createComputePipeline({"visibility arguments", "renderer/visbuffer/vis_args.comp"});
   pipelines_.filter = init.device.createComputePipeline({"triangle filter", "renderer/visbuffer/triangle_filter.comp"});
-  pipelines_.raster = init.device.createComputePipeline({"visibility raster", "renderer/visbuffer/visibility_raster.comp"});
+  pipelines_.raster =
+      init.device.createComputePipeline({"visibility raster", "renderer/visbuffer/visibility_raster.comp"});
   pipelines_.shade = init.device.createComputePipeline({"material shade", "renderer/visbuffer/material_shade.comp"});
   statsReadback_ = init.device.createBuffer(
       {"visibility stats readback", sizeof(VisCounters), rhi::kBufferTransferDst, rhi::MemoryUsage::Readback});
   std::memset(init.device.mapped(statsReadback_).data(), 0, sizeof(VisCounters));
 }
 
-VisBufferFeature::Buffers VisBufferFeature::declareBuffers(graph::FrameGraph& graph, const FrameTargets& targets) const {
+VisBufferFeature::Buffers VisBufferFeature::declareBuffers(graph::FrameGraph& graph,
+                                                           const FrameTargets& targets) const {
   const GpuScene& scene = *scene_;
   const ClusterGeometry& geometry = scene.clusterGeometry;
   Buffers b;
@@ -269,22 +270,23 @@ void VisBufferFeature::declareShade(graph::FrameGraph& graph, Blackboard& board,
   }
   // Shading pre-exposes what it writes, like every colour pass (auto exposure: this frame's state).
   if (targets.exposure.valid()) node.read(targets.exposure, Access::StorageRead);
-  node.setJob([push = b.push, pipelines = pipelines_, b, hdr = targets.hdr, clusters](graph::JobContext& context) mutable {
-    auto& ctx = rhi::rhiContext(context);
-    auto& cmd = ctx.cmd();
-    push.words = ctx.storageBufferIndex(b.words);
-    push.visible = ctx.storageBufferIndex(b.visible);
-    push.depthOut = ctx.storageBufferIndex(b.depth);
-    push.hdr = ctx.storageTextureIndex(hdr);
-    if (clusters.counts.valid()) {
-      push.clusterCounts = ctx.storageBufferIndex(clusters.counts);
-      push.clusterIndices = ctx.storageBufferIndex(clusters.indices);
-    }
-    cmd.bindPipeline(pipelines.shade);
-    cmd.push(push);
-    cmd.dispatch((b.extent.width + kShadeGroupSize - 1) / kShadeGroupSize,
-                 (b.extent.height + kShadeGroupSize - 1) / kShadeGroupSize);
-  });
+  node.setJob(
+      [push = b.push, pipelines = pipelines_, b, hdr = targets.hdr, clusters](graph::JobContext& context) mutable {
+        auto& ctx = rhi::rhiContext(context);
+        auto& cmd = ctx.cmd();
+        push.words = ctx.storageBufferIndex(b.words);
+        push.visible = ctx.storageBufferIndex(b.visible);
+        push.depthOut = ctx.storageBufferIndex(b.depth);
+        push.hdr = ctx.storageTextureIndex(hdr);
+        if (clusters.counts.valid()) {
+          push.clusterCounts = ctx.storageBufferIndex(clusters.counts);
+          push.clusterIndices = ctx.storageBufferIndex(clusters.indices);
+        }
+        cmd.bindPipeline(pipelines.shade);
+        cmd.push(push);
+        cmd.dispatch((b.extent.width + kShadeGroupSize - 1) / kShadeGroupSize,
+                     (b.extent.height + kShadeGroupSize - 1) / kShadeGroupSize);
+      });
   targets.color = targets.hdr;  // single-sampled: later forward passes load the shaded image
   targets.colorCleared = true;
 }

@@ -19,9 +19,9 @@ namespace fgb::features {
 
 // Published by the visibility-buffer feature for later nodes (debug views, statistics).
 struct VisibilityOutputs {
-  graph::BufferHandle counters;        // VisCounters after "Triangle Filter"
-  graph::BufferHandle visibleClusters; // ClusterDraw indices that passed "Cluster Cull"
-  graph::BufferHandle visibility;      // uint64 per pixel: depth key << 32 | id
+  graph::BufferHandle counters;         // VisCounters after "Triangle Filter"
+  graph::BufferHandle visibleClusters;  // ClusterDraw indices that passed "Cluster Cull"
+  graph::BufferHandle visibility;       // uint64 per pixel: depth key << 32 | id
 };
 
 class VisBufferFeature final : public IRenderFeature {

@@ -37,6 +37,21 @@ TEST(RenderSettings, RejectsUnknownKeysUnderItsPrefixes) {
   EXPECT_NO_THROW(applyRendererKnobs(settings, {{"atrium.scale", "0.5"}, {"harness.x", "1"}}));
 }
 
+TEST(RenderSettings, RenderPathDefaultsToForwardAndRejectsOthers) {
+  RenderSettings settings;
+  EXPECT_EQ(settings.renderPath, RenderPath::Forward);
+  applyRendererKnobs(settings, {{"render.path", "visbuffer"}});
+  EXPECT_EQ(settings.renderPath, RenderPath::VisBuffer);
+  applyRendererKnobs(settings, {{"render.path", "forward"}});
+  EXPECT_EQ(settings.renderPath, RenderPath::Forward);
+  try {
+    applyRendererKnobs(settings, {{"render.path", "deferred"}});
+    FAIL() << "expected InputError";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("forward|visbuffer"), std::string::npos) << error.what();
+  }
+}
+
 TEST(RenderSettings, KnowsItsKeys) {
   EXPECT_TRUE(isRendererKnob("debug.view"));
   EXPECT_TRUE(isRendererKnob("render.ssaa"));

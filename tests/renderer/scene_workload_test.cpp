@@ -1,5 +1,6 @@
 // Renders small scenes through the scene workload and checks what the frame graph declares (the
 // thesis' node names, and no work a scene does not need) and that the image is plausible.
+#include <fgb/core/error.hpp>
 #include <fgb/renderer/scene_workload.hpp>
 
 #include <gtest/gtest.h>
@@ -357,6 +358,38 @@ TEST(CheckFinite, NamesThePassThatInjectedTheNan) {
   ASSERT_FALSE(bloomCounts.empty());
   EXPECT_EQ(bloomCounts.back().pass, "Bloom");
   EXPECT_EQ(bloomCounts.back().nan, 1u);
+
+namespace fgb::render {
+namespace {
+
+// render.path=visbuffer: the opaque scene goes through the compute nodes instead of "Mesh Render"
+// (transparent meshes and particles stay forward passes), under validation, and the image is the
+// forward one up to texture filtering and triangle-edge rounding.
+TEST(VisBuffer, ComputeNodesReplaceMeshRenderAndTheImageMatchesForward) {
+  const auto vis = renderImages(
+      sized(lavapipeConfig("atrium-small.json", {{"render.path", "visbuffer"}}, true), 160, 90, 1), 2);
+  const auto forward = renderImages(sized(lavapipeConfig("atrium-small.json", {}), 160, 90, 1), 2);
+  EXPECT_EQ(vis.validationMessages, 0u);
+  for (const char* node : {"Visibility Clear", "Cluster Cull", "Triangle Filter", "Visibility Raster", "Material Shade"})
+    EXPECT_TRUE(vis.passes.count(node)) << node;
+  EXPECT_FALSE(vis.passes.count("Mesh Render"));
+  EXPECT_TRUE(forward.passes.count("Mesh Render"));
+  EXPECT_GT(vis.stats.at("vis_clusters_visible"), 0.0);
+  EXPECT_LT(vis.stats.at("vis_clusters_visible"), vis.stats.at("vis_clusters"));  // something was culled
+  EXPECT_GT(vis.stats.at("vis_triangles_rasterised"), 0.0);
+  EXPECT_EQ(vis.stats.at("vis_large_overflow"), 0.0);
+  ASSERT_EQ(vis.hdr.pixels.size(), forward.hdr.pixels.size());
+  EXPECT_GT(meanOf(vis.hdr), 0.5 * meanOf(forward.hdr));
+  EXPECT_LT(differingValues(vis.hdr, forward.hdr, 0.1f, 0.02f), vis.hdr.pixels.size() / 20);
+}
+
+TEST(VisBuffer, RefusesMsaaNamingSupersampling) {
+  try {
+    (void)openSceneWorkload(sized(lavapipeConfig("atrium-small.json", {{"render.path", "visbuffer"}}), 64, 36, 4));
+    FAIL() << "expected InputError";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("render.ssaa"), std::string::npos) << error.what();
+  }
 }
 
 }  // namespace

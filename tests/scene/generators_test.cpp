@@ -8,7 +8,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <set>
 
 using namespace fgb::scene;
 using nlohmann::json;
@@ -65,6 +68,39 @@ TEST(Atrium, HasEveryAlphaModeAndDoubleSidedMaterials) {
     doubleSided |= m.doubleSided;
   }
   EXPECT_TRUE(mask && blend && opaque && doubleSided);
+}
+
+// Every mesh's clusters hold exactly its triangles (as a multiset), at most 128 each, and every
+// vertex lies inside its cluster's bounding sphere; usable cones (cutoff < 1) have unit axes.
+TEST(Atrium, ClustersPartitionEachMeshWithBounds) {
+  const Scene& s = fullAtrium();
+  ASSERT_FALSE(s.clusters.empty());
+  for (const Mesh& mesh : s.meshes) {
+    std::multiset<std::array<uint32_t, 3>> fromIndices, fromClusters;
+    const auto sorted = [](const uint32_t* t) {
+      std::array<uint32_t, 3> tri{t[0], t[1], t[2]};
+      std::rotate(tri.begin(), std::min_element(tri.begin(), tri.end()), tri.end());  // keeps winding
+      return tri;
+    };
+    for (uint32_t i = 0; i < mesh.indexCount; i += 3) fromIndices.insert(sorted(&s.indices[mesh.firstIndex + i]));
+    for (uint32_t c = mesh.firstCluster; c < mesh.firstCluster + mesh.clusterCount; ++c) {
+      const Cluster& cluster = s.clusters[c];
+      ASSERT_GT(cluster.triangleCount, 0u);
+      ASSERT_LE(cluster.triangleCount, kClusterMaxTriangles);
+      // A cutoff of 1 means "no usable cone" (meshoptimizer then leaves the axis zero).
+      EXPECT_LE(std::abs(cluster.coneCutoff), 1.0f);
+      if (cluster.coneCutoff < 1.0f) EXPECT_NEAR(glm::length(cluster.coneAxis), 1.0f, 1e-2f) << mesh.name;
+      for (uint32_t t = 0; t < cluster.triangleCount; ++t) {
+        const uint32_t* tri = &s.clusterIndices[cluster.firstIndex + 3 * t];
+        fromClusters.insert(sorted(tri));
+        for (int k = 0; k < 3; ++k) {
+          const glm::vec3 p = s.positions[mesh.firstVertex + tri[k]];
+          ASSERT_LE(glm::length(p - cluster.center), cluster.radius * 1.001f + 1e-5f) << mesh.name;
+        }
+      }
+    }
+    ASSERT_EQ(fromIndices, fromClusters) << mesh.name;
+  }
 }
 
 TEST(Atrium, NormalsAreUnitAndTangentsOrthogonal) {

@@ -1,5 +1,6 @@
 // Mesh repair, tangents, bounds and merging.
 #include <fgb/core/error.hpp>
+#include <fgb/scene/cook.hpp>
 #include <fgb/scene/geometry.hpp>
 #include <fgb/scene/texture.hpp>
 
@@ -163,6 +164,33 @@ TEST(MergeScene, RenumbersAndPlaces) {
   EXPECT_FLOAT_EQ(a.instances[1].worldBounds.max.x, 12.0f);
   EXPECT_FLOAT_EQ(a.lights[0].position.x, 10.0f);
   EXPECT_NEAR(a.lights[0].radius, 4.0f, 1e-4f);
+}
+
+// Cooked parts bring their clusters: the merged meshes point at their own clusters, whose
+// triangle ranges point at their own (mesh-local) indices.
+TEST(MergeScene, KeepsEachPartsClusters) {
+  Scene a, b;
+  MeshData qa = quad(), qb = quad();
+  RepairCounters r;
+  repairMesh(qa, r, "a");
+  repairMesh(qb, r, "b");
+  addInstance(a, appendMesh(a, std::move(qa)), 0, glm::mat4(1.0f));
+  addInstance(b, appendMesh(b, std::move(qb)), 0, glm::mat4(1.0f));
+  a.materials.resize(1);
+  b.materials.resize(1);
+  cookScene(a);
+  cookScene(b);
+  ASSERT_EQ(a.clusters.size(), 1u);
+  ASSERT_EQ(b.clusters.size(), 1u);
+  const std::vector<uint32_t> partIndices = b.clusterIndices;
+  mergeScene(a, std::move(b), glm::mat4(1.0f));
+  ASSERT_EQ(a.clusters.size(), 2u);
+  EXPECT_EQ(a.meshes[1].firstCluster, 1u);
+  EXPECT_EQ(a.meshes[1].clusterCount, 1u);
+  const Cluster& merged = a.clusters[1];
+  EXPECT_EQ(merged.firstIndex, 6u);
+  ASSERT_EQ(merged.triangleCount, 2u);
+  for (uint32_t i = 0; i < 6; ++i) EXPECT_EQ(a.clusterIndices[merged.firstIndex + i], partIndices[i]);
 }
 
 TEST(Texture, MipChainReachesOnePixelAndAveragesInLinearSpace) {

@@ -18,7 +18,8 @@ uint32_t bytesPerPixel(Format format) {
     case Format::R32Uint:
     case Format::D32Sfloat:
     case Format::D24UnormS8Uint: return 4;
-    case Format::R16G16B16A16Sfloat: return 8;
+    case Format::R16G16B16A16Sfloat:
+    case Format::R64Uint: return 8;
     case Format::R32G32B32A32Sfloat: return 16;
   }
   return 0;
@@ -38,6 +39,7 @@ std::string_view toString(Format format) {
     case Format::R32Uint: return "R32_UINT";
     case Format::D32Sfloat: return "D32_SFLOAT";
     case Format::D24UnormS8Uint: return "D24_UNORM_S8_UINT";
+    case Format::R64Uint: return "R64_UINT";
   }
   return "?";
 }

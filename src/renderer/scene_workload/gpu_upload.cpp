@@ -7,6 +7,7 @@
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <tuple>
@@ -203,6 +204,45 @@ std::vector<features::PointLightGpu> gpuLights(const scene::Scene& scene) {
   return result;
 }
 
+uint32_t clusterDrawFlags(const scene::Scene& scene, const scene::Instance& instance) {
+  const scene::Material& material = scene.materials[instance.material];
+  const glm::mat3 linear(instance.transform);
+  const float sx = glm::length(linear[0]), sy = glm::length(linear[1]), sz = glm::length(linear[2]);
+  const float largest = std::max({sx, sy, sz}), smallest = std::min({sx, sy, sz});
+  uint32_t flags = 0;
+  if (!material.doubleSided) flags |= features::kClusterSingleSided;
+  if (glm::determinant(linear) < 0.0f) flags |= features::kClusterMirrored;
+  if (smallest > 0.99f * largest) flags |= features::kClusterConeUsable;
+  if (material.alphaMode == scene::AlphaMode::Mask) flags |= features::kClusterAlphaMasked;
+  return flags;
+}
+
+// Every cluster of every opaque and alpha-masked GPU instance, in instance order.
+std::vector<features::ClusterDrawGpu> clusterDraws(const scene::Scene& scene, const GpuScene& gpu, uint64_t& triangles) {
+  std::vector<features::ClusterDrawGpu> draws;
+  triangles = 0;
+  for (const auto& group : gpu.groups) {
+    if (group.drawClass == features::DrawClass::Transparent) continue;
+    const scene::Mesh& mesh = scene.meshes[group.mesh];
+    for (uint32_t slot = group.firstSlot; slot < group.firstSlot + group.capacity; ++slot) {
+      const uint32_t flags = clusterDrawFlags(scene, scene.instances[gpu.instanceOrder[slot]]);
+      for (uint32_t c = mesh.firstCluster; c < mesh.firstCluster + mesh.clusterCount; ++c)
+        draws.push_back({slot, c, mesh.firstVertex, flags});
+      triangles += mesh.triangleCount();
+    }
+  }
+  return draws;
+}
+
+void uploadClusters(SceneUploader& uploader, const scene::Scene& scene, GpuScene& gpu) {
+  auto& geometry = gpu.clusterGeometry;
+  const auto draws = clusterDraws(scene, gpu, geometry.triangles);
+  geometry.drawCount = uint32_t(draws.size());
+  geometry.clusters = uploader.buffer("scene clusters", bytesOf(scene.clusters), rhi::kBufferStorage);
+  geometry.indices = uploader.buffer("scene cluster indices", bytesOf(scene.clusterIndices), rhi::kBufferStorage);
+  geometry.draws = uploader.buffer("cluster draws", bytesOf(draws), rhi::kBufferStorage);
+}
+
 void uploadGeometry(SceneUploader& uploader, const scene::Scene& scene, GpuScene& gpu) {
   StagingBuilder vertices;  // one buffer, four streams
   gpu.streams.positions = vertices.append(scene.positions);
@@ -225,6 +265,7 @@ GpuScene uploadScene(rhi::Device& device, const scene::Scene& scene, const featu
 
   SceneUploader uploader(device);
   uploadGeometry(uploader, scene, gpu);
+  if (settings.renderPath == features::RenderPath::VisBuffer) uploadClusters(uploader, scene, gpu);
   std::vector<uint32_t> textureIndices;
   for (const auto& texture : scene.textures) {
     gpu.textures.push_back(uploader.texture(texture));

@@ -2,15 +2,11 @@
 #include "gpu_upload.hpp"
 #include "image_readback.hpp"
 
-#include "../features/bloom/bloom_feature.hpp"
+#include "render_paths.hpp"
+
 #include "../features/context/render_feature.hpp"
 #include "../features/finite_check/finite_check_feature.hpp"
 #include "../features/exposure/exposure_feature.hpp"
-#include "../features/lighting/clustered_lighting.hpp"
-#include "../features/meshes/mesh_feature.hpp"
-#include "../features/particles/particle_feature.hpp"
-#include "../features/ssaa/ssaa_resolve_feature.hpp"
-#include "../features/tonemap/tonemap_feature.hpp"
 
 #include <fgb/core/error.hpp>
 #include <fgb/core/stopwatch.hpp>
@@ -72,6 +68,7 @@ features::RenderSettings makeSettings(const WorkloadConfig& config, const scene:
   uint32_t msaa = config.msaa ? config.msaa : jsonCount(render, "msaa", 1);
   if (msaa != 1 && msaa != 2 && msaa != 4 && msaa != 8)
     throw InputError("--msaa " + std::to_string(msaa) + ": expected 1|2|4|8");
+  const uint32_t requestedMsaa = msaa;
   // Clamped to the nearest supported count not above the request (lavapipe: {1, 4}).
   if (const uint32_t supported = rhi::clampSampleCount(msaa, sampleCounts); supported != msaa) {
     std::cerr << "warning: --msaa " << msaa << " clamped to " << supported << " (not supported by the device)\n";
@@ -80,6 +77,7 @@ features::RenderSettings makeSettings(const WorkloadConfig& config, const scene:
   settings.msaa = msaa;
   features::applyRendererKnobs(settings, config.knobs);
   settings.checkFinite = config.checkFinite;
+  checkRenderPathSettings(settings, requestedMsaa);
   return settings;
 }
 
@@ -181,14 +179,9 @@ class SceneWorkload final : public Workload {
 
  private:
   void createFeatures() {
-    // Declaration order: producers before consumers (lights -> meshes -> particles -> SSAA -> post).
-    features_.push_back(std::make_unique<features::ClusteredLighting>());
-    features_.push_back(std::make_unique<features::MeshFeature>());
-    features_.push_back(std::make_unique<features::ParticleFeature>());
-    features_.push_back(std::make_unique<features::SsaaResolveFeature>());
-    features_.push_back(std::make_unique<features::BloomFeature>());
-    features_.push_back(std::make_unique<features::ExposureFeature>());  // after bloom: see there
-    features_.push_back(std::make_unique<features::TonemapFeature>());
+    RenderPathPlan plan = planRenderPath(settings_);
+    features_ = std::move(plan.features);
+    hdrStorage_ = plan.computeWritesHdr;
     // Last: it inspects every node declared before it (see finite_check_feature.hpp).
     auto finiteCheck = std::make_unique<features::FiniteCheckFeature>();
     finiteCheck_ = finiteCheck.get();
@@ -199,8 +192,10 @@ class SceneWorkload final : public Workload {
 
   FrameTargets makeTargets(graph::FrameGraph& graph) {
     const graph::Extent extent{settings_.width, settings_.height, 1};
+    const rhi::TextureUsage storage = hdrStorage_ ? rhi::kTextureStorage : rhi::TextureUsage{0};
     hdrTexture_ = device_->createTexture({"hdr", features::kHdrFormat, extent, 1, 1, 1,
-                                          rhi::kTextureColorAttachment | rhi::kTextureSampled | rhi::kTextureTransferSrc});
+                                          rhi::kTextureColorAttachment | rhi::kTextureSampled |
+                                              rhi::kTextureTransferSrc | storage});
     displayTexture_ = device_->createTexture({"display", features::kDisplayFormat, extent, 1, 1, 1,
                                               rhi::kTextureColorAttachment | rhi::kTextureTransferSrc});
     FrameTargets targets;
@@ -228,8 +223,11 @@ class SceneWorkload final : public Workload {
                         ? targets.hdr
                         : graph.createTexture("hdr msaa", {features::kHdrFormat, {}, 1, 1, settings_.msaa, targets.hdr, 0});
     targets.depth = graph.createTexture("depth", {features::kDepthFormat, {}, 1, 1, settings_.msaa, targets.hdr, 0});
-    for (const auto& feature : features_)
-      if (feature->enabled()) targets.colorPasses += feature->colorPasses();
+    for (const auto& feature : features_) {
+      if (!feature->enabled()) continue;
+      targets.colorPasses += feature->colorPasses();
+      hdrWritten_ = hdrWritten_ || feature->writesHdr();
+    }
     return targets;
   }
 
@@ -238,7 +236,7 @@ class SceneWorkload final : public Workload {
     features::Blackboard board;
     auto& targets = board.set(makeTargets(graph));
     // Nothing draws (empty scene): one pass still clears the HDR image for tone mapping.
-    if (targets.colorPasses == 0) {
+    if (targets.colorPasses == 0 && !hdrWritten_) {
       targets.colorPasses = 1;
       features::addForwardPass(graph, targets, "Clear", true).setJob([](graph::JobContext&) {});
     }
@@ -283,6 +281,8 @@ class SceneWorkload final : public Workload {
   features::GpuScene gpu_;
   std::vector<std::unique_ptr<features::IRenderFeature>> features_;
   features::FiniteCheckFeature* finiteCheck_ = nullptr;  // owned by features_
+  bool hdrStorage_ = false;  // a compute node writes the HDR target
+  bool hdrWritten_ = false;  // a feature writes the HDR target outside the forward colour passes
   rhi::TextureId hdrTexture_;
   rhi::TextureId displayTexture_;
   std::unique_ptr<rhi::ExecutableGraph> graph_;

@@ -106,6 +106,8 @@ class AtriumBuilder {
     m.fabric[1] = material(green);
     m.fabric[2] = material(blue);
     m.terracotta = texturedMaterial("terracotta", Pattern::Terracotta, 0.7f, 1.0f);
+    // The pots are open lathe surfaces without wall thickness: their inside is their back face.
+    scene_.materials[m.terracotta].doubleSided = true;
     m.leaves = texturedMaterial("leaves", Pattern::Leaves, 0.6f, 0.0f);
     scene_.materials[m.leaves].alphaMode = AlphaMode::Mask;
     scene_.materials[m.leaves].alphaCutoff = 0.5f;

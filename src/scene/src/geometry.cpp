@@ -314,6 +314,8 @@ void mergeScene(Scene& into, Scene&& part, const glm::dmat4& placement) {
   const auto vertexOffset = static_cast<uint32_t>(into.positions.size());
   const auto indexOffset = static_cast<uint32_t>(into.indices.size());
   const auto meshOffset = static_cast<uint32_t>(into.meshes.size());
+  const auto clusterOffset = static_cast<uint32_t>(into.clusters.size());
+  const auto clusterIndexOffset = static_cast<uint32_t>(into.clusterIndices.size());
   const auto materialOffset = static_cast<uint32_t>(into.materials.size());
   const auto textureOffset = static_cast<int32_t>(into.textures.size());
   const float scale = uniformScale(placement);
@@ -325,9 +327,13 @@ void mergeScene(Scene& into, Scene&& part, const glm::dmat4& placement) {
   appendMoved(into.tangents, part.tangents);
   appendMoved(into.uv0, part.uv0);
   appendMoved(into.indices, part.indices);  // mesh-local: no renumbering needed
+  for (Cluster& cluster : part.clusters) cluster.firstIndex += clusterIndexOffset;
+  appendMoved(into.clusters, part.clusters);
+  appendMoved(into.clusterIndices, part.clusterIndices);  // mesh-local too
   for (Mesh& mesh : part.meshes) {
     mesh.firstVertex += vertexOffset;
     mesh.firstIndex += indexOffset;
+    mesh.firstCluster += clusterOffset;
   }
   appendMoved(into.meshes, part.meshes);
   for (Material& material : part.materials) {

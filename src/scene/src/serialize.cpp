@@ -13,6 +13,8 @@ void writeMesh(Writer<Sink>& w, const Mesh& m) {
   w.pod(m.firstIndex);
   w.pod(m.indexCount);
   w.pod(m.localBounds);
+  w.pod(m.firstCluster);
+  w.pod(m.clusterCount);
 }
 
 Mesh readMesh(Reader& r) {
@@ -23,6 +25,8 @@ Mesh readMesh(Reader& r) {
   m.firstIndex = r.pod<uint32_t>();
   m.indexCount = r.pod<uint32_t>();
   m.localBounds = r.pod<Aabb>();
+  m.firstCluster = r.pod<uint32_t>();
+  m.clusterCount = r.pod<uint32_t>();
   return m;
 }
 
@@ -217,6 +221,15 @@ void validateScene(const Scene& s) {
     check(uint64_t(mesh.firstIndex) + mesh.indexCount <= s.indices.size() && mesh.indexCount % 3 == 0,
           "mesh index range");
     for (uint32_t i = 0; i < mesh.indexCount; ++i) check(s.indices[mesh.firstIndex + i] < mesh.vertexCount, "index");
+    check(uint64_t(mesh.firstCluster) + mesh.clusterCount <= s.clusters.size(), "mesh cluster range");
+    for (uint32_t c = mesh.firstCluster; c < mesh.firstCluster + mesh.clusterCount; ++c) {
+      const Cluster& cluster = s.clusters[c];
+      check(cluster.triangleCount <= kClusterMaxTriangles &&
+                uint64_t(cluster.firstIndex) + 3ull * cluster.triangleCount <= s.clusterIndices.size(),
+            "cluster triangle range");
+      for (uint32_t i = 0; i < 3 * cluster.triangleCount; ++i)
+        check(s.clusterIndices[cluster.firstIndex + i] < mesh.vertexCount, "cluster index");
+    }
   }
   for (const Instance& instance : s.instances) {
     check(instance.mesh < s.meshes.size() && instance.material < s.materials.size(), "instance reference");
@@ -239,6 +252,8 @@ void writeScene(Writer<Sink>& w, const Scene& s) {
   w.array(s.tangents);
   w.array(s.uv0);
   w.array(s.indices);
+  w.array(s.clusters);
+  w.array(s.clusterIndices);
   writeList(w, s.meshes, [](auto& out, const Mesh& m) { writeMesh(out, m); });
   w.array(s.instances);
   writeList(w, s.materials, [](auto& out, const Material& m) { writeMaterial(out, m); });
@@ -263,6 +278,8 @@ Scene readScene(Reader& r) {
   s.tangents = r.array<glm::vec4>();
   s.uv0 = r.array<glm::vec2>();
   s.indices = r.array<uint32_t>();
+  s.clusters = r.array<Cluster>();
+  s.clusterIndices = r.array<uint32_t>();
   s.meshes = readList(r, readMesh);
   s.instances = r.array<Instance>();
   s.materials = readList(r, readMaterial);

@@ -35,6 +35,17 @@ struct DrawGroup {
   uint32_t capacity = 0;   // instances in the group
 };
 
+// The cooked clusters, uploaded for the visibility-buffer path only (render.path=visbuffer), and
+// one ClusterDrawGpu per cluster of every opaque or alpha-masked instance ("Cluster Cull" tests
+// each). Transparent instances stay with the forward "Mesh Render Transparent".
+struct ClusterGeometry {
+  rhi::BufferId clusters;  // scene::Cluster[] (mesh-local bounds, cones, triangle ranges)
+  rhi::BufferId indices;   // uint32 mesh-local vertex indices, 3 per triangle
+  rhi::BufferId draws;     // ClusterDrawGpu[]
+  uint32_t drawCount = 0;
+  uint64_t triangles = 0;  // triangles of all draws: the most "Triangle Filter" can keep
+};
+
 struct GpuScene {
   const scene::Scene* scene = nullptr;
   rhi::BufferId vertices;          // all attribute streams (vertex + storage usage)
@@ -52,6 +63,7 @@ struct GpuScene {
   std::vector<DrawGroup> groups;   // in command order: opaque, masked, transparent
   std::vector<uint32_t> instanceOrder;  // GPU instance i is scene instance instanceOrder[i]
   FrameConstantsGpu constants;     // what frameConstants holds
+  ClusterGeometry clusterGeometry; // visibility-buffer path only
   uint32_t instanceCount = 0;
   uint32_t lightCount = 0;
 

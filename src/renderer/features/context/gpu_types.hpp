@@ -76,6 +76,23 @@ struct PointLightGpu {
 };
 static_assert(sizeof(PointLightGpu) == 32);
 
+// One cluster of one instance, for "Cluster Cull" (mirrors ClusterDraw in
+// shaders/renderer/include/visbuffer.glsl).
+struct ClusterDrawGpu {
+  uint32_t instance = 0;     // GPU instance index
+  uint32_t cluster = 0;      // index into the scene's clusters
+  uint32_t firstVertex = 0;  // the mesh's first vertex (cluster indices are mesh-local)
+  uint32_t flags = 0;        // ClusterDrawFlag bits
+};
+static_assert(sizeof(ClusterDrawGpu) == 16);
+
+enum ClusterDrawFlag : uint32_t {
+  kClusterSingleSided = 1,  // back faces are culled (glTF: not double-sided)
+  kClusterMirrored = 2,     // negative determinant: front faces wind the other way on screen
+  kClusterConeUsable = 4,   // near-uniform scale: the cluster's normal cone stays valid in world space
+  kClusterAlphaMasked = 8,  // alpha-tested during "Visibility Raster"
+};
+
 // VkDrawIndexedIndirectCommand.
 struct DrawIndexedCommand {
   uint32_t indexCount = 0;

@@ -30,6 +30,8 @@ class IRenderFeature {
   [[nodiscard]] virtual bool enabled() const { return true; }
   // Forward passes this feature will declare that draw into FrameTargets::color.
   [[nodiscard]] virtual uint32_t colorPasses() const { return 0; }
+  // Writes the whole HDR target before the forward colour passes (which then load it).
+  [[nodiscard]] virtual bool writesHdr() const { return false; }
   // Once per run, after the scene upload: pipelines and persistent GPU resources.
   virtual void initialize(FeatureInit& init) = 0;
   // Declares this frame's nodes. Called once; the compiled graph is executed every frame.

@@ -13,6 +13,11 @@ namespace fgb::features {
 
 enum class DebugView : uint8_t { None, LightComplexity };
 
+// render.path: which features draw the opaque scene. Forward (the thesis' renderer) rasterises it
+// in "Mesh Render"; VisBuffer culls clusters and triangles, rasterises ids in compute and shades
+// from the visibility buffer (features/visbuffer).
+enum class RenderPath : uint8_t { Forward, VisBuffer };
+
 // Clustered: each fragment shades the lights of its cluster (at most lighting.max_per_cluster).
 // All: each fragment shades every light, with no cap (the reference; no cluster passes at all).
 enum class LightingMode : uint8_t { Clustered, All };
@@ -21,6 +26,7 @@ struct RenderSettings {
   uint32_t width = 640;               // output size: the HDR image bloom and tone mapping work on
   uint32_t height = 360;
   uint32_t msaa = 1;
+  RenderPath renderPath = RenderPath::Forward;  // render.path = forward | visbuffer
   uint32_t ssaa = 1;                  // render.ssaa: scene passes at ssaa*width x ssaa*height
   bool depthPrepass = false;          // render.depth_prepass
   DebugView debugView = DebugView::None;  // debug.view = none | light-complexity

@@ -142,12 +142,13 @@ void MeshFeature::configure(const GpuScene& scene) {
 void MeshFeature::initialize(FeatureInit& init) {
   configure(init.scene);
   device_ = &init.device;
+  drawsOpaque_ = init.settings.renderPath == RenderPath::Forward;
   if (!enabled()) return;
   pipelines_.cull = init.device.createComputePipeline({"mesh frustum cull", "renderer/mesh_cull.comp"});
   drawCount_ = init.device.drawIndirectCount();
   if (drawCount_) pipelines_.compact = init.device.createComputePipeline({"mesh draw compaction", "renderer/mesh_compact.comp"});
-  pipelines_.opaque = init.device.createGraphicsPipeline(forwardPipeline(init.settings, false));
-  depthPrepass_ = init.settings.depthPrepass;
+  if (drawsOpaque_) pipelines_.opaque = init.device.createGraphicsPipeline(forwardPipeline(init.settings, false));
+  depthPrepass_ = drawsOpaque_ && init.settings.depthPrepass;
   injectNanPass_ = init.settings.injectNanPass;
   if (depthPrepass_) pipelines_.depthOnly = init.device.createGraphicsPipeline(depthOnlyPipeline(init.settings));
   if (hasTransparent_) pipelines_.transparent = init.device.createGraphicsPipeline(forwardPipeline(init.settings, true));
@@ -283,7 +284,7 @@ void MeshFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
   const MeshCullOutputs cull = declareCull(graph);
   declareReadback(graph, "Mesh Stats Readback", cull.stats, statsReadback_, "mesh cull stats readback", kStatsBytes);
   if (depthPrepass_) declareDepthPrepass(graph, board, cull);
-  declareDraw(graph, board, {DrawClass::Opaque, DrawClass::Masked}, "Mesh Render", cull);
+  if (drawsOpaque_) declareDraw(graph, board, {DrawClass::Opaque, DrawClass::Masked}, "Mesh Render", cull);
   if (hasTransparent_) declareDraw(graph, board, {DrawClass::Transparent}, "Mesh Render Transparent", cull);
 }
 

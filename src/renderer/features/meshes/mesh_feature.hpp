@@ -7,7 +7,8 @@
 // front after opaque. With render.depth_prepass=1, "Depth Prepass" lays down the depth of opaque
 // instances first (alpha-masked ones write depth in "Mesh Render"). Command instance counts are
 // reset by their own transfer node ("Mesh Cull Reset") so no shader relies on cross-workgroup
-// ordering.
+// ordering. On the visibility-buffer path only "Mesh Render Transparent" is declared (with the
+// cull it needs); the opaque scene is the visbuffer feature's.
 #pragma once
 
 #include "../context/render_feature.hpp"
@@ -35,8 +36,8 @@ struct MeshCullOutputs {
 class MeshFeature final : public IRenderFeature {
  public:
   [[nodiscard]] std::string_view name() const override { return "meshes"; }
-  [[nodiscard]] bool enabled() const override { return instanceCount_ > 0; }
-  [[nodiscard]] uint32_t colorPasses() const override { return hasTransparent_ ? 2 : 1; }
+  [[nodiscard]] bool enabled() const override { return instanceCount_ > 0 && (drawsOpaque_ || hasTransparent_); }
+  [[nodiscard]] uint32_t colorPasses() const override { return (drawsOpaque_ ? 1 : 0) + (hasTransparent_ ? 1 : 0); }
   void initialize(FeatureInit& init) override;
   void declare(graph::FrameGraph& graph, Blackboard& board) override;
   void addStats(std::map<std::string, double>& stats) const override;
@@ -66,6 +67,9 @@ class MeshFeature final : public IRenderFeature {
   bool hasTransparent_ = false;
   bool depthPrepass_ = false;
   std::string injectNanPass_;  // debug.inject_nan
+  // Forward path: "Mesh Render" draws opaque and masked instances. The visibility-buffer path
+  // draws those in compute and leaves this feature only the transparent ones.
+  bool drawsOpaque_ = true;
   bool drawCount_ = false;  // the device has vkCmdDrawIndexedIndirectCount
 };
 

@@ -8,6 +8,8 @@
 
 #include <algorithm>
 #include <cstring>
+#include <string_view>
+#include <vector>
 
 namespace fgb::vulkan {
 namespace {
@@ -41,6 +43,23 @@ FamilyChoice chooseFamilies(VkPhysicalDevice physical) {
   return choice;
 }
 
+// R64 storage images with 64-bit atomics: the extension and its image feature.
+bool supportsImageInt64Atomics(VkPhysicalDevice physical) {
+  uint32_t count = 0;
+  vkEnumerateDeviceExtensionProperties(physical, nullptr, &count, nullptr);
+  std::vector<VkExtensionProperties> extensions(count);
+  vkEnumerateDeviceExtensionProperties(physical, nullptr, &count, extensions.data());
+  const bool listed = std::any_of(extensions.begin(), extensions.end(), [](const VkExtensionProperties& e) {
+    return std::string_view(e.extensionName) == VK_EXT_SHADER_IMAGE_ATOMIC_INT64_EXTENSION_NAME;
+  });
+  if (!listed) return false;
+  auto image = vkStruct<VkPhysicalDeviceShaderImageAtomicInt64FeaturesEXT>(
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_IMAGE_ATOMIC_INT64_FEATURES_EXT);
+  auto features = vkStruct<VkPhysicalDeviceFeatures2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2);
+  features.pNext = &image;
+  vkGetPhysicalDeviceFeatures2(physical, &features);
+  return image.shaderImageInt64Atomics == VK_TRUE;
+}
 
 }  // namespace
 
@@ -117,6 +136,8 @@ void VulkanDevice::createLogicalDevice() {
   v12.timelineSemaphore = VK_TRUE;
   v12.hostQueryReset = VK_TRUE;
   v12.drawIndirectCount = has12.drawIndirectCount;
+  v12.shaderBufferInt64Atomics = has12.shaderBufferInt64Atomics;
+  v12.shaderSharedInt64Atomics = has12.shaderSharedInt64Atomics;
   drawIndirectCount_ = has12.drawIndirectCount == VK_TRUE;
   v12.descriptorIndexing = has12.descriptorIndexing;
   v12.descriptorBindingPartiallyBound = has12.descriptorBindingPartiallyBound;
@@ -143,6 +164,11 @@ void VulkanDevice::createLogicalDevice() {
   features.features.shaderSampledImageArrayDynamicIndexing = core.shaderSampledImageArrayDynamicIndexing;
   features.features.shaderStorageBufferArrayDynamicIndexing = core.shaderStorageBufferArrayDynamicIndexing;
   features.features.shaderStorageImageArrayDynamicIndexing = core.shaderStorageImageArrayDynamicIndexing;
+  features.features.shaderInt64 = core.shaderInt64;
+  shaderCapabilities_.int64 = core.shaderInt64 == VK_TRUE;
+  shaderCapabilities_.bufferInt64Atomics =
+      shaderCapabilities_.int64 && has12.shaderBufferInt64Atomics == VK_TRUE && has12.shaderSharedInt64Atomics == VK_TRUE;
+  shaderCapabilities_.imageInt64Atomics = supportsImageInt64Atomics(physical_);
 
   auto info = vkStruct<VkDeviceCreateInfo>(VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO);
   info.pNext = &features;

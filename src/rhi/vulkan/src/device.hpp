@@ -75,6 +75,7 @@ class VulkanDevice final : public rhi::Device {
   uint32_t sampleCounts() const override { return sampleCounts_; }
   bool bindless() const override { return descriptors_->bindless(); }
   bool drawIndirectCount() const override { return drawIndirectCount_; }
+  rhi::ShaderCapabilities shaderCapabilities() const override { return shaderCapabilities_; }
   rhi::BufferId createBuffer(const rhi::BufferDesc& desc) override;
   rhi::TextureId createTexture(const rhi::TextureDesc& desc) override;
   rhi::SamplerId createSampler(const rhi::SamplerDesc& desc) override;
@@ -144,6 +145,7 @@ class VulkanDevice final : public rhi::Device {
   uint32_t sampleCounts_ = 1;  // rhi::Device::sampleCounts()
   bool debugLabels_ = false;
   bool drawIndirectCount_ = false;
+  rhi::ShaderCapabilities shaderCapabilities_;
   uint32_t framesInFlight_ = 2;
 
   std::unique_ptr<MemoryAllocator> memory_;

@@ -21,6 +21,7 @@ VkFormat toVk(graph::Format format) {
     case Format::R32Uint: return VK_FORMAT_R32_UINT;
     case Format::D32Sfloat: return VK_FORMAT_D32_SFLOAT;
     case Format::D24UnormS8Uint: return VK_FORMAT_D24_UNORM_S8_UINT;
+    case Format::R64Uint: return VK_FORMAT_R64_UINT;
   }
   return VK_FORMAT_UNDEFINED;
 }

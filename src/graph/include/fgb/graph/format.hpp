@@ -21,6 +21,7 @@ enum class Format : uint8_t {
   R32Uint,
   D32Sfloat,
   D24UnormS8Uint,
+  R64Uint,  // 64-bit integer (visibility buffer); storage + atomics only where the device says so
 };
 
 bool isDepthFormat(Format format);

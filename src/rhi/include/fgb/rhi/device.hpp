@@ -123,6 +123,15 @@ constexpr uint32_t clampSampleCount(uint32_t requested, uint32_t supported) {
   return 1;
 }
 
+// Optional shader capabilities: queried from the device, enabled at device creation where present.
+struct ShaderCapabilities {
+  bool int64 = false;               // 64-bit integers in shaders (shaderInt64)
+  bool bufferInt64Atomics = false;  // 64-bit atomics on storage buffers and shared memory
+  // 64-bit atomics on R64 storage images (VK_EXT_shader_image_atomic_int64): the H100 has them,
+  // lavapipe does not. Queried and reported; the visibility raster uses the buffer backing today.
+  bool imageInt64Atomics = false;
+};
+
 class Device {
  public:
   virtual ~Device() = default;
@@ -136,6 +145,7 @@ class Device {
   [[nodiscard]] virtual bool bindless() const = 0;
   // CommandBuffer::drawIndexedIndirectCount is available (Vulkan 1.2 drawIndirectCount).
   [[nodiscard]] virtual bool drawIndirectCount() const = 0;
+  [[nodiscard]] virtual ShaderCapabilities shaderCapabilities() const { return {}; }
 
   virtual BufferId createBuffer(const BufferDesc& desc) = 0;
   virtual TextureId createTexture(const TextureDesc& desc) = 0;

@@ -1,5 +1,6 @@
 // Cooking: turns an assembled scene into its GPU-ready form. Per mesh: vertex-cache optimisation
-// (Forsyth-style, meshoptimizer) then vertex-fetch reordering, and fresh local/world bounds.
+// (Forsyth-style, meshoptimizer) then vertex-fetch reordering, clusters of at most 128 triangles
+// with bounds and normal cones (meshopt_buildMeshlets), and fresh local/world bounds.
 // Textures already carry their mip chains (makeTexture). Materials get a default when none exist.
 #pragma once
 
@@ -10,7 +11,7 @@
 namespace fgb::scene {
 
 // Bump when the cooked output of the same input changes: it is part of every cache key.
-inline constexpr uint32_t kCookerVersion = 3;  // 2: world placement in double; 3: stress-nan lights
+inline constexpr uint32_t kCookerVersion = 4;  // 2: world placement in double; 3: stress-nan lights; 4: clusters (meshopt_buildMeshlets)
 
 void cookScene(Scene& scene);
 

@@ -50,8 +50,28 @@ struct Mesh {
   uint32_t firstIndex = 0;
   uint32_t indexCount = 0;  // a multiple of 3
   Aabb localBounds;
+  uint32_t firstCluster = 0;  // this mesh's clusters: Scene::clusters[firstCluster, + clusterCount)
+  uint32_t clusterCount = 0;
   uint32_t triangleCount() const { return indexCount / 3; }
 };
+
+// At most this many triangles per cluster (Nanite's and meshoptimizer's usual size).
+inline constexpr uint32_t kClusterMaxTriangles = 128;
+inline constexpr uint32_t kClusterMaxVertices = 128;
+
+// A cluster (meshlet) of one mesh, cooked by meshopt_buildMeshlets for the visibility-buffer path.
+// Bounds and cone are mesh-local. The cone follows meshoptimizer: the whole cluster faces away from
+// a viewer at `eye` when dot(center - eye, coneAxis) >= coneCutoff * |center - eye| + radius.
+struct Cluster {
+  glm::vec3 center{0.0f};
+  float radius = 0.0f;
+  glm::vec3 coneAxis{0.0f};
+  float coneCutoff = 1.0f;  // cos of the cone's half angle widened by 90 degrees; 1: never culled
+  uint32_t firstIndex = 0;  // into Scene::clusterIndices: 3 mesh-local vertex indices per triangle
+  uint32_t triangleCount = 0;
+  uint32_t pad[2] = {0, 0};
+};
+static_assert(sizeof(Cluster) == 48);
 
 struct Instance {
   uint32_t mesh = 0;
@@ -178,6 +198,8 @@ struct Scene {
   std::vector<glm::vec4> tangents;
   std::vector<glm::vec2> uv0;
   std::vector<uint32_t> indices;
+  std::vector<Cluster> clusters;         // every mesh's clusters, in mesh order
+  std::vector<uint32_t> clusterIndices;  // the clusters' triangles (same triangles as `indices`)
 
   std::vector<Mesh> meshes;
   std::vector<Instance> instances;

@@ -1,0 +1,147 @@
+// Shared by the visibility-buffer shaders (shaders/renderer/visbuffer/*.comp). Structs mirror
+// src/renderer/features/visbuffer/visbuffer_types.hpp (std430); keep them in sync.
+//
+// The visibility buffer holds one 64-bit word per pixel: a depth key in the high 32 bits and the
+// pixel's id in the low 32 bits, written with a 64-bit atomic max. The depth key grows towards the
+// camera (standard Z: ~bits(z); reversed Z: bits(z)), so max keeps the nearest triangle and the
+// cleared value 0 means "nothing". The id is (visible cluster << 7) | triangle in the cluster.
+#ifndef FGB_RENDERER_VISBUFFER_GLSL
+#define FGB_RENDERER_VISBUFFER_GLSL
+
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+#extension GL_EXT_shader_atomic_int64 : require
+#include "common.glsl"
+
+const uint kClusterTriangleBits = 7u;  // 128 triangles per cluster
+const uint kTileSize = 8u;             // large triangles are rasterised in 8x8-pixel tiles
+const uint kDispatchWidth = 32768u;    // indirect dispatches are (min(n, W), ceil(n / W)) groups
+
+// Cluster draw flags (ClusterDraw::flags).
+const uint kDrawSingleSided = 1u;  // back faces are culled (glTF: not double-sided)
+const uint kDrawMirrored = 2u;     // negative determinant: front faces wind the other way
+const uint kDrawConeUsable = 4u;   // near-uniform scale: the cluster's normal cone stays valid
+const uint kDrawAlphaMasked = 8u;  // alpha-tested during raster
+
+struct ClusterData {
+  vec4 sphere;  // mesh-local centre, radius
+  vec4 cone;    // mesh-local axis, cutoff
+  uint firstIndex;
+  uint triangleCount;
+  uint pad0;
+  uint pad1;
+};
+
+// One cluster of one instance (what "Cluster Cull" tests).
+struct ClusterDraw {
+  uint instance;
+  uint cluster;
+  uint firstVertex;
+  uint flags;
+};
+
+// Counters and indirect dispatch arguments written by the culling nodes (VisCounters in C++).
+struct VisCounters {
+  uint visibleClusters;
+  uint filterGroups[3];   // "Triangle Filter": one workgroup per visible cluster
+  uint smallTriangles;
+  uint smallGroups[3];    // "Visibility Raster", small triangles: one thread each
+  uint64_t largeTotals;   // high 24 bits: large triangles, low 40 bits: their tiles
+  uint largeTriangles;
+  uint tileJobs;
+  uint tileGroups[3];     // "Visibility Raster", large triangles: one workgroup per 8x8 tile
+  uint overflow;          // large triangles dropped for lack of list space (should stay 0)
+};
+
+FGB_READONLY_STORAGE_BUFFER(ClusterBlock, visClusters) { ClusterData clusters[]; } visClusters[FGB_MAX_STORAGE_BUFFERS];
+FGB_READONLY_STORAGE_BUFFER(ClusterDrawBlock, visDraws) { ClusterDraw draws[]; } visDraws[FGB_MAX_STORAGE_BUFFERS];
+FGB_STORAGE_BUFFER(VisCounterBlock, visCounters, ) { VisCounters c; } visCounters[FGB_MAX_STORAGE_BUFFERS];
+FGB_READONLY_STORAGE_BUFFER(VisCounterReadBlock, visCountersRead) { VisCounters c; } visCountersRead[FGB_MAX_STORAGE_BUFFERS];
+FGB_STORAGE_BUFFER(VisWordBlock, visWords, ) { uint64_t words[]; } visWords[FGB_MAX_STORAGE_BUFFERS];
+FGB_READONLY_STORAGE_BUFFER(VisWordReadBlock, visWordsRead) { uint64_t words[]; } visWordsRead[FGB_MAX_STORAGE_BUFFERS];
+FGB_READONLY_STORAGE_BUFFER(FloatReadBlock, visFloatsRead) { float values[]; } visFloatsRead[FGB_MAX_STORAGE_BUFFERS];
+FGB_STORAGE_BUFFER(FloatBlock, visFloats, ) { float values[]; } visFloats[FGB_MAX_STORAGE_BUFFERS];
+FGB_STORAGE_BUFFER(Uvec4Block, visUvec4s, ) { uvec4 values[]; } visUvec4s[FGB_MAX_STORAGE_BUFFERS];
+FGB_READONLY_STORAGE_BUFFER(Uvec4ReadBlock, visUvec4sRead) { uvec4 values[]; } visUvec4sRead[FGB_MAX_STORAGE_BUFFERS];
+
+// Groups for n items of `perGroup` each, laid out as (x, y, 1) within the dispatch limits.
+uvec3 dispatchFor(uint items, uint perGroup) {
+  uint groups = (items + perGroup - 1u) / perGroup;
+  return uvec3(min(groups, kDispatchWidth), (groups + kDispatchWidth - 1u) / kDispatchWidth, 1u);
+}
+uint linearGroup() { return gl_WorkGroupID.y * kDispatchWidth + gl_WorkGroupID.x; }
+
+// Depth key: larger = nearer, never 0 for a depth in range.
+uint depthKey(float z, bool reversedZ) {
+  return reversedZ ? floatBitsToUint(max(z, 1e-30)) : 0xffffffffu - floatBitsToUint(max(z, 0.0));
+}
+float depthFromKey(uint key, bool reversedZ) {
+  return reversedZ ? uintBitsToFloat(key) : uintBitsToFloat(0xffffffffu - key);
+}
+
+// The triangle behind a visibility id: its instance and three vertex indices (into the vertex
+// streams, i.e. with the mesh's first vertex added).
+struct VisTriangle {
+  uint instance;
+  uint flags;
+  uvec3 vertices;
+};
+
+VisTriangle visTriangle(uint drawIndex, uint triangle, uint drawsBuffer, uint clustersBuffer, uint indicesBuffer) {
+  ClusterDraw draw = visDraws[drawsBuffer].draws[drawIndex];
+  ClusterData cluster = visClusters[clustersBuffer].clusters[draw.cluster];
+  uint first = cluster.firstIndex + 3u * triangle;
+  VisTriangle t;
+  t.instance = draw.instance;
+  t.flags = draw.flags;
+  t.vertices = uvec3(fgbUintsRead[indicesBuffer].values[first], fgbUintsRead[indicesBuffer].values[first + 1u],
+                     fgbUintsRead[indicesBuffer].values[first + 2u]) + draw.firstVertex;
+  return t;
+}
+
+// Vertex attribute fetches from the scene's vertex buffer (float streams at the given float offsets).
+vec3 fetchVec3(uint vertexBuffer, uint streamOffset, uint vertex) {
+  uint at = streamOffset + 3u * vertex;
+  return vec3(uintBitsToFloat(fgbUintsRead[vertexBuffer].values[at]), uintBitsToFloat(fgbUintsRead[vertexBuffer].values[at + 1u]),
+              uintBitsToFloat(fgbUintsRead[vertexBuffer].values[at + 2u]));
+}
+vec4 fetchVec4(uint vertexBuffer, uint streamOffset, uint vertex) {
+  uint at = streamOffset + 4u * vertex;
+  return vec4(uintBitsToFloat(fgbUintsRead[vertexBuffer].values[at]), uintBitsToFloat(fgbUintsRead[vertexBuffer].values[at + 1u]),
+              uintBitsToFloat(fgbUintsRead[vertexBuffer].values[at + 2u]), uintBitsToFloat(fgbUintsRead[vertexBuffer].values[at + 3u]));
+}
+vec2 fetchVec2(uint vertexBuffer, uint streamOffset, uint vertex) {
+  uint at = streamOffset + 2u * vertex;
+  return vec2(uintBitsToFloat(fgbUintsRead[vertexBuffer].values[at]), uintBitsToFloat(fgbUintsRead[vertexBuffer].values[at + 1u]));
+}
+
+// Perspective-correct barycentrics of a triangle from its clip-space x, y, w (homogeneous
+// rasterisation, Olano & Greer 1997): with M = (x; y; w) per vertex as columns, e = M^-1 (ndc, 1)
+// is proportional to the barycentrics. Works for any vertex w (no near-plane clipping needed) and
+// gives exact screen-space derivatives, so the w ~ 0 breakdown of the usual formula never occurs.
+struct BarycentricFrame {
+  mat3 inverse;  // M^-1: rows are the edge functions in NDC
+  vec2 ndcPerPixel;  // NDC step of one pixel in x and y
+};
+
+BarycentricFrame barycentricFrame(vec4 c0, vec4 c1, vec4 c2, vec2 viewportSize) {
+  mat3 m = mat3(vec3(c0.x, c0.y, c0.w), vec3(c1.x, c1.y, c1.w), vec3(c2.x, c2.y, c2.w));
+  return BarycentricFrame(inverse(m), 2.0 / viewportSize);
+}
+
+// Barycentrics at an NDC point and their derivatives per pixel in x and y.
+void barycentricsAt(BarycentricFrame f, vec2 ndc, out vec3 b, out vec3 dbdx, out vec3 dbdy) {
+  vec3 e = f.inverse * vec3(ndc, 1.0);
+  vec3 dedx = f.inverse[0] * f.ndcPerPixel.x;
+  vec3 dedy = f.inverse[1] * f.ndcPerPixel.y;
+  float s = e.x + e.y + e.z;
+  float dsdx = dedx.x + dedx.y + dedx.z;
+  float dsdy = dedy.x + dedy.y + dedy.z;
+  b = e / s;
+  dbdx = (dedx * s - e * dsdx) / (s * s);
+  dbdy = (dedy * s - e * dsdy) / (s * s);
+}
+
+// NDC position of a pixel centre.
+vec2 pixelNdc(uvec2 pixel, vec2 viewportSize) { return (vec2(pixel) + 0.5) / viewportSize * 2.0 - 1.0; }
+
+#endif

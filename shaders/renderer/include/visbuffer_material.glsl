@@ -1,0 +1,46 @@
+// Material access for the visibility-buffer shaders: textures are sampled with analytic UV
+// derivatives (set per pixel in gUvDx / gUvDy), and the triangle's attributes are interpolated
+// from perspective-correct barycentrics.
+#ifndef FGB_RENDERER_VISBUFFER_MATERIAL_GLSL
+#define FGB_RENDERER_VISBUFFER_MATERIAL_GLSL
+
+#include "visbuffer_triangle.glsl"
+#include "surface_shading.glsl"
+
+vec2 gUvDx = vec2(0.0);
+vec2 gUvDy = vec2(0.0);
+
+const float kMaxAnisotropy = 8.0;  // the material sampler's (gpu_upload.cpp)
+
+// Anisotropic filtering done here rather than by the sampler: up to 8 trilinear taps along the
+// footprint's major axis at the LOD of its minor extent. Sampling with explicit gradients is not
+// anisotropic on every device (lavapipe filters textureGrad isotropically, its implicit-derivative
+// texture() anisotropically), so this keeps the image the same wherever it runs, and close to the
+// forward path's hardware filtering.
+vec4 sampleSurfaceTexture(int textureIndex, vec2 uv) {
+  uint index = uint(textureIndex);
+  vec2 size = vec2(textureSize(fgbTextures[nonuniformEXT(index)], 0));
+  float lengthX = length(gUvDx * size), lengthY = length(gUvDy * size);
+  float major = max(lengthX, lengthY), minor = min(lengthX, lengthY);
+  float taps = clamp(ceil(major / max(minor, 1e-8)), 1.0, kMaxAnisotropy);
+  float lod = log2(max(major / taps, 1e-8));
+  vec2 axis = lengthX > lengthY ? gUvDx : gUvDy;
+  vec4 sum = vec4(0.0);
+  for (float i = 0.0; i < taps; i += 1.0) {
+    vec2 at = uv + axis * ((i + 0.5) / taps - 0.5);
+    sum += textureLod(sampler2D(fgbTextures[nonuniformEXT(index)], fgbSamplers[pc.materialSampler]), at, lod);
+  }
+  return sum / taps;
+}
+
+// UV and its per-pixel derivatives at the barycentrics b (with derivatives dbdx, dbdy).
+vec2 interpolateUv(uvec3 vertices, vec3 b, vec3 dbdx, vec3 dbdy) {
+  vec2 uv0 = fetchVec2(pc.vertices, pc.uvs, vertices.x);
+  vec2 uv1 = fetchVec2(pc.vertices, pc.uvs, vertices.y);
+  vec2 uv2 = fetchVec2(pc.vertices, pc.uvs, vertices.z);
+  gUvDx = uv0 * dbdx.x + uv1 * dbdx.y + uv2 * dbdx.z;
+  gUvDy = uv0 * dbdy.x + uv1 * dbdy.y + uv2 * dbdy.z;
+  return uv0 * b.x + uv1 * b.y + uv2 * b.z;
+}
+
+#endif

@@ -1,0 +1,210 @@
+// Triangle setup shared by "Triangle Filter", "Visibility Raster" and "Material Shade" (they must
+// agree bit for bit on which pixels a triangle covers), and their common push block (mirrors
+// VisPush in src/renderer/features/visbuffer/visbuffer_feature.cpp).
+#ifndef FGB_RENDERER_VISBUFFER_TRIANGLE_GLSL
+#define FGB_RENDERER_VISBUFFER_TRIANGLE_GLSL
+
+#include "visbuffer.glsl"
+
+layout(push_constant) uniform Push {
+  uint frame;
+  uint instances;
+  uint materials;
+  uint draws;
+  uint clusters;
+  uint indices;         // cluster triangle indices (mesh-local)
+  uint vertices;        // the scene's vertex buffer (streams at the float offsets below)
+  uint positions;
+  uint normals;
+  uint tangents;
+  uint uvs;
+  uint counters;       // VisCounters the culling nodes add to
+  uint args;           // VisCounters snapshot with the indirect arguments of this node
+  uint visible;         // visible-cluster list
+  uint smallList;       // ids of small triangles
+  uint largeList;       // uvec4 per large triangle: id, first tile, tile counts, first job
+  uint largeCapacity;
+  uint words;           // the visibility buffer (uint64 per pixel)
+  uint depthOut;        // float per pixel, copied into the depth image ("Visibility Depth Resolve")
+  uint hdr;             // storage image index of the HDR target
+  uint materialSampler;
+  uint lights;
+  uint clusterCounts;   // FGB_NONE: no clustered lighting
+  uint clusterIndices;
+  uint flags;           // bit 0: reversed Z; bit 1: raster the large-triangle tiles (else small)
+  vec4 background;      // (at byte 112) HDR clear of pixels no triangle covers (pre-exposed, alpha 0)
+} pc;
+
+const uint kFlagReversedZ = 1u;
+const uint kFlagLargeTiles = 2u;
+bool reversedZ() { return (pc.flags & kFlagReversedZ) != 0u; }
+
+const float kMinW = 1e-5;        // vertices closer to the eye plane use homogeneous rasterisation
+const float kGuardBand = 16384.0;  // pixels: beyond it, fixed point could overflow
+const int kSubPixel = 256;       // 8 bits of sub-pixel precision
+
+struct ScreenTriangle {
+  vec4 clip[3];
+  bool projected;      // every w > kMinW and inside the guard band: integer edge functions
+  ivec2 fixedPos[3];   // sub-pixel positions, y down (projected only)
+  int64_t area;        // twice the signed area in sub-pixel units (projected only)
+  ivec4 pixels;        // covered pixel-centre range x0, y0, x1, y1 (inclusive; empty if x0 > x1)
+};
+
+// The frame's view-projection and viewport, loaded once per invocation (loadFrameGlobals()).
+mat4 gViewProj;
+vec2 gViewport;
+void loadFrameGlobals() {
+  gViewProj = fgbFrames[pc.frame].frame.viewProj;
+  gViewport = fgbFrames[pc.frame].frame.viewport.xy;
+}
+
+vec2 viewportSize() { return gViewport; }
+
+// Every visibility-buffer node transforms with the same model-view-projection product, so they
+// agree exactly on each triangle's clip positions (forward.vert's two products differ from it
+// only in rounding).
+mat4 modelViewProj(mat4 model) { return gViewProj * model; }
+
+vec4 clipPosition(mat4 mvp, uint vertex) { return mvp * vec4(fetchVec3(pc.vertices, pc.positions, vertex), 1.0); }
+
+// Screen position (pixels, y down as the viewport transform makes it) of a clip-space point.
+vec2 toScreen(vec4 c) { return (c.xy / c.w * 0.5 + 0.5) * viewportSize(); }
+
+// Pixel-centre range covered by a screen-space box [lo, hi] (pixels), clamped to the viewport.
+ivec4 pixelRange(vec2 lo, vec2 hi) {
+  ivec2 size = ivec2(viewportSize());
+  ivec2 first = max(ivec2(ceil(lo - 0.5)), ivec2(0));
+  ivec2 last = min(ivec2(floor(hi - 0.5)), size - 1);
+  return ivec4(first, last);
+}
+
+// Box of the part of the triangle in front of the eye plane (w > kMinW): the clipped polygon's
+// vertices. Used for triangles the integer path cannot take.
+ivec4 clippedPixelRange(vec4 c[3]) {
+  vec2 lo = vec2(1e30), hi = vec2(-1e30);
+  for (int i = 0; i < 3; ++i) {
+    vec4 a = c[i], b = c[(i + 1) % 3];
+    if (a.w > kMinW) {
+      vec2 s = clamp(toScreen(a), vec2(-kGuardBand), vec2(kGuardBand));
+      lo = min(lo, s);
+      hi = max(hi, s);
+    }
+    if ((a.w > kMinW) != (b.w > kMinW)) {
+      vec4 cut = mix(a, b, (kMinW - a.w) / (b.w - a.w));
+      vec2 s = clamp(toScreen(cut), vec2(-kGuardBand), vec2(kGuardBand));
+      lo = min(lo, s);
+      hi = max(hi, s);
+    }
+  }
+  return pixelRange(lo, hi);
+}
+
+ScreenTriangle setupTriangle(mat4 mvp, uvec3 vertices) {
+  ScreenTriangle t;
+  t.clip[0] = clipPosition(mvp, vertices.x);
+  t.clip[1] = clipPosition(mvp, vertices.y);
+  t.clip[2] = clipPosition(mvp, vertices.z);
+  t.projected = true;
+  vec2 lo = vec2(1e30), hi = vec2(-1e30);
+  for (int i = 0; i < 3; ++i) {
+    if (!(t.clip[i].w > kMinW)) {
+      t.projected = false;
+      break;
+    }
+    vec2 s = toScreen(t.clip[i]);
+    if (any(greaterThan(abs(s), vec2(kGuardBand)))) {
+      t.projected = false;
+      break;
+    }
+    t.fixedPos[i] = ivec2(round(s * float(kSubPixel)));
+    lo = min(lo, vec2(t.fixedPos[i]) / float(kSubPixel));
+    hi = max(hi, vec2(t.fixedPos[i]) / float(kSubPixel));
+  }
+  if (!t.projected) {
+    t.area = 0;
+    t.pixels = clippedPixelRange(t.clip);
+    return t;
+  }
+  ivec2 e1 = t.fixedPos[1] - t.fixedPos[0], e2 = t.fixedPos[2] - t.fixedPos[0];
+  t.area = int64_t(e1.x) * int64_t(e2.y) - int64_t(e1.y) * int64_t(e2.x);
+  t.pixels = pixelRange(lo, hi);
+  return t;
+}
+
+// Vulkan's facing for the default counter-clockwise front face: front when the framebuffer-space
+// area -1/2 sum(x_i y_i+1 - x_i+1 y_i) is positive, i.e. our `area` is negative. The homogeneous
+// form: sign(det(x, y, w)) * sign(w0 w1 w2) is the sign of the projected area.
+bool framebufferFront(ScreenTriangle t) {
+  if (t.projected) return t.area < 0;
+  mat3 m = mat3(t.clip[0].xyw, t.clip[1].xyw, t.clip[2].xyw);
+  return determinant(m) * t.clip[0].w * t.clip[1].w * t.clip[2].w < 0.0;
+}
+
+// Integer edge functions with the top-left rule (Vulkan/D3D: a sample on an edge belongs to the
+// triangle whose edge is a top or left edge). Vertices are ordered so the area is positive.
+struct EdgeSetup {
+  ivec2 v[3];
+  int64_t area;
+  ivec3 bias;  // 0 for top-left edges, -1 otherwise (a sample exactly on the edge is outside)
+};
+
+bool isTopLeft(ivec2 a, ivec2 b) {
+  ivec2 d = b - a;
+  return (d.y == 0 && d.x > 0) || d.y < 0;
+}
+
+EdgeSetup edgeSetup(ScreenTriangle t) {
+  EdgeSetup s;
+  s.v[0] = t.fixedPos[0];
+  s.v[1] = t.area > 0 ? t.fixedPos[1] : t.fixedPos[2];
+  s.v[2] = t.area > 0 ? t.fixedPos[2] : t.fixedPos[1];
+  s.area = abs(t.area);
+  s.bias = ivec3(isTopLeft(s.v[1], s.v[2]) ? 0 : -1, isTopLeft(s.v[2], s.v[0]) ? 0 : -1,
+                 isTopLeft(s.v[0], s.v[1]) ? 0 : -1);
+  return s;
+}
+
+int64_t edgeFunction(ivec2 a, ivec2 b, ivec2 p) {
+  return int64_t(b.x - a.x) * int64_t(p.y - a.y) - int64_t(b.y - a.y) * int64_t(p.x - a.x);
+}
+
+// Screen-space (affine) weights of vertices 0, 1, 2 of the ScreenTriangle at a pixel centre, or a
+// negative x when the sample is outside.
+vec3 coverage(EdgeSetup s, ScreenTriangle t, ivec2 pixel) {
+  ivec2 p = pixel * kSubPixel + kSubPixel / 2;
+  int64_t w0 = edgeFunction(s.v[1], s.v[2], p) + s.bias.x;
+  int64_t w1 = edgeFunction(s.v[2], s.v[0], p) + s.bias.y;
+  int64_t w2 = edgeFunction(s.v[0], s.v[1], p) + s.bias.z;
+  if (w0 < 0 || w1 < 0 || w2 < 0) return vec3(-1.0);
+  vec3 w = vec3(float(w0 - s.bias.x), float(w1 - s.bias.y), float(w2 - s.bias.z)) / float(s.area);
+  return t.area > 0 ? w : w.xzy;  // back to the triangle's own vertex order
+}
+
+// Small triangles travel from "Triangle Filter" to "Visibility Raster" already set up (two uvec4
+// per triangle), so the raster fetches nothing else: the id, the first covered pixel, the three
+// sub-pixel positions relative to that pixel (16 bits each) and the three NDC depths.
+uint packOffset(ivec2 offset) { return uint(offset.x & 0xffff) | (uint(offset.y) << 16); }
+ivec2 unpackOffset(uint packed) { return ivec2(int(packed << 16) >> 16, int(packed) >> 16); }
+
+// The packed offsets must stay within 16 sub-pixel pixels of the first pixel so 16 bits hold them
+// and 32-bit edge functions cannot overflow (a triangle clipped by the viewport edge can cover few
+// pixels yet reach far beyond them: it takes the tile path).
+bool packable(ScreenTriangle t) {
+  ivec2 origin = t.pixels.xy * kSubPixel;
+  for (int i = 0; i < 3; ++i)
+    if (any(greaterThan(abs(t.fixedPos[i] - origin), ivec2(16 * kSubPixel)))) return false;
+  return true;
+}
+
+const uint kSmallMasked = 0x80000000u;  // in a.y: alpha-masked (the raster loads its material)
+
+void packSmallTriangle(ScreenTriangle t, uint id, bool masked, out uvec4 a, out uvec4 b) {
+  ivec2 origin = t.pixels.xy * kSubPixel;
+  a = uvec4(id, uint(t.pixels.x) | (uint(t.pixels.y) << 16) | (masked ? kSmallMasked : 0u), packOffset(t.fixedPos[0] - origin),
+            packOffset(t.fixedPos[1] - origin));
+  b = uvec4(packOffset(t.fixedPos[2] - origin), floatBitsToUint(t.clip[0].z / t.clip[0].w),
+            floatBitsToUint(t.clip[1].z / t.clip[1].w), floatBitsToUint(t.clip[2].z / t.clip[2].w));
+}
+
+#endif

@@ -1,0 +1,64 @@
+#version 460
+// "Material Shade": one invocation per pixel. It decodes the pixel's visibility word, rebuilds
+// the triangle from its id (visible cluster -> instance, cluster -> three vertices), computes
+// perspective-correct barycentrics and their screen derivatives analytically (homogeneous form,
+// visbuffer.glsl), interpolates the attributes and shades them with the same code as the forward
+// path (surface_shading.glsl), writing the HDR target. It also writes the pixel's depth for
+// "Visibility Depth Resolve" (the far value where nothing was drawn).
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_nonuniform_qualifier : require
+#include "../include/visbuffer_material.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(set = 0, binding = FGB_BINDING_STORAGE_TEXTURES, rgba16f) uniform writeonly image2D fgbImagesRgba16f[FGB_MAX_STORAGE_TEXTURES];
+
+vec3 interpolate3(vec3 a, vec3 b, vec3 c, vec3 w) { return a * w.x + b * w.y + c * w.z; }
+
+void main() {
+  loadFrameGlobals();
+  uvec2 pixel = gl_GlobalInvocationID.xy;
+  uvec2 size = uvec2(viewportSize());
+  if (any(greaterThanEqual(pixel, size))) return;
+  uint index = pixel.y * size.x + pixel.x;
+  uint64_t word = visWordsRead[pc.words].words[index];
+  if (word == 0ul) {
+    visFloats[pc.depthOut].values[index] = reversedZ() ? 0.0 : 1.0;
+    imageStore(fgbImagesRgba16f[pc.hdr], ivec2(pixel), pc.background);
+    return;
+  }
+  visFloats[pc.depthOut].values[index] = depthFromKey(uint(word >> 32), reversedZ());
+  uint id = uint(word);
+  uint drawIndex = fgbUintsRead[pc.visible].values[id >> kClusterTriangleBits];
+  VisTriangle tri = visTriangle(drawIndex, id & ((1u << kClusterTriangleBits) - 1u), pc.draws, pc.clusters, pc.indices);
+  Instance inst = fgbInstances[pc.instances].instances[tri.instance];
+  ScreenTriangle screen = setupTriangle(modelViewProj(inst.model), tri.vertices);
+  BarycentricFrame bf = barycentricFrame(screen.clip[0], screen.clip[1], screen.clip[2], vec2(size));
+  vec3 b, dbdx, dbdy;
+  barycentricsAt(bf, pixelNdc(pixel, vec2(size)), b, dbdx, dbdy);
+
+  uvec3 v = tri.vertices;
+  SurfacePoint p;
+  vec3 world0 = (inst.model * vec4(fetchVec3(pc.vertices, pc.positions, v.x), 1.0)).xyz;
+  vec3 world1 = (inst.model * vec4(fetchVec3(pc.vertices, pc.positions, v.y), 1.0)).xyz;
+  vec3 world2 = (inst.model * vec4(fetchVec3(pc.vertices, pc.positions, v.z), 1.0)).xyz;
+  p.worldPosition = interpolate3(world0, world1, world2, b);
+  mat3 normalMatrix = mat3(inst.normalMatrix);
+  p.normal = normalMatrix * interpolate3(fetchVec3(pc.vertices, pc.normals, v.x), fetchVec3(pc.vertices, pc.normals, v.y),
+                                         fetchVec3(pc.vertices, pc.normals, v.z), b);
+  vec4 t0 = fetchVec4(pc.vertices, pc.tangents, v.x), t1 = fetchVec4(pc.vertices, pc.tangents, v.y),
+       t2 = fetchVec4(pc.vertices, pc.tangents, v.z);
+  p.tangent = vec4(mat3(inst.model) * interpolate3(t0.xyz, t1.xyz, t2.xyz, b), t0.w * b.x + t1.w * b.y + t2.w * b.z);
+  p.uv = safeUv(interpolateUv(v, b, dbdx, dbdy));
+  // The screen derivatives of the position, as forward.frag's cross(dFdx, dFdy) sees them.
+  p.geometricNormal = cross(world0 * dbdx.x + world1 * dbdx.y + world2 * dbdx.z,
+                            world0 * dbdy.x + world1 * dbdy.y + world2 * dbdy.z);
+  p.frontFacing = framebufferFront(screen);
+  p.fragCoord = vec2(pixel) + 0.5;
+
+  FrameConstants frame = fgbFrames[pc.frame].frame;
+  Material m = fgbMaterials[pc.materials].materials[inst.material];
+  vec4 base = surfaceBaseColor(m, p.uv);
+  vec4 color = shadeSurface(frame, m, base, p, LightLists(pc.lights, pc.clusterCounts, pc.clusterIndices));
+  imageStore(fgbImagesRgba16f[pc.hdr], ivec2(pixel), vec4(color.rgb, 1.0));  // alpha > 0: metered geometry
+}

@@ -1,0 +1,150 @@
+#version 460
+// "Visibility Raster": writes (depth key << 32 | id) into the visibility buffer with a 64-bit
+// atomic max per covered pixel centre. Two dispatches of this shader in one node: small triangles
+// (one invocation each walks its at most 8x8 pixel centres) and the tiles of large triangles (one
+// workgroup per 8x8-pixel tile, one invocation per pixel; the tile's triangle is found by binary
+// search over the large list's first-job offsets). Projected triangles use 8-bit sub-pixel
+// integer edge functions with the top-left rule; those crossing the eye plane or the guard band
+// use homogeneous edge functions. Depth outside [0, 1] is clipped per pixel, like the hardware's
+// depth clipping, and alpha-masked materials are tested per pixel.
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_nonuniform_qualifier : require
+#include "../include/visbuffer_material.glsl"
+
+layout(local_size_x = 64) in;
+
+struct RasterTriangle {
+  ScreenTriangle screen;
+  EdgeSetup edges;
+  BarycentricFrame frame;  // homogeneous path and alpha test
+  uvec3 vertices;
+  bool masked;
+  Material material;
+  uint id;
+};
+
+RasterTriangle loadTriangle(uint id) {
+  RasterTriangle r;
+  r.id = id;
+  uint drawIndex = fgbUintsRead[pc.visible].values[id >> kClusterTriangleBits];
+  VisTriangle tri = visTriangle(drawIndex, id & ((1u << kClusterTriangleBits) - 1u), pc.draws, pc.clusters, pc.indices);
+  r.vertices = tri.vertices;
+  r.screen = setupTriangle(modelViewProj(fgbInstances[pc.instances].instances[tri.instance].model), tri.vertices);
+  if (r.screen.projected) r.edges = edgeSetup(r.screen);
+  r.masked = (tri.flags & kDrawAlphaMasked) != 0u;
+  if (r.masked)
+    r.material = fgbMaterials[pc.materials].materials[fgbInstances[pc.instances].instances[tri.instance].material];
+  if (r.masked || !r.screen.projected)
+    r.frame = barycentricFrame(r.screen.clip[0], r.screen.clip[1], r.screen.clip[2], viewportSize());
+  return r;
+}
+
+bool alphaPasses(RasterTriangle r, ivec2 pixel) {
+  vec3 b, dbdx, dbdy;
+  barycentricsAt(r.frame, pixelNdc(uvec2(pixel), viewportSize()), b, dbdx, dbdy);
+  vec2 uv = interpolateUv(r.vertices, b, dbdx, dbdy);
+  return surfaceBaseColor(r.material, uv).a >= r.material.alphaCutoff;
+}
+
+void rasterPixel(RasterTriangle r, ivec2 pixel) {
+  float z;
+  if (r.screen.projected) {
+    vec3 w = coverage(r.edges, r.screen, pixel);
+    if (w.x < 0.0) return;
+    vec3 ndcZ = vec3(r.screen.clip[0].z / r.screen.clip[0].w, r.screen.clip[1].z / r.screen.clip[1].w,
+                     r.screen.clip[2].z / r.screen.clip[2].w);
+    z = dot(w, ndcZ);
+  } else {
+    vec3 e = r.frame.inverse * vec3(pixelNdc(uvec2(pixel), viewportSize()), 1.0);
+    if (e.x < 0.0 || e.y < 0.0 || e.z < 0.0 || e.x + e.y + e.z <= 0.0) return;
+    z = dot(e, vec3(r.screen.clip[0].z, r.screen.clip[1].z, r.screen.clip[2].z));
+  }
+  if (!(z >= 0.0 && z <= 1.0)) return;  // depth clipping (also drops NaN)
+  if (r.masked && !alphaPasses(r, pixel)) return;
+  uint index = uint(pixel.y) * uint(viewportSize().x) + uint(pixel.x);
+  atomicMax(visWords[pc.words].words[index], (uint64_t(depthKey(z, reversedZ())) << 32) | uint64_t(r.id));
+}
+
+int edge32(ivec2 a, ivec2 b, ivec2 p) { return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x); }
+
+// A small triangle, set up by "Triangle Filter" (packSmallTriangle): positions relative to its
+// first covered pixel fit 32-bit edge functions. Same coverage rule as coverage(): top-left, pixel
+// centres, and the same pixel range (pixelRange of the vertex box).
+void rasterSmall() {
+  uint slot = linearGroup() * gl_WorkGroupSize.x + gl_LocalInvocationID.x;
+  if (slot >= visCountersRead[pc.args].c.smallTriangles) return;
+  uvec4 a = visUvec4sRead[pc.smallList].values[2u * slot];
+  if ((a.y & kSmallMasked) != 0u) {  // alpha-masked: the general path with its per-pixel test
+    RasterTriangle r = loadTriangle(a.x);
+    for (int y = r.screen.pixels.y; y <= r.screen.pixels.w; ++y)
+      for (int x = r.screen.pixels.x; x <= r.screen.pixels.z; ++x) rasterPixel(r, ivec2(x, y));
+    return;
+  }
+  uvec4 b = visUvec4sRead[pc.smallList].values[2u * slot + 1u];
+  ivec2 first = ivec2(a.y & 0xffffu, (a.y >> 16) & 0x7fffu);
+  ivec2 v[3] = ivec2[3](unpackOffset(a.z), unpackOffset(a.w), unpackOffset(b.x));
+  vec3 ndcZ = vec3(uintBitsToFloat(b.y), uintBitsToFloat(b.z), uintBitsToFloat(b.w));
+  int area = edge32(v[0], v[1], v[2]);
+  if (area < 0) {  // order the vertices so the area is positive (weights swapped back below)
+    ivec2 swap = v[1];
+    v[1] = v[2];
+    v[2] = swap;
+    ndcZ = ndcZ.xzy;
+  }
+  ivec3 bias = ivec3(isTopLeft(v[1], v[2]) ? 0 : -1, isTopLeft(v[2], v[0]) ? 0 : -1, isTopLeft(v[0], v[1]) ? 0 : -1);
+  ivec2 origin = first * kSubPixel;
+  vec2 lo = vec2(origin + min(v[0], min(v[1], v[2]))) / float(kSubPixel);
+  vec2 hi = vec2(origin + max(v[0], max(v[1], v[2]))) / float(kSubPixel);
+  ivec4 pixels = pixelRange(lo, hi);
+  float invArea = 1.0 / float(abs(area));
+  uint64_t id = uint64_t(a.x);
+  uint width = uint(viewportSize().x);
+  for (int y = pixels.y; y <= pixels.w; ++y) {
+    for (int x = pixels.x; x <= pixels.z; ++x) {
+      ivec2 p = (ivec2(x, y) - first) * kSubPixel + kSubPixel / 2;
+      ivec3 w = ivec3(edge32(v[1], v[2], p), edge32(v[2], v[0], p), edge32(v[0], v[1], p));
+      if (any(lessThan(w + bias, ivec3(0)))) continue;
+      float z = dot(vec3(w) * invArea, ndcZ);
+      if (!(z >= 0.0 && z <= 1.0)) continue;
+      atomicMax(visWords[pc.words].words[uint(y) * width + uint(x)], (uint64_t(depthKey(z, reversedZ())) << 32) | id);
+    }
+  }
+}
+
+// The large triangle whose tiles include job `job`: the last entry with firstJob <= job.
+uint largeEntryOf(uint job) {
+  uint lo = 0u, hi = min(visCountersRead[pc.args].c.largeTriangles, pc.largeCapacity);
+  while (hi - lo > 1u) {
+    uint mid = (lo + hi) / 2u;
+    if (visUvec4sRead[pc.largeList].values[mid].w <= job) lo = mid;
+    else hi = mid;
+  }
+  return lo;
+}
+
+// One invocation finds the tile's triangle and sets it up for the whole workgroup.
+shared RasterTriangle sTriangle;
+shared uvec2 sTile;
+
+void rasterTile() {
+  uint job = linearGroup();
+  if (job >= visCountersRead[pc.args].c.tileJobs) return;  // uniform across the workgroup
+  if (gl_LocalInvocationIndex == 0u) {
+    uvec4 entry = visUvec4sRead[pc.largeList].values[largeEntryOf(job)];
+    uint local = job - entry.w;
+    uint tilesX = entry.z & 0xffffu;
+    sTile = uvec2(entry.y & 0xffffu, entry.y >> 16) + uvec2(local % tilesX, local / tilesX);
+    sTriangle = loadTriangle(entry.x);
+  }
+  barrier();
+  RasterTriangle r = sTriangle;
+  ivec2 pixel = ivec2(sTile * kTileSize + uvec2(gl_LocalInvocationID.x % kTileSize, gl_LocalInvocationID.x / kTileSize));
+  if (any(lessThan(pixel, r.screen.pixels.xy)) || any(greaterThan(pixel, r.screen.pixels.zw))) return;
+  rasterPixel(r, pixel);
+}
+
+void main() {
+  loadFrameGlobals();
+  if ((pc.flags & kFlagLargeTiles) != 0u) rasterTile();
+  else rasterSmall();
+}

@@ -1,0 +1,349 @@
+#include "visbuffer_feature.hpp"
+
+#include <algorithm>
+#include <cstddef>
+#include <cstring>
+#include <fgb/rhi/job_context.hpp>
+#include <fgb/scene/frustum.hpp>
+
+#include "../context/handles.hpp"
+
+namespace fgb::features {
+namespace {
+
+using graph::Access;
+constexpr graph::QueueClass kQueue = graph::QueueClass::Graphics;
+
+// Mirrors VisCounters in shaders/renderer/include/visbuffer.glsl.
+struct VisCounters {
+  uint32_t visibleClusters;
+  uint32_t filterGroups[3];
+  uint32_t smallTriangles;
+  uint32_t smallGroups[3];
+  uint64_t largeTotals;  // high 24 bits: large triangles, low 40 bits: their tiles
+  uint32_t largeTriangles;
+  uint32_t tileJobs;
+  uint32_t tileGroups[3];
+  uint32_t overflow;
+};
+static_assert(sizeof(VisCounters) == 64);
+constexpr uint64_t kFilterArgsOffset = offsetof(VisCounters, filterGroups);
+constexpr uint64_t kSmallArgsOffset = offsetof(VisCounters, smallGroups);
+constexpr uint64_t kTileArgsOffset = offsetof(VisCounters, tileGroups);
+
+// Mirrors the push block of shaders/renderer/visbuffer/cluster_cull.comp.
+struct CullPush {
+  glm::vec4 planes[6];
+  uint32_t frame;
+  uint32_t instances;
+  uint32_t draws;
+  uint32_t clusters;
+  uint32_t counters;
+  uint32_t visible;
+  uint32_t drawCount;
+};
+static_assert(sizeof(CullPush) <= rhi::kPushConstantBytes);
+
+// Mirrors shaders/renderer/visbuffer/vis_args.comp.
+struct ArgsPush {
+  uint32_t counters;
+  uint32_t args;
+  uint32_t smallPerGroup;
+};
+
+// Mirrors the push block of shaders/renderer/include/visbuffer_triangle.glsl.
+struct VisPush {
+  uint32_t frame, instances, materials, draws, clusters, indices, vertices;
+  uint32_t positions, normals, tangents, uvs;  // float offsets of the vertex streams
+  uint32_t counters, args, visible, smallList, largeList, largeCapacity, words, depthOut, hdr;
+  uint32_t materialSampler, lights, clusterCounts, clusterIndices, flags;
+  uint32_t pad[3];
+  glm::vec4 background;
+};
+static_assert(offsetof(VisPush, background) == 112 && sizeof(VisPush) == rhi::kPushConstantBytes);
+
+constexpr uint32_t kFlagReversedZ = 1;
+constexpr uint32_t kFlagLargeTiles = 2;
+constexpr uint32_t kRasterGroupSize = 64;  // visibility_raster.comp's local size
+constexpr uint32_t kShadeGroupSize = 8;    // material_shade.comp: 8 x 8
+
+// Reversed Z: the projection maps nearer points to larger depth.
+bool projectsReversedZ(const FrameConstantsGpu& constants) {
+  const float near = constants.depthRange.x;
+  const auto depthAt = [&](float distance) {
+    const glm::vec4 clip = constants.proj * glm::vec4(0.0f, 0.0f, -distance, 1.0f);
+    return clip.z / clip.w;
+  };
+  return depthAt(2.0f * near) > depthAt(4.0f * near);
+}
+
+}  // namespace
+
+struct VisBufferFeature::Buffers {
+  graph::BufferHandle counters;    // VisCounters, added to by the culling nodes
+  graph::BufferHandle cullArgs;    // snapshot after "Cluster Cull": "Triangle Filter"'s arguments
+  graph::BufferHandle rasterArgs;  // snapshot after "Triangle Filter": "Visibility Raster"'s arguments
+  graph::BufferHandle visible;
+  graph::BufferHandle smallList;
+  graph::BufferHandle largeList;
+  graph::BufferHandle words;
+  graph::BufferHandle depth;
+  graph::Extent extent;
+  VisPush push{};  // the scene's persistent indices; per-node handles are filled in by the jobs
+};
+
+void VisBufferFeature::initialize(FeatureInit& init) {
+  device_ = &init.device;
+  scene_ = &init.scene;
+  drawCount_ = init.settings.renderPath == RenderPath::VisBuffer ? init.scene.clusterGeometry.drawCount : 0;
+  if (!enabled()) return;
+  if (!init.device.shaderCapabilities().bufferInt64Atomics)
+    throw DeviceError("render.path=visbuffer needs 64-bit storage-buffer atomics (shaderBufferInt64Atomics), which " +
+                      init.device.adapter().name + " lacks");
+  // Large triangles are few (most of a dense scene covers a pixel or less); a list overflow is
+  // counted and reported as the "vis_large_overflow" statistic.
+  const uint64_t pixels = uint64_t{init.settings.sceneWidth()} * init.settings.sceneHeight();
+  largeCapacity_ = uint32_t(std::min<uint64_t>(std::max<uint64_t>(init.scene.clusterGeometry.triangles, 1),
+                                               std::max<uint64_t>(65536, pixels / 8)));
+  reversedZ_ = projectsReversedZ(init.scene.constants);
+  pipelines_.cull = init.device.createComputePipeline({"cluster cull", "renderer/visbuffer/cluster_cull.comp"});
+  pipelines_.args = init.device.createComputePipeline({"visibility arguments", "renderer/visbuffer/vis_args.comp"});
+  pipelines_.filter = init.device.createComputePipeline({"triangle filter", "renderer/visbuffer/triangle_filter.comp"});
+  pipelines_.raster =
+      init.device.createComputePipeline({"visibility raster", "renderer/visbuffer/visibility_raster.comp"});
+  pipelines_.shade = init.device.createComputePipeline({"material shade", "renderer/visbuffer/material_shade.comp"});
+  statsReadback_ = init.device.createBuffer(
+      {"visibility stats readback", sizeof(VisCounters), rhi::kBufferTransferDst, rhi::MemoryUsage::Readback});
+  std::memset(init.device.mapped(statsReadback_).data(), 0, sizeof(VisCounters));
+}
+
+VisBufferFeature::Buffers VisBufferFeature::declareBuffers(graph::FrameGraph& graph,
+                                                           const FrameTargets& targets) const {
+  const GpuScene& scene = *scene_;
+  const ClusterGeometry& geometry = scene.clusterGeometry;
+  Buffers b;
+  b.extent = targets.extent;
+  const uint64_t pixels = uint64_t{targets.extent.width} * targets.extent.height;
+  b.counters = graph.createBuffer("vis counters", {sizeof(VisCounters), {}});
+  b.cullArgs = graph.createBuffer("cluster cull args", {sizeof(VisCounters), {}});
+  b.rasterArgs = graph.createBuffer("triangle filter args", {sizeof(VisCounters), {}});
+  b.visible = graph.createBuffer("visible clusters", {uint64_t{4} * geometry.drawCount, {}});
+  b.smallList = graph.createBuffer("small triangles", {uint64_t{32} * geometry.triangles, {}});  // 2 uvec4 each
+  b.largeList = graph.createBuffer("large triangles", {uint64_t{16} * largeCapacity_, {}});
+  b.words = graph.createBuffer("visibility buffer", {uint64_t{8} * pixels, {}});
+  b.depth = graph.createBuffer("visibility depth", {uint64_t{4} * pixels, {}});
+
+  VisPush& p = b.push;
+  p.frame = device_->storageBufferIndex(scene.frameConstants);
+  p.instances = device_->storageBufferIndex(scene.instances);
+  p.materials = device_->storageBufferIndex(scene.materials);
+  p.draws = device_->storageBufferIndex(geometry.draws);
+  p.clusters = device_->storageBufferIndex(geometry.clusters);
+  p.indices = device_->storageBufferIndex(geometry.indices);
+  p.vertices = device_->storageBufferIndex(scene.vertices);
+  p.positions = uint32_t(scene.streams.positions / 4);
+  p.normals = uint32_t(scene.streams.normals / 4);
+  p.tangents = uint32_t(scene.streams.tangents / 4);
+  p.uvs = uint32_t(scene.streams.uvs / 4);
+  p.largeCapacity = largeCapacity_;
+  p.materialSampler = device_->samplerIndex(scene.materialSampler);
+  p.lights = device_->storageBufferIndex(scene.lights);
+  p.clusterCounts = p.clusterIndices = rhi::kInvalidId;
+  p.flags = reversedZ_ ? kFlagReversedZ : 0u;
+  p.background = {targets.background[0], targets.background[1], targets.background[2], targets.background[3]};
+  return b;
+}
+
+void VisBufferFeature::declareClear(graph::FrameGraph& graph, Buffers& b) const {
+  auto node = graph.addNode("Visibility Clear", graph::NodeType::Transfer, kQueue);
+  b.words = node.write(b.words, Access::TransferDst);
+  b.counters = node.write(b.counters, Access::TransferDst);
+  // The argument snapshots are zeroed too: the culling nodes then update them (read-write).
+  b.cullArgs = node.write(b.cullArgs, Access::TransferDst);
+  b.rasterArgs = node.write(b.rasterArgs, Access::TransferDst);
+  const uint64_t wordBytes = uint64_t{8} * b.extent.width * b.extent.height;
+  node.setJob([b, wordBytes](graph::JobContext& context) {
+    auto& ctx = rhi::rhiContext(context);
+    ctx.cmd().fillBuffer(ctx.buffer(b.words), 0, wordBytes, 0);  // 0: no triangle (see visbuffer.glsl)
+    for (const auto counters : {b.counters, b.cullArgs, b.rasterArgs})
+      ctx.cmd().fillBuffer(ctx.buffer(counters), 0, sizeof(VisCounters), 0);
+  });
+}
+
+void VisBufferFeature::declareClusterCull(graph::FrameGraph& graph, Buffers& b) const {
+  auto node = graph.addNode("Cluster Cull", graph::NodeType::Compute, kQueue);
+  b.counters = node.write(b.counters, Access::StorageReadWrite);
+  b.visible = node.write(b.visible, Access::StorageWrite);
+  // Read-write, not write: under validation the node's read-only binding exposes every buffer it
+  // declared, and the cull shader reads that binding, so sync validation counts it as a reader.
+  b.cullArgs = node.write(b.cullArgs, Access::StorageReadWrite);
+  CullPush push{};
+  const auto frustum = scene::Frustum::fromMatrix(scene_->constants.viewProj);
+  for (size_t i = 0; i < 6; ++i) push.planes[i] = frustum.planes[i];
+  push.frame = b.push.frame;
+  push.instances = b.push.instances;
+  push.draws = b.push.draws;
+  push.clusters = b.push.clusters;
+  push.drawCount = drawCount_;
+  node.setJob([push, pipelines = pipelines_, counters = b.counters, visible = b.visible,
+               args = b.cullArgs](graph::JobContext& context) mutable {
+    auto& ctx = rhi::rhiContext(context);
+    auto& cmd = ctx.cmd();
+    push.counters = ctx.storageBufferIndex(counters);
+    push.visible = ctx.storageBufferIndex(visible);
+    cmd.bindPipeline(pipelines.cull);
+    cmd.push(push);
+    cmd.dispatch((push.drawCount + 63) / 64);
+    cmd.computeBarrier();  // the arguments read every workgroup's count
+    cmd.bindPipeline(pipelines.args);
+    cmd.push(ArgsPush{push.counters, ctx.storageBufferIndex(args), kRasterGroupSize});
+    cmd.dispatch(1);
+  });
+}
+
+void VisBufferFeature::declareTriangleFilter(graph::FrameGraph& graph, Buffers& b) const {
+  auto node = graph.addNode("Triangle Filter", graph::NodeType::Compute, kQueue);
+  node.read(b.cullArgs, Access::Indirect);
+  node.read(b.cullArgs, Access::StorageRead);
+  node.read(b.visible, Access::StorageRead);
+  b.counters = node.write(b.counters, Access::StorageReadWrite);
+  b.smallList = node.write(b.smallList, Access::StorageWrite);
+  b.largeList = node.write(b.largeList, Access::StorageWrite);
+  b.rasterArgs = node.write(b.rasterArgs, Access::StorageReadWrite);  // see cullArgs in Cluster Cull
+  node.setJob([push = b.push, pipelines = pipelines_, b](graph::JobContext& context) mutable {
+    auto& ctx = rhi::rhiContext(context);
+    auto& cmd = ctx.cmd();
+    push.counters = ctx.storageBufferIndex(b.counters);
+    push.args = ctx.storageBufferIndex(b.cullArgs);
+    push.visible = ctx.storageBufferIndex(b.visible);
+    push.smallList = ctx.storageBufferIndex(b.smallList);
+    push.largeList = ctx.storageBufferIndex(b.largeList);
+    cmd.bindPipeline(pipelines.filter);
+    cmd.push(push);
+    cmd.dispatchIndirect(ctx.buffer(b.cullArgs), kFilterArgsOffset);
+    cmd.computeBarrier();
+    cmd.bindPipeline(pipelines.args);
+    cmd.push(ArgsPush{push.counters, ctx.storageBufferIndex(b.rasterArgs), kRasterGroupSize});
+    cmd.dispatch(1);
+  });
+}
+
+void VisBufferFeature::declareRaster(graph::FrameGraph& graph, Buffers& b) const {
+  auto node = graph.addNode("Visibility Raster", graph::NodeType::Compute, kQueue);
+  node.read(b.rasterArgs, Access::Indirect);
+  node.read(b.rasterArgs, Access::StorageRead);
+  node.read(b.visible, Access::StorageRead);
+  node.read(b.smallList, Access::StorageRead);
+  node.read(b.largeList, Access::StorageRead);
+  b.words = node.write(b.words, Access::StorageReadWrite);
+  node.setJob([push = b.push, pipelines = pipelines_, b](graph::JobContext& context) mutable {
+    auto& ctx = rhi::rhiContext(context);
+    auto& cmd = ctx.cmd();
+    push.args = ctx.storageBufferIndex(b.rasterArgs);
+    push.visible = ctx.storageBufferIndex(b.visible);
+    push.smallList = ctx.storageBufferIndex(b.smallList);
+    push.largeList = ctx.storageBufferIndex(b.largeList);
+    push.words = ctx.storageBufferIndex(b.words);
+    cmd.bindPipeline(pipelines.raster);
+    cmd.push(push);
+    cmd.dispatchIndirect(ctx.buffer(b.rasterArgs), kSmallArgsOffset);
+    // No barrier between the two: atomic max commutes. (A copy: the job runs every frame.)
+    VisPush tiles = push;
+    tiles.flags |= kFlagLargeTiles;
+    cmd.push(tiles);
+    cmd.dispatchIndirect(ctx.buffer(b.rasterArgs), kTileArgsOffset);
+  });
+}
+
+void VisBufferFeature::declareShade(graph::FrameGraph& graph, Blackboard& board, Buffers& b) const {
+  auto& targets = board.get<FrameTargets>();
+  auto node = graph.addNode("Material Shade", graph::NodeType::Compute, kQueue);
+  node.read(b.words, Access::StorageRead);
+  node.read(b.visible, Access::StorageRead);
+  b.depth = node.write(b.depth, Access::StorageWrite);
+  targets.hdr = node.write(targets.hdr, Access::StorageWrite);
+  ClusteredLights clusters;
+  if (const auto* published = board.find<ClusteredLights>()) {
+    clusters = *published;
+    node.read(clusters.counts, Access::StorageRead);
+    node.read(clusters.indices, Access::StorageRead);
+  }
+  // Shading pre-exposes what it writes, like every colour pass (auto exposure: this frame's state).
+  if (targets.exposure.valid()) node.read(targets.exposure, Access::StorageRead);
+  node.setJob(
+      [push = b.push, pipelines = pipelines_, b, hdr = targets.hdr, clusters](graph::JobContext& context) mutable {
+        auto& ctx = rhi::rhiContext(context);
+        auto& cmd = ctx.cmd();
+        push.words = ctx.storageBufferIndex(b.words);
+        push.visible = ctx.storageBufferIndex(b.visible);
+        push.depthOut = ctx.storageBufferIndex(b.depth);
+        push.hdr = ctx.storageTextureIndex(hdr);
+        if (clusters.counts.valid()) {
+          push.clusterCounts = ctx.storageBufferIndex(clusters.counts);
+          push.clusterIndices = ctx.storageBufferIndex(clusters.indices);
+        }
+        cmd.bindPipeline(pipelines.shade);
+        cmd.push(push);
+        cmd.dispatch((b.extent.width + kShadeGroupSize - 1) / kShadeGroupSize,
+                     (b.extent.height + kShadeGroupSize - 1) / kShadeGroupSize);
+      });
+  targets.color = targets.hdr;  // single-sampled: later forward passes load the shaded image
+  targets.colorCleared = true;
+}
+
+void VisBufferFeature::declareDepthResolve(graph::FrameGraph& graph, FrameTargets& targets, Buffers& b) const {
+  auto node = graph.addNode("Visibility Depth Resolve", graph::NodeType::Transfer, kQueue);
+  node.read(b.depth, Access::TransferSrc);
+  targets.depth = node.write(targets.depth, Access::TransferDst);
+  node.setJob([depth = b.depth, target = targets.depth](graph::JobContext& context) {
+    auto& ctx = rhi::rhiContext(context);
+    ctx.cmd().copyBufferToTexture(ctx.buffer(depth), ctx.texture(target));
+  });
+  targets.depthCleared = true;
+}
+
+void VisBufferFeature::declareStatsReadback(graph::FrameGraph& graph, graph::BufferHandle counters) const {
+  const graph::ImportState hostState{graph::kStageHost | graph::kStageTransfer,
+                                     graph::kAccessHostRead | graph::kAccessTransferWrite, graph::Layout::Undefined,
+                                     graph::QueueClass::Graphics};
+  auto target = graph.importBuffer("visibility stats readback", {sizeof(VisCounters), {}},
+                                   rhi::external(statsReadback_), hostState, hostState);
+  auto node = graph.addNode("Visibility Stats Readback", graph::NodeType::Transfer, kQueue);
+  node.read(counters, Access::TransferSrc);
+  target = node.write(target, Access::TransferDst);
+  node.sideEffect();
+  node.setJob([counters, target](graph::JobContext& context) {
+    auto& ctx = rhi::rhiContext(context);
+    ctx.cmd().copyBuffer(ctx.buffer(counters), ctx.buffer(target), sizeof(VisCounters));
+  });
+}
+
+void VisBufferFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
+  if (!enabled()) return;
+  auto& targets = board.get<FrameTargets>();
+  if (targets.samples != 1) throw std::logic_error("visibility buffer with MSAA (render settings should refuse it)");
+  Buffers b = declareBuffers(graph, targets);
+  declareClear(graph, b);
+  declareClusterCull(graph, b);
+  declareTriangleFilter(graph, b);
+  declareRaster(graph, b);
+  declareShade(graph, board, b);
+  declareDepthResolve(graph, board.get<FrameTargets>(), b);
+  declareStatsReadback(graph, b.rasterArgs);
+  board.set(VisibilityOutputs{b.rasterArgs, b.visible, b.words});
+}
+
+void VisBufferFeature::addStats(std::map<std::string, double>& stats) const {
+  if (!enabled()) return;
+  VisCounters read{};
+  std::memcpy(&read, device_->mapped(statsReadback_).data(), sizeof(read));
+  stats["vis_clusters"] = drawCount_;
+  stats["vis_clusters_visible"] = read.visibleClusters;
+  stats["vis_triangles_small"] = read.smallTriangles;
+  stats["vis_triangles_large"] = read.largeTriangles;
+  stats["vis_triangles_rasterised"] = double(read.smallTriangles) + read.largeTriangles;
+  stats["vis_raster_tiles"] = read.tileJobs;
+  stats["vis_large_overflow"] = read.overflow;
+}
+
+}  // namespace fgb::features

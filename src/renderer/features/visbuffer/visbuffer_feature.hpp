@@ -1,0 +1,64 @@
+// The visibility-buffer path (render.path=visbuffer, issue 18): the opaque and alpha-masked scene
+// is culled, rasterised and shaded in compute instead of "Mesh Render".
+//   "Visibility Clear"          zeroes the visibility buffer and the culling counters;
+//   "Cluster Cull"              instances + clusters: frustum, backface cone;
+//   "Triangle Filter"           per triangle: degenerate, behind the eye, outside the frustum,
+//                               back-facing, covers no pixel centre; writes the small and large
+//                               triangle lists and the raster's indirect arguments;
+//   "Visibility Raster"         64-bit atomic max of (depth, id) per pixel (storage buffer);
+//   "Material Shade"            rebuilds each pixel's triangle, shades it like forward.frag (shared
+//                               include) into the HDR target, and writes the pixel depths;
+//   "Visibility Depth Resolve"  copies those depths into the depth target, so the forward passes
+//                               that follow (transparent meshes, particles) depth-test against them.
+// Culling outputs are published on the blackboard (VisibilityOutputs).
+#pragma once
+
+#include "../context/render_feature.hpp"
+
+namespace fgb::features {
+
+// Published by the visibility-buffer feature for later nodes (debug views, statistics).
+struct VisibilityOutputs {
+  graph::BufferHandle counters;         // VisCounters after "Triangle Filter"
+  graph::BufferHandle visibleClusters;  // ClusterDraw indices that passed "Cluster Cull"
+  graph::BufferHandle visibility;       // uint64 per pixel: depth key << 32 | id
+};
+
+class VisBufferFeature final : public IRenderFeature {
+ public:
+  [[nodiscard]] std::string_view name() const override { return "visbuffer"; }
+  [[nodiscard]] bool enabled() const override { return drawCount_ > 0; }
+  [[nodiscard]] bool writesHdr() const override { return enabled(); }
+  void initialize(FeatureInit& init) override;
+  void declare(graph::FrameGraph& graph, Blackboard& board) override;
+  void addStats(std::map<std::string, double>& stats) const override;
+
+ private:
+  struct Pipelines {
+    rhi::PipelineId cull;
+    rhi::PipelineId args;
+    rhi::PipelineId filter;
+    rhi::PipelineId raster;
+    rhi::PipelineId shade;
+  };
+  struct Buffers;
+
+  Buffers declareBuffers(graph::FrameGraph& graph, const FrameTargets& targets) const;
+  void declareClear(graph::FrameGraph& graph, Buffers& buffers) const;
+  void declareClusterCull(graph::FrameGraph& graph, Buffers& buffers) const;
+  void declareTriangleFilter(graph::FrameGraph& graph, Buffers& buffers) const;
+  void declareRaster(graph::FrameGraph& graph, Buffers& buffers) const;
+  void declareShade(graph::FrameGraph& graph, Blackboard& board, Buffers& buffers) const;
+  void declareDepthResolve(graph::FrameGraph& graph, FrameTargets& targets, Buffers& buffers) const;
+  void declareStatsReadback(graph::FrameGraph& graph, graph::BufferHandle counters) const;
+
+  rhi::Device* device_ = nullptr;
+  const GpuScene* scene_ = nullptr;
+  Pipelines pipelines_;
+  rhi::BufferId statsReadback_;
+  uint32_t drawCount_ = 0;
+  uint32_t largeCapacity_ = 0;
+  bool reversedZ_ = false;
+};
+
+}  // namespace fgb::features

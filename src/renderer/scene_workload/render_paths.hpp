@@ -1,0 +1,27 @@
+// Render paths: which features a frame is composed of, per render.path. Both paths share the
+// scene data, lights ("Clustered Light Cull"), transparent meshes, particles, SSAA resolve, bloom,
+// tone mapping and the light-complexity debug view; they differ in what draws the opaque scene:
+//   forward:   "Mesh Frustum Cull" + "Mesh Render" (graphics, the thesis' renderer);
+//   visbuffer: the compute nodes of features/visbuffer, then the forward passes for the rest.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "../features/context/render_feature.hpp"
+
+namespace fgb::render {
+
+struct RenderPathPlan {
+  // In declaration order: producers before consumers.
+  std::vector<std::unique_ptr<features::IRenderFeature>> features;
+  // A compute node writes the HDR target (it needs storage usage).
+  bool computeWritesHdr = false;
+};
+
+RenderPathPlan planRenderPath(const features::RenderSettings& settings);
+
+// The path's constraints on the run's settings; throws InputError naming the option.
+void checkRenderPathSettings(const features::RenderSettings& settings, uint32_t requestedMsaa);
+
+}  // namespace fgb::render

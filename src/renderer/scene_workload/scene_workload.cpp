@@ -87,6 +87,7 @@ class SceneWorkload final : public Workload {
     device_ = vulkan::createDevice(deviceOptions);
     description_ = describeDevice(device_->adapter());
     settings_ = makeSettings(config, loaded_.description, device_->sampleCounts());
+    rhi::checkRenderSize(device_->adapter(), settings_.width, settings_.height);
     startup_.deviceMs = timer.lap();
 
     gpu_ = uploadScene(*device_, loaded_.scene, settings_);
@@ -208,8 +209,10 @@ class SceneWorkload final : public Workload {
       FrameTiming frame;
       for (uint32_t i = 0; i < nodes.size(); ++i) {
         const bool culled = compiled.nodes[i].culled;
+        // Begin offsets are -1 where the pass's queue family has no timestamps (the report says so).
+        const bool timed = !culled && i < timings.nodeMs.size();
         frame.passes.push_back({std::string(nodes[i].name), std::string(graph::toString(nodes[i].queue)), culled,
-                                culled || i >= timings.nodeMs.size() ? 0.0 : timings.nodeMs[i], -1.0});
+                                timed ? timings.nodeMs[i] : 0.0, timed ? timings.nodeStartMs[i] : -1.0});
       }
       frame.gpuFrameMs = timings.gpuMs;
       frame.cpuFrameMs = cpuMs_.empty() ? 0.0 : cpuMs_.front();

@@ -6,6 +6,7 @@
 #include <fgb/harness/image.hpp>
 
 #include <filesystem>
+#include <string>
 #include <utility>
 
 namespace fgb::harness {
@@ -25,5 +26,7 @@ Image readPng(const std::filesystem::path& path);  // encoding Srgb, values in [
 void writeExr(const std::filesystem::path& path, const Image& linear);
 // 8-bit RGB. Linear images are sRGB-encoded (clamped); sRGB images are stored as they are.
 void writePng(const std::filesystem::path& path, const Image& image);
+// The bytes writePng stores, in memory (for data: URIs in report.html).
+std::string encodePng(const Image& image);
 
 }  // namespace fgb::harness

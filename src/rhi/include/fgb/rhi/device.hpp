@@ -26,10 +26,16 @@ struct AdapterInfo {
   double timestampPeriodNs = 1.0;
   uint32_t timestampValidBits = 64;
   bool hostTimestamps = false; // the device's "GPU" clock is the host clock (CPU implementations)
+  uint32_t maxImageDimension2D = 0;  // the largest width or height of a 2D image
   std::vector<std::string> queueFamilies;  // "0: graphics|compute|transfer x1"
   bool usable = true;          // meets the backend's requirements (Vulkan 1.3 features)
   std::string unusableReason;
 };
+
+// A render size the adapter cannot hold as one 2D image is bad input: InputError naming
+// --width/--height and the adapter's limit (instead of an allocation failing later as "out of
+// device memory"). Nothing is checked when the limit is unknown (0).
+void checkRenderSize(const AdapterInfo& adapter, uint32_t width, uint32_t height);
 
 struct DeviceOptions {
   std::string selector = "auto";  // auto | lavapipe | gpu | INDEX

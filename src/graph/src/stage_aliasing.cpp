@@ -20,11 +20,6 @@ TransientPlacer::TransientPlacer(CompileState& state, bool alias, bool resolveRe
   plan_.placements.assign(state.resourceCount, {});
 }
 
-void TransientPlacer::finish() {
-  plan_.peakBytesAliased = 0;
-  for (const Heap& heap : plan_.heaps) plan_.peakBytesAliased += heap.size;
-}
-
 uint32_t TransientPlacer::heapFor(ResourceKind kind, uint32_t memoryTypeBits) {
   for (uint32_t h = 0; h < plan_.heaps.size(); ++h) {
     if (plan_.heaps[h].kind == kind && plan_.heaps[h].memoryTypeBits == memoryTypeBits) return h;
@@ -52,6 +47,7 @@ void TransientPlacer::place(uint32_t resource, uint32_t user) {
   placement.size = req.size;
   if (alias_ && takeFreeRange(free_[heapIndex], user, req, placement)) return;
   placement.offset = alignUp(heap.size, req.alignment);
+  plan_.peakBytesAliased += placement.offset + req.size - heap.size;  // the sum of the heaps' sizes
   heap.size = placement.offset + req.size;
 }
 

@@ -30,6 +30,18 @@ struct TrackedState {
   uint32_t lastStep = kInvalidIndex;       // the step of the last use (none before the graph)
 };
 
+// One side of a barrier: what it waits for (source) or what waits for it (destination).
+struct Side {
+  StageMask stages;
+  AccessMask access;
+  Layout layout;
+  uint32_t queue;
+};
+
+Barrier barrier(Barrier::Kind kind, uint32_t resource, const Side& src, const Side& dst) {
+  return {kind, resource, src.stages, src.access, dst.stages, dst.access, src.layout, dst.layout, src.queue, dst.queue};
+}
+
 // Tracks the state of each resource through its uses, in execution order, and records the
 // barriers each use needs. Barriers before a node are all found while its uses are walked, so they
 // go straight to the output, each step's run where the walk reached it. Barriers after a node
@@ -90,16 +102,11 @@ class BarrierPlanner {
     const StageMask dstStages = queueChange ? kStageNone : final.stages & stagesKept;
     const AccessMask dstAccess = queueChange ? kAccessNone : final.access & accessKept;
     if (!queueChange && finalLayout == s.layout && dstStages == kStageNone) return;
-    addAfter(s.lastStep, {.kind = queueChange ? Barrier::Kind::Release : Barrier::Kind::Transition,
-                          .resource = resource,
-                          .srcStages = s.writeStages | s.readStages,
-                          .srcAccess = s.writeAccess,
-                          .dstStages = dstStages,
-                          .dstAccess = dstAccess,
-                          .oldLayout = texture ? s.layout : Layout::Undefined,
-                          .newLayout = texture ? finalLayout : Layout::Undefined,
-                          .srcQueue = s.queue,
-                          .dstQueue = handedOver ? s.queue : finalQueue});
+    addAfter(
+        s.lastStep,
+        barrier(queueChange ? Barrier::Kind::Release : Barrier::Kind::Transition, resource,
+                {s.writeStages | s.readStages, s.writeAccess, texture ? s.layout : Layout::Undefined, s.queue},
+                {dstStages, dstAccess, texture ? finalLayout : Layout::Undefined, handedOver ? s.queue : finalQueue}));
   }
 
   // Appends the barriers after steps to the output, grouped by step (in the order found within a
@@ -161,23 +168,12 @@ class BarrierPlanner {
     // An imported resource owned by another family before the graph was released by its owner;
     // only the acquire is ours then.
     if (s.lastStep != kInvalidIndex) {
-      addAfter(s.lastStep, {.kind = Barrier::Kind::Release,
-                            .resource = resource,
-                            .srcStages = s.writeStages | s.readStages,
-                            .srcAccess = s.writeAccess,
-                            .oldLayout = s.layout,
-                            .newLayout = layout,
-                            .srcQueue = s.queue,
-                            .dstQueue = queue_});
+      addAfter(s.lastStep, barrier(Barrier::Kind::Release, resource,
+                                   {s.writeStages | s.readStages, s.writeAccess, s.layout, s.queue},
+                                   {kStageNone, kAccessNone, layout, queue_}));
     }
-    addBefore({.kind = Barrier::Kind::Acquire,
-               .resource = resource,
-               .dstStages = use.stages,
-               .dstAccess = use.accessMask,
-               .oldLayout = s.layout,
-               .newLayout = layout,
-               .srcQueue = s.queue,
-               .dstQueue = queue_});
+    addBefore(barrier(Barrier::Kind::Acquire, resource, {kStageNone, kAccessNone, s.layout, s.queue},
+                      {use.stages, use.accessMask, layout, queue_}));
   }
 
   void sameQueueHazard(uint32_t resource, bool texture, const TrackedState& s, const Use& use, Layout layout) {
@@ -192,16 +188,9 @@ class BarrierPlanner {
       const bool visible = (use.stages & ~s.visibleStages) == 0 && (use.accessMask & ~s.visibleAccess) == 0;
       if (s.writeStages == kStageNone || visible) return;
     }
-    addBefore({.kind = Barrier::Kind::Transition,
-               .resource = resource,
-               .srcStages = srcStages,
-               .srcAccess = s.writeAccess,
-               .dstStages = use.stages,
-               .dstAccess = use.accessMask,
-               .oldLayout = texture ? s.layout : Layout::Undefined,
-               .newLayout = texture ? layout : Layout::Undefined,
-               .srcQueue = queue_,
-               .dstQueue = queue_});
+    addBefore(barrier(Barrier::Kind::Transition, resource,
+                      {srcStages, s.writeAccess, texture ? s.layout : Layout::Undefined, queue_},
+                      {use.stages, use.accessMask, texture ? layout : Layout::Undefined, queue_}));
   }
 
   // A shared buffer last used on another queue: the semaphore wait that orders the two uses (every
@@ -330,7 +319,6 @@ void walkUses(CompileState& state, bool alias, bool firstWalk) {
       }
     }
   }
-  placer.finish();
   barriers.emitAfterBarriers();
 }
 

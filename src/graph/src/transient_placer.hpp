@@ -24,8 +24,6 @@ class TransientPlacer {
   // Hands its range back after its last user; later occupants wait for what the users did (on
   // each queue: the largest σ of a user, and the stages used).
   void release(uint32_t resource, const QueueArray& lastSigma, const QueueStages& stages);
-  // Sums the heap sizes into the plan's peak once every transient was placed and released.
-  void finish();
 
  private:
   // A range of a heap nobody uses any more, with who used it last (per queue: the largest σ and

@@ -102,8 +102,7 @@ struct DepthAttachment {
 };
 
 // One resource a node uses, and how (FrameGraph::accesses): what a backend or a feature needs to
-// choose usage flags, bind resources or follow versions. (The compiler's own record of a use, with
-// its resolved stages and layout, is the library's.)
+// choose usage flags, bind resources or follow versions (the compiler's own record is private).
 struct ResourceAccess {
   uint32_t resource = kInvalidIndex;
   Access access = Access::Sampled;

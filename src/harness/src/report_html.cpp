@@ -83,7 +83,7 @@ std::string goldenHtml(const RunResult& run) {
   return out + "</table>\n";
 }
 
-std::string figure(const std::string& id, std::string_view png, const ReportImages& images, const std::string& alt,
+std::string figure(const std::string& id, std::span<const uint8_t> png, const ReportImages& images, const std::string& alt,
                    const std::string& captionHtml) {
   return fmt::format(R"(<figure><img class="shot" id="{}" src="{}" width="{}" height="{}" alt="{}"><figcaption>{}</figcaption></figure>)"
                      "\n",
@@ -113,20 +113,20 @@ std::string picturesHtml(const RunResult& run, const ReportImages& images) {
 
 }  // namespace
 
-std::string base64(std::string_view bytes) {
+std::string base64(std::span<const uint8_t> bytes) {
   static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
   std::string out;
   out.reserve((bytes.size() + 2) / 3 * 4);
   for (std::size_t i = 0; i < bytes.size(); i += 3) {
     const std::size_t n = std::min<std::size_t>(3, bytes.size() - i);
     uint32_t chunk = 0;
-    for (std::size_t k = 0; k < 3; ++k) chunk = chunk << 8 | (k < n ? static_cast<unsigned char>(bytes[i + k]) : 0u);
+    for (std::size_t k = 0; k < 3; ++k) chunk = chunk << 8 | (k < n ? bytes[i + k] : 0u);
     for (std::size_t k = 0; k < 4; ++k) out += k <= n ? kAlphabet[(chunk >> (18 - 6 * k)) & 63] : '=';
   }
   return out;
 }
 
-std::string pngDataUri(std::string_view png) { return "data:image/png;base64," + base64(png); }
+std::string pngDataUri(std::span<const uint8_t> png) { return "data:image/png;base64," + base64(png); }
 
 std::string htmlReport(const RunResult& run, const ReportImages& images) {
   std::string html = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n";

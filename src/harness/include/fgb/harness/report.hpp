@@ -5,7 +5,8 @@
 
 #include <cstdint>
 #include <string>
-#include <string_view>
+#include <span>
+#include <vector>
 
 namespace fgb::harness {
 
@@ -13,9 +14,9 @@ namespace fgb::harness {
 // out. With a golden, the reference, this run's frame and the FLIP heat map between them appear
 // side by side, with a toggle that flips one view between reference and test.
 struct ReportImages {
-  std::string frame;      // frame.png
-  std::string reference;  // the golden's display image
-  std::string heatMap;    // FLIP heat map of frame against reference
+  std::vector<uint8_t> frame;      // frame.png
+  std::vector<uint8_t> reference;  // the golden's display image
+  std::vector<uint8_t> heatMap;    // FLIP heat map of frame against reference
   uint32_t width = 0, height = 0;
 };
 
@@ -34,8 +35,8 @@ std::string timestampSourceNote(const render::DeviceDescription& device);
 std::string hostOverheadNote(const RunResult& run);
 
 std::string escapeXml(const std::string& text);
-std::string base64(std::string_view bytes);
-std::string pngDataUri(std::string_view png);  // "data:image/png;base64,..."
+std::string base64(std::span<const uint8_t> bytes);
+std::string pngDataUri(std::span<const uint8_t> png);  // "data:image/png;base64,..."
 std::string msaaLabel(uint32_t msaa);  // "4", or "scene default" for 0
 
 }  // namespace fgb::harness

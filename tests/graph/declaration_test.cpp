@@ -53,6 +53,26 @@ TEST(Declaration, ReadWriteRecordsBothVersions) {
   EXPECT_EQ(use.writeVersion, next.version);
 }
 
+// The public view of a node's uses, in declaration order: resource, access and versions.
+TEST(Declaration, AccessesListANodesUsesWithTheirVersions) {
+  FrameGraph graph;
+  const BufferHandle lights = graph.importBuffer("lights", bufferDesc(), {3}, {}, {});
+  const TextureHandle hdr = graph.createTexture("hdr", colorDesc());
+  NodeBuilder node = graph.addNode("Shade", NodeType::Compute);
+  node.read(lights, Access::Uniform);
+  const TextureHandle lit = node.write(hdr, Access::StorageWrite);
+  const std::vector<ResourceAccess> accesses = graph.accesses(0);
+  ASSERT_EQ(accesses.size(), 2u);
+  EXPECT_EQ(accesses[0].resource, graph.resourceOf(lights));
+  EXPECT_EQ(accesses[0].access, Access::Uniform);
+  EXPECT_EQ(accesses[0].readVersion, lights.version);
+  EXPECT_EQ(accesses[0].writeVersion, kInvalidIndex);
+  EXPECT_EQ(accesses[1].resource, graph.resourceOf(hdr));
+  EXPECT_EQ(accesses[1].access, Access::StorageWrite);
+  EXPECT_EQ(accesses[1].readVersion, kInvalidIndex);
+  EXPECT_EQ(accesses[1].writeVersion, lit.version);
+}
+
 TEST(Declaration, QueueClassDefaultsToTheNodeTypeAndCanBeOverridden) {
   FrameGraph graph;
   graph.addNode("g", NodeType::Graphics);

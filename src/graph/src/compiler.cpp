@@ -6,34 +6,7 @@
 #include "compile_state.hpp"
 
 namespace fgb::graph {
-namespace {
-
-// Runs the stages in order, timing each when a profile was asked for.
-class StageRunner {
- public:
-  StageRunner(detail::CompileState& state, CompileProfile* profile) : state_(state), profile_(profile) {
-    if (profile_ != nullptr) {
-      ++profile_->compiles;
-      last_ = Clock::now();
-    }
-  }
-  void run(CompileStage stage, void (*function)(detail::CompileState&)) {
-    function(state_);
-    if (profile_ == nullptr) return;
-    const Clock::time_point now = Clock::now();
-    profile_->microseconds[static_cast<size_t>(stage)] +=
-        std::chrono::duration<double, std::micro>(now - last_).count();
-    last_ = now;
-  }
-
- private:
-  using Clock = std::chrono::steady_clock;
-  detail::CompileState& state_;
-  CompileProfile* profile_;
-  Clock::time_point last_{};
-};
-
-}  // namespace
+namespace {}  // namespace
 
 const char* toString(CompileStage stage) {
   static constexpr const char* kNames[] = {"resources", "cull", "dependencies", "sort", "ssis", "submits", "barriers"};
@@ -56,16 +29,27 @@ CompiledGraph compile(const FrameGraph& graph, const CompileOptions& options) {
   CompiledGraph out;
   out.queueCount = options.queueCount;
   detail::CompileState state(graph, options, out);
-  StageRunner stages(state, options.profile);
-  stages.run(CompileStage::Resources, detail::resolveResources);
+  // Runs one stage; with a profile, adds the stage's wall time to it.
+  using Clock = std::chrono::steady_clock;
+  Clock::time_point last = Clock::now();
+  if (options.profile != nullptr) ++options.profile->compiles;
+  auto run = [&](CompileStage stage, void (*function)(detail::CompileState&)) {
+    function(state);
+    if (options.profile == nullptr) return;
+    const Clock::time_point now = Clock::now();
+    options.profile->microseconds[static_cast<size_t>(stage)] +=
+        std::chrono::duration<double, std::micro>(now - last).count();
+    last = now;
+  };
+  run(CompileStage::Resources, detail::resolveResources);
   // Culling first: the dependency stage then orders only alive nodes. It still detects cycles over
   // every declared node, so that one through culled nodes is reported too.
-  stages.run(CompileStage::Cull, detail::cullNodes);
-  stages.run(CompileStage::Dependencies, detail::buildDependencies);
-  stages.run(CompileStage::Sort, detail::sortByLevel);
-  stages.run(CompileStage::Ssis, detail::pruneCrossQueueEdges);
-  stages.run(CompileStage::Submits, detail::placeSubmits);
-  stages.run(CompileStage::Barriers, detail::placeAndPlanBarriers);
+  run(CompileStage::Cull, detail::cullNodes);
+  run(CompileStage::Dependencies, detail::buildDependencies);
+  run(CompileStage::Sort, detail::sortByLevel);
+  run(CompileStage::Ssis, detail::pruneCrossQueueEdges);
+  run(CompileStage::Submits, detail::placeSubmits);
+  run(CompileStage::Barriers, detail::placeAndPlanBarriers);
   return out;
 }
 

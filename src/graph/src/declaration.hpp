@@ -19,6 +19,8 @@ struct Use {
   AccessMask accessMask = kAccessNone;
   Access access = Access::Sampled;
   Layout layout = Layout::Undefined;
+  [[nodiscard]] bool reads() const { return readVersion != kInvalidIndex; }
+  [[nodiscard]] bool writes() const { return writeVersion != kInvalidIndex; }
 };
 
 // Versions are numbered across all resources, in declaration order.

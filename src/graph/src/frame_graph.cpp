@@ -42,25 +42,11 @@ FrameGraph& FrameGraph::operator=(const FrameGraph& other) = default;
 FrameGraph::FrameGraph(FrameGraph&& other) noexcept = default;
 FrameGraph& FrameGraph::operator=(FrameGraph&& other) noexcept = default;
 
-void FrameGraph::reserve(size_t nodes, size_t resources) {
-  nodes_.reserve(nodes);
-  resources_.reserve(resources);
-  versions_.reserve(resources + nodes);
-  uses_.reserve(nodes * 3);
-  useStart_.reserve(nodes + 1);
-}
-
 std::vector<ResourceAccess> FrameGraph::accesses(uint32_t node) const {
   std::vector<ResourceAccess> accesses;
-  for (const Use& use : detail::Declared::uses(*this, node)) accesses.push_back({use.resource, use.access});
+  for (const Use& use : detail::Declared::uses(*this, node))
+    accesses.push_back({use.resource, use.access, use.readVersion, use.writeVersion});
   return accesses;
-}
-
-uint32_t FrameGraph::resourceOf(TextureHandle h) const {
-  return versionAt(h.version, "texture").resource;
-}
-uint32_t FrameGraph::resourceOf(BufferHandle h) const {
-  return versionAt(h.version, "buffer").resource;
 }
 
 const NodeAttachments& FrameGraph::attachments(uint32_t node) const {
@@ -75,10 +61,10 @@ std::vector<Job> FrameGraph::takeJobs() {
   return jobs;
 }
 
-const VersionDecl& FrameGraph::versionAt(uint32_t version, std::string_view what) const {
+uint32_t FrameGraph::resourceOf(uint32_t version, const char* kind) const {
   if (version >= versions_.size())
-    throw GraphError("unknown " + std::string(what) + " version " + versionText(version));
-  return versions_[version];
+    throw GraphError("unknown " + std::string(kind) + " version " + versionText(version));
+  return versions_[version].resource;
 }
 
 uint32_t FrameGraph::addResource(ResourceDecl decl) {
@@ -161,74 +147,57 @@ const ResourceDecl& FrameGraph::checkUse(uint32_t node, uint32_t version, Resour
   return res;
 }
 
-// A read must find its version written (or be of an import's first version).
-void FrameGraph::checkWritten(uint32_t node, const ResourceDecl& res, uint32_t version) const {
-  if (versions_[version].producer == kInvalidIndex && !res.imported) {
-    failUse(nodes_[node],
-            " reads " + quoted(res.name) + " version " + std::to_string(version) + ", which nobody wrote");
-  }
-}
-
-void FrameGraph::recordUse(uint32_t node, uint32_t resource, uint32_t readVersion, uint32_t writeVersion, Access access,
-                           StageMask stages) {
-  const AccessInfo info = accessInfo(access, nodes_[node].type, stages);
-  uses_.push_back({resource, readVersion, writeVersion, stages, info.stages, info.access, access, info.layout});
-  ++useStart_.back();
-}
-
-uint32_t FrameGraph::addRead(uint32_t node, uint32_t version, ResourceKind kind, Access access, StageMask stages) {
+// A use of `version` by the newest node, declared through write() (`write`) or read(): returns the
+// version it creates, or the version it reads. A read-modify-write access reads `version` too.
+uint32_t FrameGraph::addUse(uint32_t node, uint32_t version, ResourceKind kind, Access access, StageMask stages,
+                            bool write) {
   const ResourceDecl& res = checkUse(node, version, kind, access);
-  if (isWriteAccess(access)) {
-    failUse(nodes_[node], ": read() with a writing access " + std::string(toString(access)) + "; use write()");
-  }
-  checkWritten(node, res, version);
-  recordUse(node, versions_[version].resource, version, kInvalidIndex, access, stages);
-  return version;
-}
-
-// A write over `version`, which must be the latest; returns the version it creates. A
-// read-modify-write access reads `version` too.
-uint32_t FrameGraph::addWrite(uint32_t node, uint32_t version, ResourceKind kind, Access access, StageMask stages) {
-  const ResourceDecl& res = checkUse(node, version, kind, access);
-  const AccessInfo info = accessInfo(access, nodes_[node].type);
-  if (!info.writes) {
-    failUse(nodes_[node], ": write() with a read-only access " + std::string(toString(access)) + "; use read()");
-  }
-  if (info.reads) checkWritten(node, res, version);
-  if (version != res.latestVersion) {
-    failUse(nodes_[node], " writes a stale version " + std::to_string(version) + " of " + quoted(res.name) +
-                              " (latest is " + std::to_string(res.latestVersion) + ")");
+  const NodeDecl& decl = nodes_[node];
+  const AccessInfo info = accessInfo(access, decl.type, stages);
+  const std::string accessName(toString(access));
+  if (write && !info.writes) failUse(decl, ": write() with a read-only access " + accessName + "; use read()");
+  if (!write && info.writes) failUse(decl, ": read() with a writing access " + accessName + "; use write()");
+  if (info.reads && versions_[version].producer == kInvalidIndex && !res.imported) {
+    failUse(decl, " reads " + quoted(res.name) + " version " + std::to_string(version) + ", which nobody wrote");
   }
   const uint32_t resource = versions_[version].resource;
-  const auto written = static_cast<uint32_t>(versions_.size());
-  versions_.push_back({resource, node, version});
-  resources_[resource].latestVersion = written;
-  recordUse(node, resource, info.reads ? version : kInvalidIndex, written, access, stages);
-  return written;
+  uint32_t written = kInvalidIndex;
+  if (write) {
+    if (version != res.latestVersion) {
+      failUse(decl, " writes a stale version " + std::to_string(version) + " of " + quoted(res.name) + " (latest is " +
+                        std::to_string(res.latestVersion) + ")");
+    }
+    written = static_cast<uint32_t>(versions_.size());
+    versions_.push_back({resource, node, version});
+    resources_[resource].latestVersion = written;
+  }
+  const uint32_t read = info.reads ? version : kInvalidIndex;
+  uses_.push_back({resource, read, written, stages, info.stages, info.access, access, info.layout});
+  ++useStart_.back();
+  return write ? written : version;
 }
 
-// For the attachments, whose access is fixed by the call.
-uint32_t FrameGraph::addUse(uint32_t node, uint32_t version, Access access) {
-  return isWriteAccess(access) ? addWrite(node, version, ResourceKind::Texture, access, kStageNone)
-                               : addRead(node, version, ResourceKind::Texture, access, kStageNone);
+// An attachment's use: a texture, written or not as the access says.
+uint32_t FrameGraph::addAttachmentUse(uint32_t node, uint32_t version, Access access) {
+  return addUse(node, version, ResourceKind::Texture, access, kStageNone, isWriteAccess(access));
 }
 
 // ---- NodeBuilder ------------------------------------------------------------------------------
 
 TextureHandle NodeBuilder::read(TextureHandle texture, Access access, StageMask stages) {
-  return {graph_->addRead(node_, texture.version, ResourceKind::Texture, access, stages)};
+  return {graph_->addUse(node_, texture.version, ResourceKind::Texture, access, stages, false)};
 }
 
 BufferHandle NodeBuilder::read(BufferHandle buffer, Access access, StageMask stages) {
-  return {graph_->addRead(node_, buffer.version, ResourceKind::Buffer, access, stages)};
+  return {graph_->addUse(node_, buffer.version, ResourceKind::Buffer, access, stages, false)};
 }
 
 TextureHandle NodeBuilder::write(TextureHandle texture, Access access, StageMask stages) {
-  return {graph_->addWrite(node_, texture.version, ResourceKind::Texture, access, stages)};
+  return {graph_->addUse(node_, texture.version, ResourceKind::Texture, access, stages, true)};
 }
 
 BufferHandle NodeBuilder::write(BufferHandle buffer, Access access, StageMask stages) {
-  return {graph_->addWrite(node_, buffer.version, ResourceKind::Buffer, access, stages)};
+  return {graph_->addUse(node_, buffer.version, ResourceKind::Buffer, access, stages, true)};
 }
 
 namespace {
@@ -253,7 +222,7 @@ void requireNoDepthTarget(const FrameGraph& graph, uint32_t node) {
 TextureHandle NodeBuilder::addColorTarget(TextureHandle target, LoadOp load, ClearValue clear) {
   requireGraphicsNode(graph_->nodes_[node_], "a colour target");
   const Access access = load == LoadOp::Load ? Access::ColorAttachmentReadWrite : Access::ColorAttachmentWrite;
-  const TextureHandle written{graph_->addUse(node_, target.version, access)};
+  const TextureHandle written{graph_->addAttachmentUse(node_, target.version, access)};
   grownTo(graph_->attachments_, node_).color.push_back({written, {}, load, StoreOp::Store, clear});
   return written;
 }
@@ -262,7 +231,7 @@ TextureHandle NodeBuilder::addColorTargetWithResolve(TextureHandle target, Textu
                                                      TextureHandle* newTargetVersion, LoadOp load, ClearValue clear) {
   const TextureHandle written = addColorTarget(target, load, clear);
   if (newTargetVersion != nullptr) *newTargetVersion = written;
-  const TextureHandle resolved{graph_->addUse(node_, resolveTarget.version, Access::ResolveDst)};
+  const TextureHandle resolved{graph_->addAttachmentUse(node_, resolveTarget.version, Access::ResolveDst)};
   grownTo(graph_->attachments_, node_).color.back().resolveTarget = resolved;
   return resolved;
 }
@@ -270,14 +239,14 @@ TextureHandle NodeBuilder::addColorTargetWithResolve(TextureHandle target, Textu
 TextureHandle NodeBuilder::setDepthStencil(TextureHandle target, LoadOp load, ClearValue clear) {
   requireNoDepthTarget(*graph_, node_);
   const Access access = load == LoadOp::Load ? Access::DepthAttachmentReadWrite : Access::DepthAttachmentWrite;
-  const TextureHandle written{graph_->addUse(node_, target.version, access)};
+  const TextureHandle written{graph_->addAttachmentUse(node_, target.version, access)};
   grownTo(graph_->attachments_, node_).depth = {written, load, StoreOp::Store, clear, false};
   return written;
 }
 
 void NodeBuilder::setDepthStencilReadOnly(TextureHandle target) {
   requireNoDepthTarget(*graph_, node_);
-  graph_->addUse(node_, target.version, Access::DepthAttachmentRead);
+  graph_->addAttachmentUse(node_, target.version, Access::DepthAttachmentRead);
   grownTo(graph_->attachments_, node_).depth = {target, LoadOp::Load, StoreOp::Store, {}, true};
 }
 

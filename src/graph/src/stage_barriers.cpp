@@ -17,13 +17,6 @@
 namespace fgb::graph::detail {
 namespace {
 
-bool reads(const Use& use) {
-  return use.readVersion != kInvalidIndex;
-}
-bool writes(const Use& use) {
-  return use.writeVersion != kInvalidIndex;
-}
-
 // A resource's state between its uses. Set at its first use (see BarrierPlanner::planUse).
 struct TrackedState {
   bool discardsOnEntry = false;  // imported, but first overwritten without being read (see enterImport)
@@ -146,7 +139,7 @@ class BarrierPlanner {
     // end with no acquire, or an acquire with no release, is an error on the next execution).
     const ImportState& initial = state_.resource(first.resource).initialState;
     TrackedState s;
-    s.discardsOnEntry = writes(first) && !reads(first);
+    s.discardsOnEntry = first.writes() && !first.reads();
     s.queue = s.discardsOnEntry ? queue_ : state_.options.queueOfClass[static_cast<size_t>(initial.queue)];
     s.layout = s.discardsOnEntry ? Layout::Undefined : initial.layout;
     // What happened before the graph is treated as a write: later uses wait for it.
@@ -190,7 +183,7 @@ class BarrierPlanner {
   void sameQueueHazard(uint32_t resource, bool texture, const TrackedState& s, const Use& use, Layout layout) {
     const bool layoutChange = texture && layout != s.layout;
     StageMask srcStages = s.writeStages;
-    if (writes(use) || layoutChange) {
+    if (use.writes() || layoutChange) {
       // WAW/RAW(+write) wait for the last write, WAR for every read since it.
       srcStages |= s.readStages;
       if (srcStages == kStageNone && !layoutChange) return;
@@ -223,7 +216,7 @@ class BarrierPlanner {
   }
 
   void advance(TrackedState& s, const Use& use, Layout layout, bool transitioned) const {
-    if (!writes(use) && transitioned) {
+    if (!use.writes() && transitioned) {
       // The barrier just placed (layout transition / acquire) made the last write available and is
       // itself a write, ordered only before this use's stages. Later barriers must chain through
       // those stages (srcStages = them, srcAccess = none: nothing left to make available), not
@@ -233,7 +226,7 @@ class BarrierPlanner {
       s.readStages = use.stages;
       s.visibleStages = use.stages;
       s.visibleAccess = use.accessMask;
-    } else if (writes(use)) {
+    } else if (use.writes()) {
       s.writeStages = use.stages;
       s.writeAccess = use.accessMask & kWriteAccesses;
       s.readStages = kStageNone;
@@ -273,8 +266,8 @@ std::vector<Use> mergedUses(std::span<const Use> uses) {
     }
     same->stages |= use.stages;
     same->accessMask |= use.accessMask;
-    if (!reads(*same)) same->readVersion = use.readVersion;
-    if (!writes(*same)) same->writeVersion = use.writeVersion;
+    if (!same->reads()) same->readVersion = use.readVersion;
+    if (!same->writes()) same->writeVersion = use.writeVersion;
     if (same->layout != use.layout) same->layout = Layout::General;
   }
   return merged;

@@ -19,7 +19,7 @@ CullReason reasonToCull(const CompileState& state, uint32_t node) {
   if (state.graph.nodes()[node].sideEffect) return CullReason::Alive;
   bool writes = false;
   for (const Use& use : state.uses(node)) {
-    if (use.writeVersion == kInvalidIndex) continue;
+    if (!use.writes()) continue;
     if (state.isImported(use.resource)) return CullReason::Alive;
     writes = true;
   }
@@ -51,7 +51,7 @@ void cullNodes(CompileState& state) {
     // uses back down to find each resource's last user.)
     for (const Use& use : state.uses(n)) {
       ++state.aliveUses[use.resource];
-      if (use.readVersion != kInvalidIndex && versions[use.readVersion].producer != kInvalidIndex) {
+      if (use.reads() && versions[use.readVersion].producer != kInvalidIndex) {
         state.alive[versions[use.readVersion].producer] = 1;
       }
     }
@@ -59,16 +59,6 @@ void cullNodes(CompileState& state) {
 }
 
 }  // namespace detail
-
-namespace {
-
-void appendQuoted(std::string& out, std::string_view name) {
-  out += '\'';
-  out += name;
-  out += '\'';
-}
-
-}  // namespace
 
 std::string cullDiagnostic(const FrameGraph& graph, const CompiledGraph& compiled, uint32_t node) {
   return CullDiagnostics(graph, compiled).describe(node);
@@ -85,16 +75,16 @@ std::string CullDiagnostics::describe(uint32_t node) const {
   std::string why;
   std::string readerNames;
   for (const detail::Use& use : detail::Declared::uses(graph_, node)) {
-    if (use.writeVersion == kInvalidIndex) continue;
+    if (!use.writes()) continue;
     why += why.empty() ? "writes " : ", ";
-    appendQuoted(why, graph_.resources()[use.resource].name);
+    why.append("'").append(graph_.resources()[use.resource].name).append("'");
     why += " v" + std::to_string(use.writeVersion);
     // Other readers only: a node may read back what it wrote.
     for (uint32_t i = readerStart_[use.writeVersion]; i < readerStart_[use.writeVersion + 1]; ++i) {
       const uint32_t reader = readers_[i];
       if (reader == node || !compiled_.nodes[reader].culled || !named.insert(reader).second) continue;
       if (!readerNames.empty()) readerNames += ", ";
-      appendQuoted(readerNames, graph_.nodes()[reader].name);
+      readerNames.append("'").append(graph_.nodes()[reader].name).append("'");
     }
   }
   if (why.empty()) return "declares no writes and no side effect";

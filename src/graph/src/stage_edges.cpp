@@ -31,14 +31,14 @@ namespace fgb::graph::detail {
 void indexVersionReaders(const FrameGraph& graph, std::vector<uint32_t>& start, std::vector<uint32_t>& readers) {
   start.assign(Declared::versions(graph).size() + 1, 0);
   for (const Use& use : Declared::allUses(graph)) {
-    if (use.readVersion != kInvalidIndex) ++start[use.readVersion + 1];
+    if (use.reads()) ++start[use.readVersion + 1];
   }
   for (size_t v = 1; v < start.size(); ++v) start[v] += start[v - 1];
   readers.resize(start.back());
   std::vector<uint32_t> cursor(start.begin(), start.end() - 1);
   for (uint32_t n = 0; n < graph.nodes().size(); ++n) {
     for (const Use& use : Declared::uses(graph, n)) {
-      if (use.readVersion != kInvalidIndex) readers[cursor[use.readVersion]++] = n;
+      if (use.reads()) readers[cursor[use.readVersion]++] = n;
     }
   }
 }
@@ -63,28 +63,29 @@ NodeLists versionEdgePredecessors(const FrameGraph& graph) {
   for (uint32_t v = 0; v < versions.size(); ++v) {
     const uint32_t producer = versions[v].producer;
     const uint32_t previous = versions[v].previous;
-    if (producer != kInvalidIndex && previous != kInvalidIndex) {
+    if (producer == kInvalidIndex) continue;  // a resource's first version
+    if (previous != kInvalidIndex) {
       if (versions[previous].producer != kInvalidIndex) addEdge(versions[previous].producer, producer);  // WAW
-      for (uint32_t i = readerStart[previous]; i < readerStart[previous + 1]; ++i)
-        addEdge(readers[i], producer);  // WAR
+      for (uint32_t i = readerStart[previous]; i < readerStart[previous + 1]; ++i) addEdge(readers[i], producer);
     }
-    if (producer == kInvalidIndex) continue;
     for (uint32_t i = readerStart[v]; i < readerStart[v + 1]; ++i) addEdge(producer, readers[i]);  // RAW
   }
   return preds;
 }
 
-// Throws GraphError naming a cycle among the nodes Kahn's algorithm could not order (`left`).
-[[noreturn]] void reportCycle(const FrameGraph& graph, const NodeLists& preds, const std::vector<uint8_t>& left) {
+// Throws GraphError naming a cycle among the nodes Kahn's algorithm left over (those still
+// `pending` predecessors).
+[[noreturn]] void reportCycle(const FrameGraph& graph, const NodeLists& preds, const std::vector<uint32_t>& pending) {
   // Every node left over has a predecessor that is also left over: walk predecessors until a
   // node repeats; the walk from its first visit is a cycle.
   std::vector<uint32_t> visitedAt(graph.nodes().size(), kInvalidIndex);
   std::vector<uint32_t> walk;
-  auto node = static_cast<uint32_t>(std::find(left.begin(), left.end(), 1) - left.begin());
+  auto node = static_cast<uint32_t>(std::find_if(pending.begin(), pending.end(), [](uint32_t p) { return p != 0; }) -
+                                    pending.begin());
   while (visitedAt[node] == kInvalidIndex) {
     visitedAt[node] = static_cast<uint32_t>(walk.size());
     walk.push_back(node);
-    node = *std::find_if(preds[node].begin(), preds[node].end(), [&](uint32_t p) { return left[p] != 0; });
+    node = *std::find_if(preds[node].begin(), preds[node].end(), [&](uint32_t p) { return pending[p] != 0; });
   }
   std::vector<uint32_t> cycle(walk.begin() + visitedAt[node], walk.end());
   std::reverse(cycle.begin(), cycle.end());  // the walk followed predecessors
@@ -119,11 +120,7 @@ std::vector<uint32_t> topologicalOrder(const FrameGraph& graph) {
       if (--pending[s] == 0) order.push_back(s);
     }
   }
-  if (order.size() < nodeCount) {
-    std::vector<uint8_t> left(nodeCount);
-    for (uint32_t n = 0; n < nodeCount; ++n) left[n] = pending[n] != 0 ? 1 : 0;
-    reportCycle(graph, preds, left);
-  }
+  if (order.size() < nodeCount) reportCycle(graph, preds, pending);
   return order;
 }
 
@@ -150,8 +147,8 @@ class DependencyWalk {
     level_ = 0;
     state_.edgeStart[node] = static_cast<uint32_t>(state_.out.edges.size());
     for (const Use& use : state_.uses(node)) {
-      if (use.readVersion != kInvalidIndex) visitRead(use);
-      if (use.writeVersion != kInvalidIndex) visitWrite(use);
+      if (use.reads()) visitRead(use);
+      if (use.writes()) visitWrite(use);
     }
     state_.edgeEnd[node] = static_cast<uint32_t>(state_.out.edges.size());
     state_.level[node] = level_;
@@ -186,7 +183,7 @@ class DependencyWalk {
     VersionReaders& readers = readers_[use.readVersion];
     if (!readers.all.empty() && readers.all.back() == node_) return;  // the node's second use of it
     readers.all.push_back(node_);
-    if (use.writeVersion != kInvalidIndex) return;  // a read-write use is not chained (see above)
+    if (use.writes()) return;  // a read-write use is not chained (see above)
     const Layout layout = state_.isTexture(use.resource) ? use.layout : Layout::General;
     const uint32_t key = state_.queueOf[node_] << 8 | static_cast<uint32_t>(layout);
     if (!readers.chained.empty() && readers.runKey != key) {  // this reader starts the next run

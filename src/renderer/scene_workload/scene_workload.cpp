@@ -192,7 +192,10 @@ class SceneWorkload final : public Workload {
       if (feature->enabled()) feature->declare(graph, board);
     rhi::GraphOptions options;
     options.name = "frame";
+    graph::CompileProfile profile;
+    options.compileProfile = &profile;
     graph_ = device_->compile(std::move(graph), options);
+    for (const double us : profile.microseconds) startup_.graphCompileMs += us / 1000.0;
     const graph::Extent extent = targets.extent;
     hdrReadback_ = std::make_unique<ImageReadback>(*device_, hdrTexture_, features::kHdrFormat, extent, kHdrFinal);
     displayReadback_ =

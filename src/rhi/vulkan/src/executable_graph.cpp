@@ -119,6 +119,7 @@ graph::CompileOptions VulkanGraph::compileOptions() {
   }
   options.buffersShareFamilies = true;  // VulkanDevice::bufferInfo
   options.cull = options_.cull;
+  options.profile = options_.compileProfile;
   options.alias = options_.alias;
 
   // Real requirements of the resource as it will be created (usages gathered from the graph).

@@ -101,11 +101,14 @@ struct DepthAttachment {
   bool readOnly = false;
 };
 
-// One resource a node uses, and how (FrameGraph::accesses): what a backend needs to choose usage
-// flags and bind resources. The full record of a use (versions, stages, layout) is the library's.
+// One resource a node uses, and how (FrameGraph::accesses): what a backend or a feature needs to
+// choose usage flags, bind resources or follow versions. (The compiler's own record of a use, with
+// its resolved stages and layout, is the library's.)
 struct ResourceAccess {
   uint32_t resource = kInvalidIndex;
   Access access = Access::Sampled;
+  uint32_t readVersion = kInvalidIndex;   // the version read, if the access reads
+  uint32_t writeVersion = kInvalidIndex;  // the version created, if the access writes
 };
 
 class JobContext {
@@ -200,14 +203,12 @@ class FrameGraph {
   NodeBuilder addNode(std::string_view name, NodeType type);
   NodeBuilder addNode(std::string_view name, NodeType type, QueueClass queue);
 
-  void reserve(size_t nodes, size_t resources);
-
   [[nodiscard]] const std::vector<NodeDecl>& nodes() const { return nodes_; }
   [[nodiscard]] const std::vector<ResourceDecl>& resources() const { return resources_; }
   // The resources `node` uses and how, in declaration order.
   [[nodiscard]] std::vector<ResourceAccess> accesses(uint32_t node) const;
-  [[nodiscard]] uint32_t resourceOf(TextureHandle h) const;
-  [[nodiscard]] uint32_t resourceOf(BufferHandle h) const;
+  [[nodiscard]] uint32_t resourceOf(TextureHandle h) const { return resourceOf(h.version, "texture"); }
+  [[nodiscard]] uint32_t resourceOf(BufferHandle h) const { return resourceOf(h.version, "buffer"); }
   // No colour target and an invalid depth target for a node that declared none.
   [[nodiscard]] const NodeAttachments& attachments(uint32_t node) const;
   // Moves the jobs out (indexed by node; empty where none was set): the backend keeps them when it
@@ -220,13 +221,9 @@ class FrameGraph {
   uint32_t addResource(ResourceDecl decl);  // returns its first version
   void checkDependentField(std::string_view name, ResourceKind kind, std::string_view field, uint32_t version) const;
   const ResourceDecl& checkUse(uint32_t node, uint32_t version, ResourceKind kind, Access access) const;
-  void checkWritten(uint32_t node, const ResourceDecl& res, uint32_t version) const;
-  uint32_t addRead(uint32_t node, uint32_t version, ResourceKind kind, Access access, StageMask stages);
-  uint32_t addWrite(uint32_t node, uint32_t version, ResourceKind kind, Access access, StageMask stages);
-  uint32_t addUse(uint32_t node, uint32_t version, Access access);  // a texture attachment's use
-  void recordUse(uint32_t node, uint32_t resource, uint32_t readVersion, uint32_t writeVersion, Access access,
-                 StageMask stages);
-  const detail::VersionDecl& versionAt(uint32_t version, std::string_view what) const;
+  uint32_t addUse(uint32_t node, uint32_t version, ResourceKind kind, Access access, StageMask stages, bool write);
+  uint32_t addAttachmentUse(uint32_t node, uint32_t version, Access access);
+  uint32_t resourceOf(uint32_t version, const char* kind) const;
 
   std::vector<NodeDecl> nodes_;
   std::vector<ResourceDecl> resources_;

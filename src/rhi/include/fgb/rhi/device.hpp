@@ -4,6 +4,7 @@
 #pragma once
 
 #include <fgb/graph/compiled_graph.hpp>
+#include <fgb/graph/compiler.hpp>
 #include <fgb/graph/frame_graph.hpp>
 #include <fgb/rhi/types.hpp>
 
@@ -66,6 +67,8 @@ struct GraphOptions {
   bool cull = true;
   bool alias = true;
   bool timestamps = true;
+  // When set, graph::compile() adds its stages' times to it (CompileOptions::profile).
+  graph::CompileProfile* compileProfile = nullptr;
   // Test only: drop every barrier that keeps the layout (same-layout RAW/WAW/WAR), to prove that
   // synchronization validation catches the hazards they prevent.
   bool testDropSameLayoutBarriers = false;

@@ -89,13 +89,15 @@ std::size_t count(const std::string& text, const std::string& what) {
   return n;
 }
 
+std::vector<uint8_t> bytes(std::string_view text) { return {text.begin(), text.end()}; }
+
 TEST(Report, HtmlShowsTheFrameInlineAndWithAGoldenThreeImagesAndAFlipView) {
-  const ReportImages frameOnly{"frame-bytes", "", "", 8, 4};
+  const ReportImages frameOnly{bytes("frame-bytes"), {}, {}, 8, 4};
   const std::string plain = htmlReport(fakeRun(), frameOnly);
-  EXPECT_THAT(plain, HasSubstr(R"(id="frame" src="data:image/png;base64,)" + base64("frame-bytes") + "\""));
+  EXPECT_THAT(plain, HasSubstr(R"(id="frame" src="data:image/png;base64,)" + base64(bytes("frame-bytes")) + "\""));
   EXPECT_EQ(count(plain, "<img"), 1u);
 
-  const ReportImages withGolden{"frame-bytes", "reference-bytes", "heat-bytes", 8, 4};
+  const ReportImages withGolden{bytes("frame-bytes"), bytes("reference-bytes"), bytes("heat-bytes"), 8, 4};
   const std::string html = htmlReport(fakeRun(), withGolden);
   EXPECT_EQ(count(html, "<img"), 4u);  // reference, test, heat map, flip view
   EXPECT_EQ(count(html, "src=\"data:image/png;base64,"), 3u);  // each picture once: the flip view borrows them
@@ -107,12 +109,12 @@ TEST(Report, HtmlShowsTheFrameInlineAndWithAGoldenThreeImagesAndAFlipView) {
 }
 
 TEST(Report, Base64MatchesRfc4648) {
-  EXPECT_EQ(base64(""), "");
-  EXPECT_EQ(base64("f"), "Zg==");
-  EXPECT_EQ(base64("fo"), "Zm8=");
-  EXPECT_EQ(base64("foo"), "Zm9v");
-  EXPECT_EQ(base64("foobar"), "Zm9vYmFy");
-  EXPECT_EQ(base64(std::string("\xff\x00\xfe", 3)), "/wD+");
+  EXPECT_EQ(base64(bytes("")), "");
+  EXPECT_EQ(base64(bytes("f")), "Zg==");
+  EXPECT_EQ(base64(bytes("fo")), "Zm8=");
+  EXPECT_EQ(base64(bytes("foo")), "Zm9v");
+  EXPECT_EQ(base64(bytes("foobar")), "Zm9vYmFy");
+  EXPECT_EQ(base64(std::vector<uint8_t>{0xff, 0x00, 0xfe}), "/wD+");
 }
 
 TEST(Report, TimelineDrawsEachPassFromItsBeginToItsEnd) {

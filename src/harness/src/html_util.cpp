@@ -10,20 +10,20 @@
 
 namespace fgb::harness {
 
-std::string base64(std::string_view bytes) {
+std::string base64(std::span<const uint8_t> bytes) {
   static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
   std::string out;
   out.reserve((bytes.size() + 2) / 3 * 4);
   for (std::size_t i = 0; i < bytes.size(); i += 3) {
     const std::size_t n = std::min<std::size_t>(3, bytes.size() - i);
     uint32_t chunk = 0;
-    for (std::size_t k = 0; k < 3; ++k) chunk = chunk << 8 | (k < n ? static_cast<unsigned char>(bytes[i + k]) : 0u);
+    for (std::size_t k = 0; k < 3; ++k) chunk = chunk << 8 | (k < n ? bytes[i + k] : 0u);
     for (std::size_t k = 0; k < 4; ++k) out += k <= n ? kAlphabet[(chunk >> (18 - 6 * k)) & 63] : '=';
   }
   return out;
 }
 
-std::string pngDataUri(std::string_view png) { return "data:image/png;base64," + base64(png); }
+std::string pngDataUri(std::span<const uint8_t> png) { return "data:image/png;base64," + base64(png); }
 
 std::string imgTag(const Image& image, const std::string& alt, uint32_t maxWidth) {
   const Image thumb = shrinkToWidth(image, maxWidth);

@@ -48,7 +48,7 @@ void writeRunOutputs(const std::filesystem::path& dir, const RunArtifacts& a) {
   pictures.frame = encodePng(a.images.display);
   pictures.width = a.images.display.width;
   pictures.height = a.images.display.height;
-  writeFileAtomic(dir / "frame.png", pictures.frame);
+  writeFileAtomic(dir / "frame.png", std::as_bytes(std::span(pictures.frame)));
   RunResult run = a.run;  // with the encoding time, which only now is known
   run.overhead.encodeMs = encoding.elapsedMs();
   if (a.golden.reference.width > 0) pictures.reference = encodePng(a.golden.reference);

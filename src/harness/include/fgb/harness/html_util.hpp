@@ -5,13 +5,13 @@
 #include <cstdint>
 #include <fgb/harness/image.hpp>
 #include <string>
-#include <string_view>
+#include <span>
 #include <vector>
 
 namespace fgb::harness {
 
-std::string base64(std::string_view bytes);
-std::string pngDataUri(std::string_view png);  // "data:image/png;base64,..."
+std::string base64(std::span<const uint8_t> bytes);
+std::string pngDataUri(std::span<const uint8_t> png);  // "data:image/png;base64,..."
 
 // <img> of `image` shrunk to at most `maxWidth` pixels wide, as an inline PNG.
 std::string imgTag(const Image& image, const std::string& alt, uint32_t maxWidth = 420);

@@ -358,6 +358,10 @@ TEST(CheckFinite, NamesThePassThatInjectedTheNan) {
   ASSERT_FALSE(bloomCounts.empty());
   EXPECT_EQ(bloomCounts.back().pass, "Bloom");
   EXPECT_EQ(bloomCounts.back().nan, 1u);
+}
+
+}  // namespace
+}  // namespace fgb::render
 
 namespace fgb::render {
 namespace {

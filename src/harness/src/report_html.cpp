@@ -84,7 +84,7 @@ std::string goldenHtml(const RunResult& run) {
   return out + "</table>\n";
 }
 
-std::string figure(const std::string& id, std::string_view png, const ReportImages& images, const std::string& alt,
+std::string figure(const std::string& id, std::span<const uint8_t> png, const ReportImages& images, const std::string& alt,
                    const std::string& captionHtml) {
   return fmt::format(R"(<figure><img class="shot" id="{}" src="{}" width="{}" height="{}" alt="{}"><figcaption>{}</figcaption></figure>)"
                      "\n",

@@ -57,11 +57,6 @@ const KnobRegistry& sceneRegistry() {
 
 }  // namespace
 
-KnobSpec withWords(KnobSpec spec, std::vector<std::string> words) {
-  spec.words = std::move(words);
-  return spec;
-}
-
 std::vector<KnobSpec> knobSpecs() {
   KnobSpec fov = number("camera.fov", 0.0, 179.0, true, "vertical field of view, degrees");
   fov.maxExclusive = true;

@@ -5,7 +5,8 @@
 
 #include <cstdint>
 #include <string>
-#include <string_view>
+#include <span>
+#include <vector>
 
 namespace fgb::harness {
 
@@ -13,9 +14,9 @@ namespace fgb::harness {
 // out. With a golden, the reference, this run's frame and the FLIP heat map between them appear
 // side by side, with a toggle that flips one view between reference and test.
 struct ReportImages {
-  std::string frame;      // frame.png
-  std::string reference;  // the golden's display image
-  std::string heatMap;    // FLIP heat map of frame against reference
+  std::vector<uint8_t> frame;      // frame.png
+  std::vector<uint8_t> reference;  // the golden's display image
+  std::vector<uint8_t> heatMap;    // FLIP heat map of frame against reference
   uint32_t width = 0, height = 0;
 };
 

@@ -1,14 +1,12 @@
 // runSweep: references, interleaved measuring rounds, comparison with the references, the front.
-#include <fgb/harness/sweep.hpp>
-
-#include <fgb/core/error.hpp>
-#include <fgb/core/stopwatch.hpp>
-#include <fgb/harness/run_outputs.hpp>
-
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cstring>
+#include <fgb/core/error.hpp>
+#include <fgb/core/stopwatch.hpp>
+#include <fgb/harness/run_outputs.hpp>
+#include <fgb/harness/sweep.hpp>
 #include <memory>
 #include <numeric>
 #include <random>
@@ -129,7 +127,8 @@ SweepResult runSweep(const WorkloadOpener& open, const SweepPlan& requested, con
 
   std::vector<render::WorkloadConfig> referenceConfigs;
   for (auto& c : result.configurations) {
-    c.reference = referenceIndex(referenceConfigs, plan.referenceOverride.value_or(referenceOf(c.configuration.workload)));
+    c.reference =
+        referenceIndex(referenceConfigs, plan.referenceOverride.value_or(referenceOf(c.configuration.workload)));
   }
   for (std::size_t r = 0; r < referenceConfigs.size(); ++r) {
     say(fmt::format("reference {}/{} (2 renders)", r + 1, referenceConfigs.size()));

@@ -1,13 +1,12 @@
 // sweep.html: one self-contained file (inline SVG charts, images as data: URIs, no scripts).
-#include <fgb/harness/image_io.hpp>
-#include <fgb/harness/report.hpp>
-#include <fgb/harness/sweep_report.hpp>
-
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <fgb/harness/image_io.hpp>
+#include <fgb/harness/report.hpp>
+#include <fgb/harness/sweep_report.hpp>
 
 namespace fgb::harness {
 namespace {
@@ -30,7 +29,8 @@ std::string base64(const std::vector<uint8_t>& bytes) {
   std::string out;
   out.reserve((bytes.size() + 2) / 3 * 4);
   for (std::size_t i = 0; i < bytes.size(); i += 3) {
-    const uint32_t b0 = bytes[i], b1 = i + 1 < bytes.size() ? bytes[i + 1] : 0, b2 = i + 2 < bytes.size() ? bytes[i + 2] : 0;
+    const uint32_t b0 = bytes[i], b1 = i + 1 < bytes.size() ? bytes[i + 1] : 0,
+                   b2 = i + 2 < bytes.size() ? bytes[i + 2] : 0;
     const uint32_t triple = (b0 << 16) | (b1 << 8) | b2;
     out += kAlphabet[(triple >> 18) & 63];
     out += kAlphabet[(triple >> 12) & 63];
@@ -42,8 +42,8 @@ std::string base64(const std::vector<uint8_t>& bytes) {
 
 std::string imgTag(const Image& image, const std::string& alt) {
   const Image thumb = shrinkToWidth(image, kThumbnailWidth);
-  return fmt::format(R"(<img src="data:image/png;base64,{}" width="{}" height="{}" alt="{}">)", base64(encodePng(thumb)),
-                     thumb.width, thumb.height, escapeXml(alt));
+  return fmt::format(R"(<img src="data:image/png;base64,{}" width="{}" height="{}" alt="{}">)",
+                     base64(encodePng(thumb)), thumb.width, thumb.height, escapeXml(alt));
 }
 
 // A log10 axis over [lo, hi]: position of a value and tick values (1, 2, 5 x 10^k inside the range,
@@ -76,7 +76,9 @@ LogAxis paddedLogAxis(double lo, double hi) {
   return {centre / half, centre * half};
 }
 
-std::string tickLabel(double v) { return fmt::format("{:.3g}", v); }
+std::string tickLabel(double v) {
+  return fmt::format("{:.3g}", v);
+}
 
 }  // namespace
 
@@ -102,19 +104,27 @@ std::string timeErrorSvg(const SweepResult& result) {
       "\n<title>GPU frame time against error (log-log), Pareto front</title>\n",
       W, H);
   for (double v : x.ticks()) {
-    svg += fmt::format(R"(<line x1="{0:.1f}" y1="{1}" x2="{0:.1f}" y2="{2}" stroke="#e4e4e4"/><text x="{0:.1f}" y="{3}" text-anchor="middle" fill="#555">{4}</text>)" "\n",
-                       px(v), top, plotBottom, plotBottom + 16, tickLabel(v));
+    svg += fmt::format(
+        R"(<line x1="{0:.1f}" y1="{1}" x2="{0:.1f}" y2="{2}" stroke="#e4e4e4"/><text x="{0:.1f}" y="{3}" text-anchor="middle" fill="#555">{4}</text>)"
+        "\n",
+        px(v), top, plotBottom, plotBottom + 16, tickLabel(v));
   }
   for (double v : y.ticks()) {
-    svg += fmt::format(R"(<line x1="{1}" y1="{0:.1f}" x2="{2}" y2="{0:.1f}" stroke="#e4e4e4"/><text x="{3}" y="{4:.1f}" text-anchor="end" fill="#555">{5}</text>)" "\n",
-                       py(v), left, plotRight, left - 6, py(v) + 4, tickLabel(v));
+    svg += fmt::format(
+        R"(<line x1="{1}" y1="{0:.1f}" x2="{2}" y2="{0:.1f}" stroke="#e4e4e4"/><text x="{3}" y="{4:.1f}" text-anchor="end" fill="#555">{5}</text>)"
+        "\n",
+        py(v), left, plotRight, left - 6, py(v) + 4, tickLabel(v));
   }
-  svg += fmt::format(R"(<rect x="{}" y="{}" width="{}" height="{}" fill="none" stroke="#999"/>)" "\n", left, top,
-                     plotRight - left, plotBottom - top);
-  svg += fmt::format(R"(<text x="{}" y="{}" text-anchor="middle">GPU frame time, ms (median, 95% CI; log)</text>)" "\n",
+  svg += fmt::format(R"(<rect x="{}" y="{}" width="{}" height="{}" fill="none" stroke="#999"/>)"
+                     "\n",
+                     left, top, plotRight - left, plotBottom - top);
+  svg += fmt::format(R"(<text x="{}" y="{}" text-anchor="middle">GPU frame time, ms (median, 95% CI; log)</text>)"
+                     "\n",
                      (left + plotRight) / 2, H - 18);
-  svg += fmt::format(R"svg(<text transform="translate(18 {}) rotate(-90)" text-anchor="middle">LDR-FLIP vs reference (± noise floor; log)</text>)svg" "\n",
-                     (top + plotBottom) / 2);
+  svg += fmt::format(
+      R"svg(<text transform="translate(18 {}) rotate(-90)" text-anchor="middle">LDR-FLIP vs reference (± noise floor; log)</text>)svg"
+      "\n",
+      (top + plotBottom) / 2);
 
   // The front as a line, fastest to slowest.
   std::string line;
@@ -122,27 +132,38 @@ std::string timeErrorSvg(const SweepResult& result) {
     const auto& c = result.configurations[i];
     line += fmt::format("{:.1f},{:.1f} ", px(c.frameGpu.median), py(sweepError(c)));
   }
-  svg += fmt::format(R"(<polyline points="{}" fill="none" stroke="#e8710a" stroke-width="2" stroke-dasharray="6 3"/>)" "\n", line);
+  svg += fmt::format(R"(<polyline points="{}" fill="none" stroke="#e8710a" stroke-width="2" stroke-dasharray="6 3"/>)"
+                     "\n",
+                     line);
 
   for (const auto& c : result.configurations) {
     const double e = sweepError(c), cx = px(c.frameGpu.median), cy = py(e);
     const char* colour = c.onFront ? "#e8710a" : "#888";
-    svg += fmt::format(R"(<line x1="{:.1f}" y1="{:.1f}" x2="{:.1f}" y2="{:.1f}" stroke="{}"/>)" "\n", px(c.frameGpu.lower), cy,
-                       px(c.frameGpu.upper), cy, colour);
+    svg += fmt::format(R"(<line x1="{:.1f}" y1="{:.1f}" x2="{:.1f}" y2="{:.1f}" stroke="{}"/>)"
+                       "\n",
+                       px(c.frameGpu.lower), cy, px(c.frameGpu.upper), cy, colour);
     if (result.errorFloor > 0) {
-      svg += fmt::format(R"(<line x1="{:.1f}" y1="{:.1f}" x2="{:.1f}" y2="{:.1f}" stroke="{}"/>)" "\n", cx,
-                         py(std::max(e - result.errorFloor, y.lo)), cx, py(e + result.errorFloor), colour);
+      svg += fmt::format(R"(<line x1="{:.1f}" y1="{:.1f}" x2="{:.1f}" y2="{:.1f}" stroke="{}"/>)"
+                         "\n",
+                         cx, py(std::max(e - result.errorFloor, y.lo)), cx, py(e + result.errorFloor), colour);
     }
     svg += fmt::format(
-        R"(<circle cx="{:.1f}" cy="{:.1f}" r="5" fill="{}" stroke="{}" stroke-width="1.5"><title>{}: {:.4f} ms [{:.4f}, {:.4f}], LDR-FLIP {:.5f}{}</title></circle>)" "\n",
-        cx, cy, c.onFront ? colour : "white", colour, escapeXml(c.configuration.label), c.frameGpu.median, c.frameGpu.lower,
-        c.frameGpu.upper, e, c.onFront ? " (front)" : "");
-    svg += fmt::format(R"(<text x="{:.1f}" y="{:.1f}" fill="{}"{}>{}</text>)" "\n", cx + 8, cy - 7, c.onFront ? "#b35300" : "#777",
-                       c.onFront ? R"( font-weight="bold")" : "", escapeXml(c.configuration.label));
+        R"(<circle cx="{:.1f}" cy="{:.1f}" r="5" fill="{}" stroke="{}" stroke-width="1.5"><title>{}: {:.4f} ms [{:.4f}, {:.4f}], LDR-FLIP {:.5f}{}</title></circle>)"
+        "\n",
+        cx, cy, c.onFront ? colour : "white", colour, escapeXml(c.configuration.label), c.frameGpu.median,
+        c.frameGpu.lower, c.frameGpu.upper, e, c.onFront ? " (front)" : "");
+    // An error of 0 (the reference's own image) has no place on a log axis: it sits on the bottom
+    // edge and says so.
+    svg += fmt::format(R"(<text x="{:.1f}" y="{:.1f}" fill="{}"{}>{}{}</text>)"
+                       "\n",
+                       cx + 8, cy - 7, c.onFront ? "#b35300" : "#777", c.onFront ? R"( font-weight="bold")" : "",
+                       escapeXml(c.configuration.label), e > 0 ? "" : " (error 0: as the reference)");
   }
-  svg += fmt::format(R"(<circle cx="{0}" cy="{1}" r="5" fill="#e8710a"/><text x="{2}" y="{3}">on the Pareto front</text>)"
-                     R"(<circle cx="{0}" cy="{4}" r="5" fill="white" stroke="#888" stroke-width="1.5"/><text x="{2}" y="{5}">dominated</text>)" "\n",
-                     plotRight + 20, top + 10, plotRight + 32, top + 14, top + 30, top + 34);
+  svg += fmt::format(
+      R"(<circle cx="{0}" cy="{1}" r="5" fill="#e8710a"/><text x="{2}" y="{3}">on the Pareto front</text>)"
+      R"(<circle cx="{0}" cy="{4}" r="5" fill="white" stroke="#888" stroke-width="1.5"/><text x="{2}" y="{5}">dominated</text>)"
+      "\n",
+      plotRight + 20, top + 10, plotRight + 32, top + 14, top + 30, top + 34);
   return svg + "</svg>\n";
 }
 
@@ -174,59 +195,73 @@ std::string passStackSvg(const SweepResult& result) {
   for (std::size_t i = 0; i < result.configurations.size(); ++i) {
     const auto& c = result.configurations[i];
     const int yTop = 8 + static_cast<int>(i) * row;
-    svg += fmt::format(R"(<text x="{}" y="{}" text-anchor="end"{}>{}</text>)" "\n", label - 6, yTop + 13,
-                       c.onFront ? R"( font-weight="bold")" : "", escapeXml(c.configuration.label));
+    svg +=
+        fmt::format(R"(<text x="{}" y="{}" text-anchor="end"{}>{}</text>)"
+                    "\n",
+                    label - 6, yTop + 13, c.onFront ? R"( font-weight="bold")" : "", escapeXml(c.configuration.label));
     double at = label, total = 0;
     for (const auto& p : c.run.passes) {
       if (p.culled) continue;
       const double w = p.gpu.median / maxTotal * plotWidth;
-      svg += fmt::format(R"(<rect x="{:.1f}" y="{}" width="{:.2f}" height="16" fill="{}"><title>{}: {}: {:.4f} ms</title></rect>)" "\n",
-                         at, yTop, w, colourOf(p.name), escapeXml(c.configuration.label), escapeXml(p.name), p.gpu.median);
+      svg += fmt::format(
+          R"(<rect x="{:.1f}" y="{}" width="{:.2f}" height="16" fill="{}"><title>{}: {}: {:.4f} ms</title></rect>)"
+          "\n",
+          at, yTop, w, colourOf(p.name), escapeXml(c.configuration.label), escapeXml(p.name), p.gpu.median);
       at += w;
       total += p.gpu.median;
     }
-    svg += fmt::format(R"(<text x="{:.1f}" y="{}" fill="#555">{:.3f} ms</text>)" "\n", at + 4, yTop + 13, total);
+    svg += fmt::format(R"(<text x="{:.1f}" y="{}" fill="#555">{:.3f} ms</text>)"
+                       "\n",
+                       at + 4, yTop + 13, total);
   }
   const int legendTop = static_cast<int>(result.configurations.size()) * row + 22;
   for (std::size_t k = 0; k < passes.size(); ++k) {
     const double lx = 10 + static_cast<double>(k % 4) * 210;
     const int ly = legendTop + static_cast<int>(k / 4) * legendRow;
-    svg += fmt::format(R"(<rect x="{:.0f}" y="{}" width="10" height="10" fill="{}"/><text x="{:.0f}" y="{}">{}</text>)" "\n", lx,
-                       ly - 9, colourOf(passes[k]), lx + 14, ly, escapeXml(passes[k]));
+    svg += fmt::format(R"(<rect x="{:.0f}" y="{}" width="10" height="10" fill="{}"/><text x="{:.0f}" y="{}">{}</text>)"
+                       "\n",
+                       lx, ly - 9, colourOf(passes[k]), lx + 14, ly, escapeXml(passes[k]));
   }
   return svg + "</svg>\n";
 }
 
 std::string sweepHtml(const SweepResult& result) {
   std::string html = fmt::format(
-      "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>fgbench sweep: {0}</title><style>{1}</style></head><body>\n"
+      "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>fgbench sweep: "
+      "{0}</title><style>{1}</style></head><body>\n"
       "<h1>Sweep: {0}</h1>\n<p>{2} ({3}), {4} configuration(s), {5} reference(s).</p>\n",
       escapeXml(result.scene), kStyle, escapeXml(result.device.name), escapeXml(result.device.driver),
       result.configurations.size(), result.references.size());
-  if (result.device.hostTimestamps) html += "<p class=\"note\">" + escapeXml(timestampSourceNote(result.device)) + "</p>\n";
+  if (result.device.hostTimestamps)
+    html += "<p class=\"note\">" + escapeXml(timestampSourceNote(result.device)) + "</p>\n";
 
   html += "<p class=\"pick\"><b>Pareto front, fastest first:</b> ";
   bool first = true;
   for (std::size_t i : frontByTime(result)) {
     const auto& c = result.configurations[i];
-    html += fmt::format("{}<b>{}</b> ({:.3f} ms, LDR-FLIP {:.4f})", first ? "" : " &rarr; ", escapeXml(c.configuration.label),
-                        c.frameGpu.median, sweepError(c));
+    html += fmt::format("{}<b>{}</b> ({:.3f} ms, LDR-FLIP {:.4f})", first ? "" : " &rarr; ",
+                        escapeXml(c.configuration.label), c.frameGpu.median, sweepError(c));
     first = false;
   }
-  html += ".<br>Pick the fastest point on the front whose error you can accept; every other configuration is slower "
-          "without being more accurate, or less accurate without being faster.</p>\n";
+  html +=
+      ".<br>Pick the fastest point on the front whose error you can accept; every other configuration is slower "
+      "without being more accurate, or less accurate without being faster.</p>\n";
 
   html += "<h2>Time against error</h2>\n" + timeErrorSvg(result);
-  html += "<h2>Configurations</h2>\n<table><tr><th>configuration</th><th>front</th><th>GPU frame ms</th><th>95% CI</th>"
-          "<th>frames</th><th>LDR-FLIP</th><th>HDR-FLIP</th><th>RMSE</th><th>PSNR dB</th><th>NaN/Inf</th><th>dominated by</th></tr>\n";
+  html +=
+      "<h2>Configurations</h2>\n<table><tr><th>configuration</th><th>front</th><th>GPU frame ms</th><th>95% CI</th>"
+      "<th>frames</th><th>LDR-FLIP</th><th>HDR-FLIP</th><th>RMSE</th><th>PSNR dB</th><th>NaN/Inf</th><th>dominated "
+      "by</th></tr>\n";
   for (const auto& c : result.configurations) {
     std::string dominatedBy;
-    for (std::size_t d : c.dominatedBy) dominatedBy += (dominatedBy.empty() ? "" : ", ") + result.configurations[d].configuration.label;
+    for (std::size_t d : c.dominatedBy)
+      dominatedBy += (dominatedBy.empty() ? "" : ", ") + result.configurations[d].configuration.label;
     html += fmt::format(
-        "<tr{}><td>{}</td><td>{}</td><td>{:.4f}</td><td>[{:.4f}, {:.4f}]</td><td>{}</td><td>{}</td><td>{}</td><td>{:.5f}</td>"
+        "<tr{}><td>{}</td><td>{}</td><td>{:.4f}</td><td>[{:.4f}, "
+        "{:.4f}]</td><td>{}</td><td>{}</td><td>{}</td><td>{:.5f}</td>"
         "<td>{}</td><td>{}</td><td>{}</td></tr>\n",
-        c.onFront ? " class=\"front\"" : "", escapeXml(c.configuration.label), c.onFront ? "front" : "", c.frameGpu.median,
-        c.frameGpu.lower, c.frameGpu.upper, c.frameGpu.n,
+        c.onFront ? " class=\"front\"" : "", escapeXml(c.configuration.label), c.onFront ? "front" : "",
+        c.frameGpu.median, c.frameGpu.lower, c.frameGpu.upper, c.frameGpu.n,
         c.display.flip ? fmt::format("{:.5f}", c.display.flip->mean) : "-",
         c.hdr.flip ? fmt::format("{:.5f}", c.hdr.flip->mean) : "-", c.display.rmse,
         std::isfinite(c.display.psnr) ? fmt::format("{:.2f}", c.display.psnr) : "&infin;",
@@ -242,9 +277,10 @@ std::string sweepHtml(const SweepResult& result) {
                         ref.identical ? "bit-identical" : "differ");
   }
   for (const auto& c : result.configurations) {
-    html += fmt::format("<figure><div class=\"pair\">{}{}</div><figcaption>{}{}: {:.3f} ms, LDR-FLIP {:.4f}</figcaption></figure>\n",
-                        imgTag(c.images.display, c.configuration.label), imgTag(c.heatMap, "FLIP " + c.configuration.label),
-                        c.onFront ? "<b>front</b> " : "", escapeXml(c.configuration.label), c.frameGpu.median, sweepError(c));
+    html += fmt::format(
+        "<figure><div class=\"pair\">{}{}</div><figcaption>{}{}: {:.3f} ms, LDR-FLIP {:.4f}</figcaption></figure>\n",
+        imgTag(c.images.display, c.configuration.label), imgTag(c.heatMap, "FLIP " + c.configuration.label),
+        c.onFront ? "<b>front</b> " : "", escapeXml(c.configuration.label), c.frameGpu.median, sweepError(c));
   }
   html += "</div>\n<h2>Method</h2>\n<p>" + escapeXml(sweepMethodNote(result)) + "</p>\n</body></html>\n";
   return html;

@@ -24,26 +24,10 @@ constexpr const char* kStyle =
 constexpr std::array<const char*, 12> kPassColors = {"#3f6fb5", "#e08a2e", "#4a9c5d", "#c0392b", "#8e6bbf", "#8c564b",
                                                      "#d45fb0", "#7f7f7f", "#bcbd22", "#17becf", "#1f3f6f", "#f2b134"};
 
-std::string base64(const std::vector<uint8_t>& bytes) {
-  static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  out.reserve((bytes.size() + 2) / 3 * 4);
-  for (std::size_t i = 0; i < bytes.size(); i += 3) {
-    const uint32_t b0 = bytes[i], b1 = i + 1 < bytes.size() ? bytes[i + 1] : 0,
-                   b2 = i + 2 < bytes.size() ? bytes[i + 2] : 0;
-    const uint32_t triple = (b0 << 16) | (b1 << 8) | b2;
-    out += kAlphabet[(triple >> 18) & 63];
-    out += kAlphabet[(triple >> 12) & 63];
-    out += i + 1 < bytes.size() ? kAlphabet[(triple >> 6) & 63] : '=';
-    out += i + 2 < bytes.size() ? kAlphabet[triple & 63] : '=';
-  }
-  return out;
-}
-
 std::string imgTag(const Image& image, const std::string& alt) {
   const Image thumb = shrinkToWidth(image, kThumbnailWidth);
-  return fmt::format(R"(<img src="data:image/png;base64,{}" width="{}" height="{}" alt="{}">)",
-                     base64(encodePng(thumb)), thumb.width, thumb.height, escapeXml(alt));
+  return fmt::format(R"(<img src="{}" width="{}" height="{}" alt="{}">)", pngDataUri(encodePng(thumb)), thumb.width,
+                     thumb.height, escapeXml(alt));
 }
 
 // A log10 axis over [lo, hi]: position of a value and tick values (1, 2, 5 x 10^k inside the range,

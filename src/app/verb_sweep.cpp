@@ -87,6 +87,7 @@ harness::SweepPlan makePlan(const CLI::App& command, SweepOptions& o, std::vecto
   plan.stableFrameCap = o.maxFrames;
   const harness::StabilityRule rule{o.stableWithin / 100.0, 16, o.roundFrames};
   if (o.untilStable) plan.untilStable = rule;
+  plan.cpuStabilityRule = rule;
   // --until-stable is the default on CPU devices unless a fixed --frames was asked for.
   plan.untilStableOnCpu = !command.count("--frames");
   plan.roundFrames = o.roundFrames;

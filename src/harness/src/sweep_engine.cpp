@@ -120,7 +120,7 @@ SweepResult runSweep(const WorkloadOpener& open, const SweepPlan& requested, con
   }
   result.overhead.openMs = phase.lap();
   if (!renderers.empty()) result.device = renderers.front()->result().device;
-  if (!plan.untilStable && plan.untilStableOnCpu && result.device.type == "cpu") plan.untilStable = StabilityRule{};
+  if (!plan.untilStable && plan.untilStableOnCpu && result.device.type == "cpu") plan.untilStable = plan.cpuStabilityRule;
   if (plan.untilStable) plan.frames = plan.stableFrameCap;  // from here on `frames` is the cap
   result.untilStable = plan.untilStable;
   result.frameCap = plan.frames;

@@ -82,7 +82,8 @@ struct SweepPlan {
   uint32_t imageFrame = 2;
   uint32_t frames = 64;                      // measured frames per configuration without untilStable
   std::optional<StabilityRule> untilStable;  // sample each until stable, at most stableFrameCap frames
-  bool untilStableOnCpu = false;             // use the default StabilityRule when the device is a CPU (lavapipe)
+  bool untilStableOnCpu = false;  // use cpuStabilityRule when the device is a CPU (lavapipe)
+  StabilityRule cpuStabilityRule;
   uint32_t stableFrameCap = 128;
   uint32_t roundFrames = 16;  // frames per configuration per round
   uint32_t rewarmFrames = 1;  // dropped at the start of each round (others ran in between)

@@ -1,13 +1,12 @@
 // The sweep's overhead beyond rendering. Run the measurement with
 //   build/bench/sweep_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 // Images are 640x360 unless FGBENCH_BENCH_WIDTH/HEIGHT say otherwise (the lavapipe sweep's size).
-#include <fgb/harness/sweep.hpp>
-#include <fgb/harness/sweep_report.hpp>
-
 #include <benchmark/benchmark.h>
 
 #include <cmath>
 #include <cstdlib>
+#include <fgb/harness/sweep.hpp>
+#include <fgb/harness/sweep_report.hpp>
 #include <random>
 
 namespace fgb::harness {
@@ -30,7 +29,8 @@ render::ImageRGBA32F frame(double quality, float scale) {
     for (uint32_t x = 0; x < kWidth; ++x) {
       const float edge = std::sin(0.05f * static_cast<float>(x) + 0.11f * static_cast<float>(y));
       const float hard = edge > 0 ? 1.0f : 0.0f, soft = 0.5f + 0.5f * edge;
-      const float v = static_cast<float>(quality) * soft + (1.0f - static_cast<float>(quality)) * (hard + 0.05f * jitter(rng));
+      const float v =
+          static_cast<float>(quality) * soft + (1.0f - static_cast<float>(quality)) * (hard + 0.05f * jitter(rng));
       float* p = &img.pixels[(std::size_t{y} * kWidth + x) * 4];
       p[0] = scale * v;
       p[1] = scale * v * 0.8f;
@@ -52,7 +52,8 @@ class InstantWorkload : public render::Workload {
   render::FrameTiming renderFrame() override {
     render::FrameTiming t;
     const double ms = msaa_ + 0.01 * static_cast<double>(frame_++ % 13);
-    for (const char* pass : {"Cull", "Mesh Render", "Bloom", "Tone mapping"}) t.passes.push_back({pass, "graphics", false, ms / 4, -1.0});
+    for (const char* pass : {"Cull", "Mesh Render", "Bloom", "Tone mapping"})
+      t.passes.push_back({pass, "graphics", false, ms / 4, -1.0});
     t.gpuFrameMs = ms;
     return t;
   }

@@ -1,8 +1,9 @@
 // `fgbench sweep SCENE --vary KEY=V1,V2 [--vary ...] [--sweep FILE]`: run time against error over
 // the full grid of the varied keys, each configuration compared with a supersampled reference;
 // writes sweep.json/.csv/.md/.html into --out DIR and prints a table marking the Pareto front.
-#include "verb.hpp"
+#include <fmt/format.h>
 
+#include <algorithm>
 #include <fgb/core/error.hpp>
 #include <fgb/core/stopwatch.hpp>
 #include <fgb/harness/golden.hpp>
@@ -13,11 +14,9 @@
 #include <fgb/harness/sweep.hpp>
 #include <fgb/harness/sweep_report.hpp>
 #include <fgb/renderer/workload.hpp>
-
-#include <fmt/format.h>
-
-#include <algorithm>
 #include <iostream>
+
+#include "verb.hpp"
 
 namespace fgb::app {
 namespace {
@@ -75,7 +74,8 @@ harness::SweepPlan makePlan(const CLI::App& command, SweepOptions& o, std::vecto
   axes = gatherAxes(o, file ? &*file : nullptr);
   for (const auto& axis : axes) {
     checkAxisKnob(axis);
-    if (knobs.count(axis.key)) throw InputError("--vary " + axis.key + ": also fixed by --set " + axis.key + "=" + knobs[axis.key]);
+    if (knobs.count(axis.key))
+      throw InputError("--vary " + axis.key + ": also fixed by --set " + axis.key + "=" + knobs[axis.key]);
     if (axis.key == "msaa" && command.count("--msaa")) throw InputError("--vary msaa: also fixed by --msaa");
   }
 
@@ -87,6 +87,7 @@ harness::SweepPlan makePlan(const CLI::App& command, SweepOptions& o, std::vecto
   plan.stableFrameCap = o.maxFrames;
   const harness::StabilityRule rule{o.stableWithin / 100.0, 16, o.roundFrames};
   if (o.untilStable) plan.untilStable = rule;
+  plan.cpuStabilityRule = rule;
   // --until-stable is the default on CPU devices unless a fixed --frames was asked for.
   plan.untilStableOnCpu = !command.count("--frames");
   plan.roundFrames = o.roundFrames;
@@ -106,7 +107,8 @@ int sweepVerb(const CLI::App& command, SweepOptions o) {
   bool opened = false;  // the first phase is said once every configuration opened
   progress.phase = [&](const std::string& phase) {
     if (!chatty) return;
-    if (!opened) std::cerr << fmt::format("sweep: {} configuration(s) of {} opened\n", plan.configurations.size(), o.scene);
+    if (!opened)
+      std::cerr << fmt::format("sweep: {} configuration(s) of {} opened\n", plan.configurations.size(), o.scene);
     opened = true;
     std::cerr << "sweep: " << phase << "\n";
   };
@@ -124,7 +126,8 @@ int sweepVerb(const CLI::App& command, SweepOptions o) {
     std::cout << harness::dumpJson(harness::sweepJson(result));
   } else if (!o.common.quiet) {
     std::cout << fmt::format("{} on {}: {} configuration(s), wall {:.1f} s\n", o.scene, result.device.name,
-                             result.configurations.size(), (result.overhead.totalMs + result.overhead.reportMs) / 1000.0);
+                             result.configurations.size(),
+                             (result.overhead.totalMs + result.overhead.reportMs) / 1000.0);
     std::cout << harness::sweepTable(result);
     std::cout << "  results in " << o.out << " (sweep.html, sweep.json, sweep.csv, sweep.md)\n";
   }
@@ -137,19 +140,23 @@ static VerbRegistrar reg(30, [](CLI::App& app) {
       "sweep", "Run time against error over a grid of configurations; mark the Pareto front (sweep.html)");
   sub->add_option("scene", o->scene, "Scene file (scenes/*.json) or builtin:proof")->required();
   addCommonOptions(*sub, o->common);
-  sub->add_option("--vary", o->vary,
-                  "KEY=V1,V2,...: an axis of the grid (repeatable). KEY is msaa, width, height, size (WxH) or any --set knob");
+  sub->add_option(
+      "--vary", o->vary,
+      "KEY=V1,V2,...: an axis of the grid (repeatable). KEY is msaa, width, height, size (WxH) or any --set knob");
   sub->add_option("--sweep", o->sweepFile, "A standard sweep (bench/sweeps/*.json); --vary adds or replaces axes");
   sub->add_option("--out", o->out, "Output directory (default: out/<scene>-sweep)");
   sub->add_flag("--until-stable", o->untilStable,
                 "Sample each configuration until the 95% CI of its median frame time is within --stable-within "
                 "(default on CPU devices unless --frames is given)");
   sub->add_option("--stable-within", o->stableWithin, "Stability target: CI half-width in percent of the median")
-      ->capture_default_str()->check(CLI::Range(0.1, 50.0));
+      ->capture_default_str()
+      ->check(CLI::Range(0.1, 50.0));
   sub->add_option("--max-frames", o->maxFrames, "Frame cap per configuration when sampling until stable")
-      ->capture_default_str()->check(CLI::Range(16u, 100000u));
+      ->capture_default_str()
+      ->check(CLI::Range(16u, 100000u));
   sub->add_option("--round-frames", o->roundFrames, "Frames per configuration per interleaved round")
-      ->capture_default_str()->check(CLI::Range(1u, 10000u));
+      ->capture_default_str()
+      ->check(CLI::Range(1u, 10000u));
   sub->add_option("--max-minutes", o->maxMinutes, "Start no new measuring round after this many minutes (0: no limit)")
       ->check(CLI::Range(0.0, 1e6));
   sub->add_option("--seed", o->seed, "Seed of the configurations' order in each round")->capture_default_str();

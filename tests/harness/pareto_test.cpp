@@ -1,7 +1,6 @@
-#include <fgb/harness/pareto.hpp>
-
 #include <gtest/gtest.h>
 
+#include <fgb/harness/pareto.hpp>
 #include <vector>
 
 namespace fgb::harness {
@@ -10,7 +9,8 @@ namespace {
 // n samples around `centre`: centre + (-0.5 .. 0.5) in a fixed scrambled order.
 std::vector<double> timesAround(double centre, std::size_t n = 24) {
   std::vector<double> v;
-  for (std::size_t i = 0; i < n; ++i) v.push_back(centre - 0.5 + static_cast<double>(i * 7 % n) / static_cast<double>(n));
+  for (std::size_t i = 0; i < n; ++i)
+    v.push_back(centre - 0.5 + static_cast<double>(i * 7 % n) / static_cast<double>(n));
   return v;
 }
 

@@ -1,10 +1,10 @@
+#include <gtest/gtest.h>
+
 #include <fgb/core/error.hpp>
 #include <fgb/harness/render_path.hpp>
 #include <fgb/harness/run_loop.hpp>
 
 #include "fake_workload.hpp"
-
-#include <gtest/gtest.h>
 
 namespace fgb::harness {
 namespace {

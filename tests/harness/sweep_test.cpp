@@ -1,9 +1,8 @@
+#include <gtest/gtest.h>
+
 #include <fgb/core/error.hpp>
 #include <fgb/harness/sweep.hpp>
 #include <fgb/harness/sweep_report.hpp>
-
-#include <gtest/gtest.h>
-
 #include <filesystem>
 #include <fstream>
 
@@ -18,8 +17,8 @@ TEST(SweepGrid, ParsesAxes) {
 }
 
 TEST(SweepGrid, BadAxesAreInputErrorsNamingTheOption) {
-  for (const char* bad : {"msaa", "=1,2", "msaa=", "msaa=1,,4", "msaa=1,1", "msaa=3", "width=0", "size=640", "size=0x10",
-                          "height=abc"}) {
+  for (const char* bad :
+       {"msaa", "=1,2", "msaa=", "msaa=1,,4", "msaa=1,1", "msaa=3", "width=0", "size=640", "size=0x10", "height=abc"}) {
     try {
       parseVary(bad);
       ADD_FAILURE() << bad << " was accepted";
@@ -61,7 +60,8 @@ TEST(SweepGrid, ReferenceIsTheHighestQualityAndSharedAcrossSpeedKnobs) {
   render::WorkloadConfig a;
   a.width = 320;
   a.msaa = 1;
-  a.knobs = {{"lighting.max_per_cluster", "4"}, {"bloom.mips", "2"}, {"post.exposure", "0.7"}, {"render.path", "visbuffer"}};
+  a.knobs = {
+      {"lighting.max_per_cluster", "4"}, {"bloom.mips", "2"}, {"post.exposure", "0.7"}, {"render.path", "visbuffer"}};
   render::WorkloadConfig b = a;
   b.msaa = 4;
   b.knobs.insert_or_assign("lighting.max_per_cluster", std::string("64"));
@@ -127,10 +127,14 @@ class GridWorkload : public render::Workload {
  private:
   float value() const {
     switch (config_.msaa) {
-      case 1: return 0.40f;
-      case 2: return 0.30f;
-      case 4: return 0.49f;
-      default: return 0.50f;
+      case 1:
+        return 0.40f;
+      case 2:
+        return 0.30f;
+      case 4:
+        return 0.49f;
+      default:
+        return 0.50f;
     }
   }
   static render::ImageRGBA32F image(float v) {
@@ -191,7 +195,7 @@ TEST(Sweep, MeasuresInterleavedRoundsAndFindsTheFront) {
   EXPECT_TRUE(c[0].onFront);   // fastest
   EXPECT_FALSE(c[1].onFront);  // slower and worse than msaa 1
   EXPECT_EQ(c[1].dominatedBy, (std::vector<std::size_t>{0}));
-  EXPECT_TRUE(c[2].onFront);   // most accurate
+  EXPECT_TRUE(c[2].onFront);  // most accurate
   EXPECT_EQ(frontByTime(result), (std::vector<std::size_t>{0, 2}));
 }
 
@@ -230,7 +234,9 @@ TEST(Sweep, OutputsCarryTheFrontAndInlineEverything) {
   EXPECT_EQ(html.find("src=\"http"), std::string::npos);
   // 1 reference + 3 frames + 3 heat maps, all inline.
   std::size_t images = 0;
-  for (auto at = html.find("data:image/png;base64,"); at != std::string::npos; at = html.find("data:image/png;base64,", at + 1)) ++images;
+  for (auto at = html.find("data:image/png;base64,"); at != std::string::npos;
+       at = html.find("data:image/png;base64,", at + 1))
+    ++images;
   EXPECT_EQ(images, 7u);
   EXPECT_NE(timeErrorSvg(result).find("polyline"), std::string::npos);
   EXPECT_NE(sweepTable(result).find("* msaa=1"), std::string::npos);

@@ -1,6 +1,5 @@
-#include <fgb/harness/pareto.hpp>
-
 #include <fgb/harness/mann_whitney.hpp>
+#include <fgb/harness/pareto.hpp>
 
 namespace fgb::harness {
 

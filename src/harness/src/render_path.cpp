@@ -1,12 +1,10 @@
-#include <fgb/harness/render_path.hpp>
-
-#include <fgb/core/error.hpp>
-#include <fgb/core/stopwatch.hpp>
-#include <fgb/harness/run_loop.hpp>
-
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <fgb/core/error.hpp>
+#include <fgb/core/stopwatch.hpp>
+#include <fgb/harness/render_path.hpp>
+#include <fgb/harness/run_loop.hpp>
 
 namespace fgb::harness {
 namespace {
@@ -28,7 +26,9 @@ ProgressCallback offsetProgress(const ProgressCallback& progress, uint32_t doneB
   return [=](uint32_t done, uint32_t) { progress(doneBefore + done, planned); };
 }
 
-uint32_t measuredFrames(const RunResult& run) { return static_cast<uint32_t>(run.frameGpuMs.size()); }
+uint32_t measuredFrames(const RunResult& run) {
+  return static_cast<uint32_t>(run.frameGpuMs.size());
+}
 
 }  // namespace
 

@@ -1,14 +1,12 @@
 // runSweep: references, interleaved measuring rounds, comparison with the references, the front.
-#include <fgb/harness/sweep.hpp>
-
-#include <fgb/core/error.hpp>
-#include <fgb/core/stopwatch.hpp>
-#include <fgb/harness/run_outputs.hpp>
-
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cstring>
+#include <fgb/core/error.hpp>
+#include <fgb/core/stopwatch.hpp>
+#include <fgb/harness/run_outputs.hpp>
+#include <fgb/harness/sweep.hpp>
 #include <memory>
 #include <numeric>
 #include <random>
@@ -122,14 +120,15 @@ SweepResult runSweep(const WorkloadOpener& open, const SweepPlan& requested, con
   }
   result.overhead.openMs = phase.lap();
   if (!renderers.empty()) result.device = renderers.front()->result().device;
-  if (!plan.untilStable && plan.untilStableOnCpu && result.device.type == "cpu") plan.untilStable = StabilityRule{};
+  if (!plan.untilStable && plan.untilStableOnCpu && result.device.type == "cpu") plan.untilStable = plan.cpuStabilityRule;
   if (plan.untilStable) plan.frames = plan.stableFrameCap;  // from here on `frames` is the cap
   result.untilStable = plan.untilStable;
   result.frameCap = plan.frames;
 
   std::vector<render::WorkloadConfig> referenceConfigs;
   for (auto& c : result.configurations) {
-    c.reference = referenceIndex(referenceConfigs, plan.referenceOverride.value_or(referenceOf(c.configuration.workload)));
+    c.reference =
+        referenceIndex(referenceConfigs, plan.referenceOverride.value_or(referenceOf(c.configuration.workload)));
   }
   for (std::size_t r = 0; r < referenceConfigs.size(); ++r) {
     say(fmt::format("reference {}/{} (2 renders)", r + 1, referenceConfigs.size()));

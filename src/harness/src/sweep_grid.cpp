@@ -1,13 +1,11 @@
 // The sweep's grid: --vary axes, sweep files, the grid's expansion and the reference configuration.
-#include <fgb/harness/sweep.hpp>
-
-#include <fgb/core/error.hpp>
-#include <fgb/harness/json_io.hpp>
-
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <charconv>
+#include <fgb/core/error.hpp>
+#include <fgb/harness/json_io.hpp>
+#include <fgb/harness/sweep.hpp>
 
 namespace fgb::harness {
 namespace {
@@ -72,7 +70,8 @@ SweepAxis checkedAxis(const std::string& key, const std::vector<std::string>& va
       throw InputError(where + ": value '" + values[i] + "' given twice");
     }
     const std::string expected = expectedFor(key, values[i]);
-    if (!expected.empty()) throw InputError(where + ": " + key + "=" + values[i] + " is not valid (expected " + expected + ")");
+    if (!expected.empty())
+      throw InputError(where + ": " + key + "=" + values[i] + " is not valid (expected " + expected + ")");
   }
   return {key, values};
 }
@@ -116,7 +115,8 @@ SweepFile loadSweepFile(const std::filesystem::path& path) {
   }
   if (j.contains("set")) {
     if (!j["set"].is_object()) throw InputError(file + ": field 'set' must be an object of knobs");
-    for (const auto& [key, value] : j["set"].items()) sweep.knobs[key] = jsonScalarText(value, file + ": field 'set." + key + "'");
+    for (const auto& [key, value] : j["set"].items())
+      sweep.knobs[key] = jsonScalarText(value, file + ": field 'set." + key + "'");
   }
   sweep.width = static_cast<uint32_t>(optionalNumber(j, "width", 0, path));
   sweep.height = static_cast<uint32_t>(optionalNumber(j, "height", 0, path));
@@ -136,7 +136,8 @@ std::vector<SweepConfiguration> expandGrid(const render::WorkloadConfig& base, c
     }
     count *= axes[a].values.size();
     if (count > kMaxSweepConfigurations) {
-      throw InputError(fmt::format("sweep: the grid has more than {} configurations; vary fewer values", kMaxSweepConfigurations));
+      throw InputError(
+          fmt::format("sweep: the grid has more than {} configurations; vary fewer values", kMaxSweepConfigurations));
     }
   }
   std::vector<SweepConfiguration> grid;

@@ -1,15 +1,13 @@
 // sweep.json, sweep.csv, sweep.md and the terminal table.
-#include <fgb/harness/sweep_report.hpp>
-
-#include <fgb/core/atomic_file.hpp>
-#include <fgb/core/error.hpp>
-#include <fgb/harness/json_io.hpp>
-#include <fgb/harness/report.hpp>
-
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
+#include <fgb/core/atomic_file.hpp>
+#include <fgb/core/error.hpp>
+#include <fgb/harness/json_io.hpp>
+#include <fgb/harness/report.hpp>
+#include <fgb/harness/sweep_report.hpp>
 
 namespace fgb::harness {
 namespace {
@@ -26,21 +24,28 @@ uint32_t msaaUsed(const ConfigurationOutcome& c) {
 }
 
 nlohmann::json configJson(const render::WorkloadConfig& w, const RenderedImages& images) {
-  return {{"width", images.display.width}, {"height", images.display.height}, {"msaa_requested", w.msaa},
+  return {{"width", images.display.width},
+          {"height", images.display.height},
+          {"msaa_requested", w.msaa},
           {"knobs", knobsJson(w.knobs)}};
 }
 
 nlohmann::json intervalJson(const MedianInterval& ci, const Summary& s) {
-  return {{"median", ci.median}, {"ci_low", ci.lower},   {"ci_high", ci.upper}, {"ci_coverage", ci.coverage},
-          {"n", ci.n},           {"p5", s.p5},           {"p95", s.p95},        {"mean", s.mean},
+  return {{"median", ci.median}, {"ci_low", ci.lower}, {"ci_high", ci.upper}, {"ci_coverage", ci.coverage},
+          {"n", ci.n},           {"p5", s.p5},         {"p95", s.p95},        {"mean", s.mean},
           {"min", s.min},        {"max", s.max}};
 }
 
 nlohmann::json passesJson(const RunResult& run) {
   nlohmann::json passes = nlohmann::json::array();
   for (const auto& p : run.passes) {
-    passes.push_back({{"name", p.name}, {"queue", p.queue}, {"culled", p.culled}, {"median_ms", p.gpu.median},
-                      {"p5_ms", p.gpu.p5}, {"p95_ms", p.gpu.p95}, {"n", p.gpu.n}});
+    passes.push_back({{"name", p.name},
+                      {"queue", p.queue},
+                      {"culled", p.culled},
+                      {"median_ms", p.gpu.median},
+                      {"p5_ms", p.gpu.p5},
+                      {"p95_ms", p.gpu.p95},
+                      {"n", p.gpu.n}});
   }
   return passes;
 }
@@ -82,8 +87,9 @@ nlohmann::json methodJson(const SweepResult& result) {
   }
   return {{"time", "median GPU frame time; 95% distribution-free order-statistic interval (exact binomial)"},
           {"error", "LDR-FLIP mean of the tone-mapped frame against the reference"},
-          {"dominance", "significantly faster or equal (one-sided Mann-Whitney U, alpha) and error <= other's + "
-                        "error_floor, strictly better in one"},
+          {"dominance",
+           "significantly faster or equal (one-sided Mann-Whitney U, alpha) and error <= other's + "
+           "error_floor, strictly better in one"},
           {"alpha", result.alpha},
           {"error_floor", result.errorFloor},
           {"seed", result.seed},
@@ -101,10 +107,16 @@ std::string csvField(const std::string& text) {
   return quoted + "\"";
 }
 
-std::string flipText(const ImageMetrics& m) { return m.flip ? fmt::format("{:.4f}", m.flip->mean) : "-"; }
-std::string psnrText(const ImageMetrics& m) { return std::isfinite(m.psnr) ? fmt::format("{:.2f}", m.psnr) : "inf"; }
+std::string flipText(const ImageMetrics& m) {
+  return m.flip ? fmt::format("{:.4f}", m.flip->mean) : "-";
+}
+std::string psnrText(const ImageMetrics& m) {
+  return std::isfinite(m.psnr) ? fmt::format("{:.2f}", m.psnr) : "inf";
+}
 
-uint64_t nonFinite(const ConfigurationOutcome& c) { return c.display.nonFiniteTest + c.hdr.nonFiniteTest; }
+uint64_t nonFinite(const ConfigurationOutcome& c) {
+  return c.display.nonFiniteTest + c.hdr.nonFiniteTest;
+}
 
 std::string frontSentence(const SweepResult& result) {
   std::string text;
@@ -118,7 +130,9 @@ std::string frontSentence(const SweepResult& result) {
 
 }  // namespace
 
-double sweepError(const ConfigurationOutcome& c) { return c.display.flip ? c.display.flip->mean : c.display.rmse; }
+double sweepError(const ConfigurationOutcome& c) {
+  return c.display.flip ? c.display.flip->mean : c.display.rmse;
+}
 
 std::vector<std::size_t> frontByTime(const SweepResult& result) {
   std::vector<std::size_t> front;
@@ -132,12 +146,13 @@ std::vector<std::size_t> frontByTime(const SweepResult& result) {
 }
 
 std::string sweepMethodNote(const SweepResult& result) {
-  std::string stop = result.untilStable
-                         ? fmt::format("each configuration was sampled until the 95% interval of its median was within "
-                                       "±{:.1f}% of it (at least {} frames, at most {})",
-                                       result.untilStable->relativeHalfWidth * 100.0, result.untilStable->minFrames,
-                                       result.frameCap)
-                         : fmt::format("each configuration was measured for {} frames", result.frameCap);
+  std::string stop =
+      result.untilStable
+          ? fmt::format(
+                "each configuration was sampled until the 95% interval of its median was within "
+                "±{:.1f}% of it (at least {} frames, at most {})",
+                result.untilStable->relativeHalfWidth * 100.0, result.untilStable->minFrames, result.frameCap)
+          : fmt::format("each configuration was measured for {} frames", result.frameCap);
   return fmt::format(
       "Times are medians of the GPU frame time with a 95% distribution-free confidence interval (order statistics "
       "x(l), x(n+1-l) from the exact binomial distribution). Configurations were measured in {} interleaved rounds in "
@@ -163,27 +178,39 @@ nlohmann::json sweepJson(const SweepResult& result) {
           {"tool_version", result.toolVersion},
           {"scene", result.scene},
           {"scene_hash", result.sceneHash},
-          {"device", {{"name", result.device.name}, {"driver", result.device.driver}, {"type", result.device.type},
-                      {"api_version", result.device.apiVersion}, {"host_timestamps", result.device.hostTimestamps}}},
+          {"device",
+           {{"name", result.device.name},
+            {"driver", result.device.driver},
+            {"type", result.device.type},
+            {"api_version", result.device.apiVersion},
+            {"host_timestamps", result.device.hostTimestamps}}},
           {"axes", axes},
           {"method", methodJson(result)},
           {"references", references},
           {"configurations", configurations},
           {"front", front},
-          {"wall_ms", {{"open", o.openMs}, {"references", o.referenceMs}, {"warmup", o.warmupMs},
-                       {"measure", o.measureMs}, {"metrics", o.metricsMs}, {"report", o.reportMs}, {"total", o.totalMs}}}};
+          {"wall_ms",
+           {{"open", o.openMs},
+            {"references", o.referenceMs},
+            {"warmup", o.warmupMs},
+            {"measure", o.measureMs},
+            {"metrics", o.metricsMs},
+            {"report", o.reportMs},
+            {"total", o.totalMs}}}};
 }
 
 std::string sweepCsv(const SweepResult& result) {
   std::string csv = "label";
   for (const auto& a : result.axes) csv += "," + csvField(a.key);
-  csv += ",width,height,msaa,frame_gpu_median_ms,ci_low_ms,ci_high_ms,frames,stable,ldr_flip_mean,hdr_flip_mean,"
-         "rmse,psnr_db,hdr_rmse,nonfinite,front,dominated_by\n";
+  csv +=
+      ",width,height,msaa,frame_gpu_median_ms,ci_low_ms,ci_high_ms,frames,stable,ldr_flip_mean,hdr_flip_mean,"
+      "rmse,psnr_db,hdr_rmse,nonfinite,front,dominated_by\n";
   for (const auto& c : result.configurations) {
     csv += csvField(c.configuration.label);
     for (const auto& [key, value] : c.configuration.point) csv += "," + csvField(value);
     std::string dominatedBy;
-    for (std::size_t d : c.dominatedBy) dominatedBy += (dominatedBy.empty() ? "" : ";") + result.configurations[d].configuration.label;
+    for (std::size_t d : c.dominatedBy)
+      dominatedBy += (dominatedBy.empty() ? "" : ";") + result.configurations[d].configuration.label;
     csv += fmt::format(",{},{},{},{:.6f},{:.6f},{:.6f},{},{},{},{},{:.6f},{},{:.6f},{},{},{}\n", c.images.display.width,
                        c.images.display.height, msaaUsed(c), c.frameGpu.median, c.frameGpu.lower, c.frameGpu.upper,
                        c.frameGpu.n, c.stable ? 1 : 0, flipText(c.display), flipText(c.hdr), c.display.rmse,
@@ -198,7 +225,8 @@ std::string sweepTable(const SweepResult& result) {
   std::string out = fmt::format("  {:<{}}  {:>27}  {:>8}  {:>8}  {:>7}  {}\n", "configuration", width,
                                 "GPU frame ms (95% CI)", "LDR-FLIP", "HDR-FLIP", "PSNR", "front");
   for (const auto& c : result.configurations) {
-    const std::string time = fmt::format("{:.3f} [{:.3f}, {:.3f}]", c.frameGpu.median, c.frameGpu.lower, c.frameGpu.upper);
+    const std::string time =
+        fmt::format("{:.3f} [{:.3f}, {:.3f}]", c.frameGpu.median, c.frameGpu.lower, c.frameGpu.upper);
     out += fmt::format("{} {:<{}}  {:>27}  {:>8}  {:>8}  {:>7}  {}{}\n", c.onFront ? '*' : ' ', c.configuration.label,
                        width, time, flipText(c.display), flipText(c.hdr), psnrText(c.display), c.onFront ? "front" : "",
                        nonFinite(c) ? fmt::format("  {} NaN/Inf", nonFinite(c)) : "");
@@ -210,14 +238,18 @@ std::string sweepTable(const SweepResult& result) {
 }
 
 std::string sweepMarkdown(const SweepResult& result) {
-  std::string md = fmt::format("# Sweep: {}\n\nDevice: {} ({}). ", result.scene, result.device.name, result.device.driver);
+  std::string md =
+      fmt::format("# Sweep: {}\n\nDevice: {} ({}). ", result.scene, result.device.name, result.device.driver);
   if (result.device.hostTimestamps) md += timestampSourceNote(result.device) + " ";
   md += "\n\n**Front (fastest first):** " + frontSentence(result) + "\n\n";
-  md += "| | configuration | GPU frame ms | 95% CI | frames | LDR-FLIP | HDR-FLIP | RMSE | PSNR dB | NaN/Inf | dominated by |\n"
-        "|---|---|---:|---|---:|---:|---:|---:|---:|---:|---|\n";
+  md +=
+      "| | configuration | GPU frame ms | 95% CI | frames | LDR-FLIP | HDR-FLIP | RMSE | PSNR dB | NaN/Inf | dominated "
+      "by |\n"
+      "|---|---|---:|---|---:|---:|---:|---:|---:|---:|---|\n";
   for (const auto& c : result.configurations) {
     std::string dominatedBy;
-    for (std::size_t d : c.dominatedBy) dominatedBy += (dominatedBy.empty() ? "" : ", ") + result.configurations[d].configuration.label;
+    for (std::size_t d : c.dominatedBy)
+      dominatedBy += (dominatedBy.empty() ? "" : ", ") + result.configurations[d].configuration.label;
     md += fmt::format("| {} | {} | {:.4f} | [{:.4f}, {:.4f}] | {} | {} | {} | {:.5f} | {} | {} | {} |\n",
                       c.onFront ? "**front**" : "", c.configuration.label, c.frameGpu.median, c.frameGpu.lower,
                       c.frameGpu.upper, c.frameGpu.n, flipText(c.display), flipText(c.hdr), c.display.rmse,
@@ -227,9 +259,10 @@ std::string sweepMarkdown(const SweepResult& result) {
   for (const auto& r : result.references) {
     std::string knobs;
     for (const auto& [k, v] : r.workload.knobs) knobs += " " + k + "=" + v;
-    md += fmt::format("- {}x{} msaa={}{}: two renders {} (LDR-FLIP {:.5f} between them), {:.1f} s\n", r.images.display.width,
-                      r.images.display.height, r.workload.msaa, knobs, r.identical ? "bit-identical" : "differ",
-                      r.repeatDisplay.flip ? r.repeatDisplay.flip->mean : 0.0, r.renderMs / 1000.0);
+    md += fmt::format("- {}x{} msaa={}{}: two renders {} (LDR-FLIP {:.5f} between them), {:.1f} s\n",
+                      r.images.display.width, r.images.display.height, r.workload.msaa, knobs,
+                      r.identical ? "bit-identical" : "differ", r.repeatDisplay.flip ? r.repeatDisplay.flip->mean : 0.0,
+                      r.renderMs / 1000.0);
   }
   md += "\n## Method\n\n" + sweepMethodNote(result) + "\n";
   return md;

@@ -34,7 +34,7 @@ Order compareError(double a, double b, double floor);
 bool dominates(const TradeoffPoint& a, const TradeoffPoint& b, const DominanceOptions& options);
 
 struct FrontAnalysis {
-  std::vector<bool> onFront;                       // per point
+  std::vector<bool> onFront;                          // per point
   std::vector<std::vector<std::size_t>> dominatedBy;  // per point: the points that dominate it
 };
 

@@ -11,12 +11,11 @@
 // (render::openWorkload in the CLI, a fake in tests).
 #pragma once
 
+#include <cstdint>
 #include <fgb/harness/run_outputs.hpp>
 #include <fgb/harness/stats.hpp>
 #include <fgb/harness/timings.hpp>
 #include <fgb/renderer/workload.hpp>
-
-#include <cstdint>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -44,10 +43,10 @@ using ProgressCallback = std::function<void(uint32_t done, uint32_t total)>;
 struct RenderRequest {
   render::WorkloadConfig workload;
   uint32_t warmup = 8;
-  uint32_t frames = 64;                     // measured frames; the cap when untilStable is set
+  uint32_t frames = 64;                      // measured frames; the cap when untilStable is set
   std::optional<StabilityRule> untilStable;  // sample until stable instead of exactly `frames`
-  bool graphDumps = false;                  // fill graphBrief / graphFull
-  ProgressCallback progress;                // after every frame: (rendered, planned); may be empty
+  bool graphDumps = false;                   // fill graphBrief / graphFull
+  ProgressCallback progress;                 // after every frame: (rendered, planned); may be empty
 };
 
 // An open configuration. Measured frames accumulate over calls to measure(); each call ends with

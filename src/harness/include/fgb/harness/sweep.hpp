@@ -14,7 +14,6 @@
 #include <fgb/harness/metrics.hpp>
 #include <fgb/harness/pareto.hpp>
 #include <fgb/harness/render_path.hpp>
-
 #include <filesystem>
 #include <functional>
 #include <map>
@@ -76,14 +75,15 @@ struct SweepPlan {
   // Default: referenceOf(each configuration). Set to use one fixed configuration instead (stress:
   // the baseline rung).
   std::optional<render::WorkloadConfig> referenceOverride;
-  uint32_t warmup = 8;       // frames rendered before measuring
+  uint32_t warmup = 8;  // frames rendered before measuring
   // The compared images are of this frame (1-based) of every configuration and reference: animated
   // content (particles) depends on the frame number, and the reference renders only this many
   // frames (twice), which keeps a costly reference cheap.
   uint32_t imageFrame = 2;
-  uint32_t frames = 64;      // measured frames per configuration without untilStable
+  uint32_t frames = 64;                      // measured frames per configuration without untilStable
   std::optional<StabilityRule> untilStable;  // sample each until stable, at most stableFrameCap frames
-  bool untilStableOnCpu = false;  // use the default StabilityRule when the device is a CPU (lavapipe)
+  bool untilStableOnCpu = false;  // use cpuStabilityRule when the device is a CPU (lavapipe)
+  StabilityRule cpuStabilityRule;
   uint32_t stableFrameCap = 128;
   uint32_t roundFrames = 16;  // frames per configuration per round
   uint32_t rewarmFrames = 1;  // dropped at the start of each round (others ran in between)
@@ -94,21 +94,21 @@ struct SweepPlan {
 
 struct ReferenceOutcome {
   render::WorkloadConfig workload;
-  RenderedImages images;           // first render
+  RenderedImages images;                  // first render
   ImageMetrics repeatDisplay, repeatHdr;  // second render against the first
-  bool identical = false;          // the two renders are bit-identical
-  double renderMs = 0.0;           // wall time of both renders
+  bool identical = false;                 // the two renders are bit-identical
+  double renderMs = 0.0;                  // wall time of both renders
 };
 
 struct ConfigurationOutcome {
   SweepConfiguration configuration;
-  std::size_t reference = 0;   // index into SweepResult::references
-  RunResult run;               // measured frames (all rounds)
-  MedianInterval frameGpu;     // median GPU frame time and its 95% interval
-  bool stable = false;         // met the stability rule (until-stable sweeps)
+  std::size_t reference = 0;  // index into SweepResult::references
+  RunResult run;              // measured frames (all rounds)
+  MedianInterval frameGpu;    // median GPU frame time and its 95% interval
+  bool stable = false;        // met the stability rule (until-stable sweeps)
   RenderedImages images;
-  ImageMetrics display, hdr;   // against the reference: LDR-FLIP on the display image, HDR-FLIP on the HDR
-  Image heatMap;               // LDR-FLIP map against the reference
+  ImageMetrics display, hdr;  // against the reference: LDR-FLIP on the display image, HDR-FLIP on the HDR
+  Image heatMap;              // LDR-FLIP map against the reference
   bool onFront = false;
   std::vector<std::size_t> dominatedBy;
 };
@@ -131,15 +131,15 @@ struct SweepResult {
   double alpha = 0.05;
   uint64_t seed = 1;
   uint32_t rounds = 0;
-  std::string stopReason;   // "frames" | "stable" | "time limit"
+  std::string stopReason;  // "frames" | "stable" | "time limit"
   std::optional<StabilityRule> untilStable;
   uint32_t frameCap = 0;
   SweepOverhead overhead;
 };
 
 struct SweepProgress {
-  std::function<void(const std::string& phase)> phase;            // "reference 1/1", "measuring"
-  std::function<void(uint32_t done, uint32_t total)> frames;      // measured frames so far / planned
+  std::function<void(const std::string& phase)> phase;        // "reference 1/1", "measuring"
+  std::function<void(uint32_t done, uint32_t total)> frames;  // measured frames so far / planned
 };
 
 // Runs the plan. InputError from opening a configuration (bad knob) surfaces before any reference

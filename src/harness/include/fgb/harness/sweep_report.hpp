@@ -3,10 +3,8 @@
 #pragma once
 
 #include <fgb/harness/sweep.hpp>
-
-#include <nlohmann/json.hpp>
-
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 
 namespace fgb::harness {

@@ -1,5 +1,7 @@
 # `fgbench dot SCENE --detail full` must be DOT that Graphviz accepts, with barriers in words (no
 # stage or access masks in hex). Inputs (-D): FGBENCH, DOT, SCENE, OUT (file stem).
+get_filename_component(out_dir ${OUT} DIRECTORY)
+file(MAKE_DIRECTORY ${out_dir})
 execute_process(COMMAND ${FGBENCH} dot ${SCENE} --detail full --device lavapipe -o ${OUT}.dot
                 RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_QUIET)
 if(NOT rc STREQUAL "0")

@@ -17,15 +17,13 @@ layout(location = 0) out vec4 outColor;
 // Texture coordinates: a NaN would make every lookup undefined.
 vec2 safeUv() { return any(isnan(inUv)) || any(isinf(inUv)) ? vec2(0.0) : inUv; }
 
-// The face's own normal, for when the interpolated one vanishes (opposite vertex normals); its
-// derivatives vanish too on a degenerate (edge-on) triangle, then the view direction stands in.
-vec3 geometricNormal(vec3 towardsViewer) {
-  return safeNormalize(cross(dFdx(inWorldPosition), dFdy(inWorldPosition)), towardsViewer);
-}
-
+// An interpolated normal can vanish (opposite vertex normals across a crease): the surface is then
+// shaded as facing the viewer. (Not the face normal from derivatives: it would be computed for
+// every fragment, and derivatives are undefined inside the branch that needs it.)
 vec3 shadingNormal(Material m, vec2 uv, vec3 towardsViewer) {
-  vec3 n = safeNormalize(inNormal, geometricNormal(towardsViewer));
-  if (!gl_FrontFacing) n = -n;
+  float lengthSquared = dot(inNormal, inNormal);
+  vec3 n = lengthSquared > 1e-20 ? inNormal * inversesqrt(lengthSquared) : towardsViewer;
+  if (!gl_FrontFacing && lengthSquared > 1e-20) n = -n;
   if (m.normalTexture < 0 || dot(inTangent.xyz, inTangent.xyz) < 1e-12) return n;
   vec3 tangent = inTangent.xyz - n * dot(n, inTangent.xyz);
   if (dot(tangent, tangent) < 1e-12) return n;  // tangent along the normal: no tangent frame

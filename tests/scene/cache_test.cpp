@@ -10,6 +10,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <glm/geometric.hpp>
+
 #include <cmath>
 
 #include <fstream>
@@ -165,6 +167,18 @@ TEST(LoadScene, OverridesAndKnobsApplyAfterTheCache) {
   EXPECT_FLOAT_EQ(scaled.sun.intensity, loaded.scene.sun.intensity * 1e3f);
   options.knobs = {"post.exposure=0"};
   EXPECT_THROW(loadScene(file, options), fgb::InputError);
+
+  // scene.offset moves everything, camera included, in double.
+  options.knobs = {"scene.offset=1e7"};
+  const Scene moved = loadScene(file, options).scene;
+  const auto movedBy = [](const glm::dvec3& after, const glm::dvec3& before) {
+    return glm::length(after - before - glm::dvec3(1e7, 0.0, 1e7)) < 1e-8;  // double: ~2e-9 m steps
+  };
+  EXPECT_TRUE(movedBy(moved.camera.position, loaded.scene.camera.position));
+  EXPECT_TRUE(movedBy(moved.camera.target, loaded.scene.camera.target));
+  EXPECT_TRUE(movedBy(moved.lights[0].position, loaded.scene.lights[0].position));
+  EXPECT_TRUE(movedBy(glm::dvec3(moved.instances[0].transform[3]), glm::dvec3(loaded.scene.instances[0].transform[3])));
+  EXPECT_TRUE(movedBy(moved.instances[0].worldBounds.min, loaded.scene.instances[0].worldBounds.min));
 }
 
 TEST(LoadScene, ModelWithoutImporterOrCacheIsAClearInputError) {

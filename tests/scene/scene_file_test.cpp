@@ -6,6 +6,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 using namespace fgb::scene;
 using ::testing::AllOf;
 using ::testing::HasSubstr;
@@ -112,6 +114,15 @@ TEST(Knobs, OwnedKeysAreValidatedOthersIgnored) {
   EXPECT_THROW(Knobs::parse({"camera.position=1,2"}), fgb::InputError);
   EXPECT_THROW(Knobs::parse({"scene.lights=maybe"}), fgb::InputError);
   EXPECT_THROW(Knobs::parse({"noequals"}), fgb::InputError);
+}
+
+TEST(SceneFile, CameraFarMayBeInfinite) {
+  const SceneDescription d = parseSceneText(R"({"generator": {"type": "atrium"}, "camera": {"far": "inf"}})", "x.json");
+  Camera camera;
+  applyCameraOverrides(camera, d.camera, "x.json");
+  EXPECT_TRUE(std::isinf(camera.farPlane));
+  EXPECT_THROW(parseSceneText(R"({"generator": {"type": "atrium"}, "camera": {"far": "far"}})", "x.json"),
+               fgb::InputError);
 }
 
 TEST(Knobs, WordsAndScalesOfTheStabilityKnobs) {

@@ -9,7 +9,6 @@
 #include <fgb/scene/knobs.hpp>
 #include <fgb/scene/stats.hpp>
 
-#include <glm/ext/matrix_transform.hpp>
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
@@ -157,20 +156,16 @@ void scaleLights(Scene& scene, float factor) {
   scene.post.bloom.threshold *= factor;
 }
 
-// scene.offset: the whole scene and its camera moved by (d, 0, d) metres, in double (the `offset`
-// stress ladder on any scene; stress-far's generator parameter does the same for the atrium).
-void offsetScene(Scene& scene, double d) {
-  const glm::dvec3 shift(d, 0.0, d);
-  const glm::dmat4 move = glm::translate(glm::dmat4(1.0), shift);
+// The whole scene and its camera moved by `offset` (world placement is double: nothing is lost).
+void translateScene(Scene& scene, const glm::dvec3& offset) {
   for (Instance& instance : scene.instances) {
-    instance.transform = move * instance.transform;
-    instance.worldBounds.min += shift;
-    instance.worldBounds.max += shift;
+    instance.transform[3] += glm::dvec4(offset, 0.0);
+    if (!instance.worldBounds.isEmpty()) instance.worldBounds = {instance.worldBounds.min + offset, instance.worldBounds.max + offset};
   }
-  for (PointLight& light : scene.lights) light.position += shift;
-  for (Emitter& emitter : scene.emitters) emitter.position += shift;
-  scene.camera.position += shift;
-  scene.camera.target += shift;
+  for (PointLight& light : scene.lights) light.position += offset;
+  for (Emitter& emitter : scene.emitters) emitter.position += offset;
+  scene.camera.position += offset;
+  scene.camera.target += offset;
 }
 
 void applyKnobs(Scene& scene, const Knobs& knobs) {
@@ -201,7 +196,8 @@ void applyKnobs(Scene& scene, const Knobs& knobs) {
   if (auto v = knobs.flag("scene.sun")) scene.sun.enabled = *v;
   if (auto v = knobs.scale("scene.light_scale")) scaleLights(scene, static_cast<float>(*v));
   if (auto v = knobs.scale("scene.emissive_scale")) scaleEmissive(scene, static_cast<float>(*v));
-  if (auto v = knobs.number("scene.offset")) offsetScene(scene, *v);
+  // Last, so camera knobs describe the scene before it moves: any offset gives the same image.
+  if (auto v = knobs.number("scene.offset")) translateScene(scene, glm::dvec3(*v, 0.0, *v));
 }
 
 void applyDescription(Scene& scene, const SceneDescription& d) {

@@ -7,6 +7,7 @@
 #include <glm/trigonometric.hpp>
 
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 namespace fgb::scene {
@@ -159,7 +160,10 @@ void applyCameraOverrides(Camera& camera, const json& overrides, const std::stri
     if (camera.verticalFovDeg >= 179.0f) f.fail("camera.fov_deg", "degrees in (0, 179)", &overrides["fov_deg"]);
   }
   if (overrides.contains("near")) camera.nearPlane = f.positive(overrides["near"], "camera.near");
-  if (overrides.contains("far")) camera.farPlane = f.positive(overrides["far"], "camera.far");
+  if (overrides.contains("far")) {
+    const json& far = overrides["far"];  // a number, or "inf": an infinite far plane (reversed-Z)
+    camera.farPlane = far == "inf" ? std::numeric_limits<float>::infinity() : f.positive(far, "camera.far");
+  }
   if (camera.farPlane <= camera.nearPlane) f.fail("camera.far", "a value greater than camera.near", nullptr);
   if (glm::length(camera.target - camera.position) <= 0.0f) {
     f.fail("camera.target", "a point different from camera.position", nullptr);

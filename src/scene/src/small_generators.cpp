@@ -184,9 +184,11 @@ Scene buildStressNan(double fraction, uint32_t seed) {
   ShowcaseParams params;
   params.seed = seed;
   Scene scene = buildShowcase(params, "generator 'stress-nan'", lace);
-  // Shading singularities the renderer must survive without a NaN: a light lying on the floor
-  // (distance -> 0 for the fragments around it) and mirror-smooth materials (roughness 0).
+  // Shading singularities the renderer must survive without a NaN: a light lying in the floor's
+  // plane and one 5 cm above it (distance -> 0 for the fragments around them) and mirror-smooth
+  // materials (roughness 0).
   scene.lights.push_back({{0.0, 0.0, 1.0}, glm::vec3(1.0f), 4.0f, 3.0f});
+  scene.lights.push_back({{1.5, 0.05, 1.0}, glm::vec3(1.0f), 4.0f, 3.0f});
   for (Material& material : scene.materials) {
     if (material.name == "object-0" || material.name == "object-1") material.roughnessFactor = 0.0f;
   }

@@ -7,6 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
+
 #include <cstdio>
 
 namespace fgb::scene {
@@ -61,7 +63,9 @@ nlohmann::json toJson(const RepairCounters& r) {
 
 nlohmann::json toJson(const Camera& c) {
   return {{"position", vec3(c.position)}, {"target", vec3(c.target)}, {"up", vec3(c.up)},
-          {"fov_deg", c.verticalFovDeg},   {"near", c.nearPlane},      {"far", c.farPlane}};
+          {"fov_deg", c.verticalFovDeg},   {"near", c.nearPlane},
+          // JSON has no infinity: an infinite far plane is written as the knob spells it.
+          {"far", std::isinf(c.farPlane) ? nlohmann::json("inf") : nlohmann::json(c.farPlane)}};
 }
 
 nlohmann::json toJson(const SceneStats& s) {

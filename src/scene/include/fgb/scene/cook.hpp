@@ -10,7 +10,7 @@
 namespace fgb::scene {
 
 // Bump when the cooked output of the same input changes: it is part of every cache key.
-inline constexpr uint32_t kCookerVersion = 2;  // 2: world placement in double
+inline constexpr uint32_t kCookerVersion = 3;  // 2: world placement in double; 3: stress-nan lights
 
 void cookScene(Scene& scene);
 

@@ -11,7 +11,8 @@
 //       post.bloom_radius, scene.lights (0 drops point lights), scene.particles (0 drops
 //       emitters), scene.sun (0|1), scene.light_scale (factor on every light, emissive and
 //       particle radiance, the background and the bloom threshold), scene.emissive_scale (factor
-//       on emissive materials and particles only).
+//       on emissive materials and particles only), scene.offset=D (the whole scene and camera
+//       moved by (D, 0, D) metres, any scene: the `offset` stress ladder).
 #pragma once
 
 #include <fgb/core/knob_registry.hpp>

@@ -1,5 +1,7 @@
 // `fgbench compare A B`: image metrics between two EXR/PNG files (A is the reference), with an
-// optional heat map. NaN/Inf anywhere fails (exit 1), as do optional --max-* limits.
+// optional heat map. Fails (exit 1) the way idiff does: by default when any pixel has a channel
+// differing by more than the per-channel threshold; --fail-percent allows a share of such pixels,
+// and --max-flip-mean / --max-rmse judge by those metrics instead. NaN/Inf anywhere always fails.
 #include "verb.hpp"
 
 #include <fgb/core/error.hpp>
@@ -23,7 +25,7 @@ struct CompareOptions {
   bool noFlip = false;
   bool json = false;
   bool quiet = false;
-  std::optional<double> maxFlipMean, maxRmse;
+  std::optional<double> failPercent, maxFlipMean, maxRmse;
 };
 
 void printMetrics(const harness::ImageMetrics& m) {
@@ -44,9 +46,20 @@ void printMetrics(const harness::ImageMetrics& m) {
   }
 }
 
+// The pixel criterion (idiff's): a pixel fails when any channel differs by more than the threshold,
+// and the images differ when more than failPercent of the pixels fail (default 0: any pixel). It
+// applies unless the user judges by a metric limit alone (--max-flip-mean / --max-rmse without
+// --fail-percent), which is how those options loosen the default.
+bool pixelCriterionApplies(const CompareOptions& o) { return o.failPercent || (!o.maxFlipMean && !o.maxRmse); }
+
 std::string limitFailures(const harness::ImageMetrics& m, const CompareOptions& o) {
   std::string failures;
   if (m.hasNonFinite()) failures += fmt::format(" {} NaN/Inf pixels in A, {} in B;", m.nonFiniteReference, m.nonFiniteTest);
+  const double allowedPercent = o.failPercent.value_or(0.0);
+  if (pixelCriterionApplies(o) && m.shareOverThreshold * 100.0 > allowedPercent) {
+    failures += fmt::format(" {:.4f}% of pixels differ by more than {:.4g} in a channel (allowed: {:g}%);",
+                            m.shareOverThreshold * 100.0, m.channelThreshold, allowedPercent);
+  }
   if (o.maxFlipMean && m.flip && m.flip->mean > *o.maxFlipMean) {
     failures += fmt::format(" FLIP mean {:.6f} > {:.6f};", m.flip->mean, *o.maxFlipMean);
   }
@@ -67,33 +80,45 @@ int compareVerb(const CompareOptions& o) {
   const harness::Comparison c = harness::compareImages(a, b, metricOptions);
   if (!o.diff.empty()) harness::writePng(o.diff, harness::heatMap(c.errorMap, c.nonFiniteMask, a.width, a.height));
 
+  const std::string failures = limitFailures(c.metrics, o);
   if (o.json) {
     nlohmann::json j = harness::toJson(c.metrics);
     j["reference"] = o.reference;
     j["test"] = o.test;
     if (!o.diff.empty()) j["diff"] = o.diff;
+    j["verdict"] = failures.empty() ? "same" : "differ";
     std::cout << harness::dumpJson(j);
   } else if (!o.quiet) {
     printMetrics(c.metrics);
   }
-  const std::string failures = limitFailures(c.metrics, o);
   if (!failures.empty()) throw CheckFailed(o.reference + " vs " + o.test + ":" + failures);
   return kExitOk;
 }
 
 static VerbRegistrar reg(30, [](CLI::App& app) {
   auto o = std::make_shared<CompareOptions>();
-  CLI::App* sub = app.add_subcommand("compare", "Image metrics (max abs, RMSE, PSNR, share over threshold, FLIP) between A and B");
+  CLI::App* sub = app.add_subcommand("compare", "Image metrics (max abs, RMSE, PSNR, share over threshold, FLIP) between "
+                                                "A and B; exit 0 same, 1 differ (any pixel over the threshold unless "
+                                                "loosened), 2 bad input");
   sub->add_option("a", o->reference, "Reference image (EXR or PNG)")->required();
   sub->add_option("b", o->test, "Test image (EXR or PNG)")->required();
   sub->add_option("--diff", o->diff, "Write a heat map PNG of the per-pixel error (FLIP, or abs error with --no-flip)");
-  sub->add_option("--threshold", o->channelThreshold, "Per-channel threshold for the share of differing pixels "
-                                                      "(default 2/255 for PNG, 0.01 for EXR)");
+  sub->add_option("--threshold", o->channelThreshold, "Per-channel threshold: a pixel differs when any channel differs "
+                                                      "by more (default 2/255 for PNG, 0.01 for EXR)")
+      ->check(CLI::Range(0.0, 1e30));
+  sub->add_option("--fail-percent", o->failPercent, "Exit 1 only when more than this percentage of pixels differ "
+                                                    "(default 0: any differing pixel fails, as in idiff)")
+      ->check(CLI::Range(0.0, 100.0));
   sub->add_option("--ppd", o->pixelsPerDegree, "FLIP observer: pixels per degree (default 67: 0.7 m wide 4K at 0.7 m)")
       ->check(CLI::Range(1.0, 1000.0));
-  sub->add_flag("--no-flip", o->noFlip, "Skip FLIP");
-  sub->add_option("--max-flip-mean", o->maxFlipMean, "Exit 1 when the mean FLIP error is above this");
-  sub->add_option("--max-rmse", o->maxRmse, "Exit 1 when the RMSE is above this");
+  CLI::Option* noFlip = sub->add_flag("--no-flip", o->noFlip, "Skip FLIP");
+  sub->add_option("--max-flip-mean", o->maxFlipMean, "Exit 1 when the mean FLIP error is above this; judges by this "
+                                                     "instead of differing pixels unless --fail-percent is given too")
+      ->check(CLI::Range(0.0, 1.0))
+      ->excludes(noFlip);
+  sub->add_option("--max-rmse", o->maxRmse, "Exit 1 when the RMSE is above this; judges by this instead of "
+                                            "differing pixels unless --fail-percent is given too")
+      ->check(CLI::Range(0.0, 1e30));
   sub->add_flag("--json", o->json, "Machine-readable output on stdout");
   sub->add_flag("--quiet", o->quiet, "No output unless failing");
   return Verb{sub, [o] { return compareVerb(*o); }};

@@ -119,7 +119,7 @@ int runVerb(const CLI::App& command, RunVerbOptions o) {
   harness::RunArtifacts artifacts = render(o, knobs);
   harness::RunResult& run = artifacts.run;
   if (budget) run.budget = harness::checkBudget(*budget, run.medians(), o.tolerance);
-  if (golden) run.golden = harness::checkGolden(*golden, artifacts.images, o.out);
+  if (golden) run.golden = harness::checkGolden(*golden, artifacts.images, o.out, &artifacts.golden);
   harness::writeRunOutputs(o.out, artifacts);
 
   if (o.common.json) {

@@ -22,11 +22,11 @@ TEST(Declaration, EachWriteCreatesANewVersionOfTheSameResource) {
   EXPECT_NE(v0, v1);
   EXPECT_NE(v1, v2);
   EXPECT_EQ(graph.resourceOf(v0), graph.resourceOf(v2));
-  const VersionDecl& second = graph.versions()[v2.version];
+  const VersionDecl& second = versionsOf(graph)[v2.version];
   EXPECT_EQ(second.producer, 1u);
   EXPECT_EQ(second.previous, v1.version);
-  EXPECT_EQ(graph.versions()[v1.version].previous, v0.version);
-  EXPECT_EQ(graph.versions()[v0.version].producer, kInvalidIndex);
+  EXPECT_EQ(versionsOf(graph)[v1.version].previous, v0.version);
+  EXPECT_EQ(versionsOf(graph)[v0.version].producer, kInvalidIndex);
   EXPECT_EQ(graph.resources()[0].latestVersion, v2.version);
   EXPECT_EQ(graph.resources()[0].firstVersion, v0.version);
 }
@@ -36,7 +36,7 @@ TEST(Declaration, ReadReturnsTheSameVersionAndRecordsOnlyAReadVersion) {
   const BufferHandle buffer = graph.importBuffer("lights", bufferDesc(), {3}, {}, {});
   NodeBuilder node = graph.addNode("Cull", NodeType::Compute);
   EXPECT_EQ(node.read(buffer, Access::Uniform), buffer);
-  const auto uses = graph.uses(0);
+  const auto uses = usesOf(graph, 0);
   ASSERT_EQ(uses.size(), 1u);
   EXPECT_EQ(uses[0].readVersion, buffer.version);
   EXPECT_EQ(uses[0].writeVersion, kInvalidIndex);
@@ -48,30 +48,29 @@ TEST(Declaration, ReadWriteRecordsBothVersions) {
   const BufferHandle buffer = graph.importBuffer("particles", bufferDesc(), {3}, {}, {});
   NodeBuilder node = graph.addNode("Simulate", NodeType::Compute);
   const BufferHandle next = node.write(buffer, Access::StorageReadWrite);
-  const Use& use = graph.uses(0)[0];
+  const Use& use = usesOf(graph, 0)[0];
   EXPECT_EQ(use.readVersion, buffer.version);
   EXPECT_EQ(use.writeVersion, next.version);
 }
 
-// The compiler takes the fast path (one use per resource and node) only when no node repeats one.
-TEST(Declaration, AGraphKnowsWhetherSomeNodeUsesAResourceTwice) {
+// The public view of a node's uses, in declaration order: resource, access and versions.
+TEST(Declaration, AccessesListANodesUsesWithTheirVersions) {
   FrameGraph graph;
+  const BufferHandle lights = graph.importBuffer("lights", bufferDesc(), {3}, {}, {});
   const TextureHandle hdr = graph.createTexture("hdr", colorDesc());
-  const TextureHandle bloom = graph.createTexture("bloom", colorDesc());
-  NodeBuilder first = graph.addNode("First", NodeType::Compute);
-  const TextureHandle lit = first.write(hdr, Access::StorageWrite);
-  const TextureHandle blurred = first.write(bloom, Access::StorageWrite);
-  NodeBuilder second = graph.addNode("Second", NodeType::Compute);
-  second.read(lit, Access::Sampled);  // each resource used again, but by another node
-  second.read(blurred, Access::Sampled);
-  EXPECT_FALSE(graph.someNodeUsesAResourceTwice());
-
-  NodeBuilder third = graph.addNode("Third", NodeType::Compute);
-  third.read(lit, Access::Sampled);
-  EXPECT_FALSE(graph.someNodeUsesAResourceTwice());
-  third.write(lit, Access::StorageWrite);  // read, then written over, in one node
-  EXPECT_TRUE(graph.someNodeUsesAResourceTwice());
-  EXPECT_TRUE(FrameGraph(graph).someNodeUsesAResourceTwice());  // copies keep it
+  NodeBuilder node = graph.addNode("Shade", NodeType::Compute);
+  node.read(lights, Access::Uniform);
+  const TextureHandle lit = node.write(hdr, Access::StorageWrite);
+  const std::vector<ResourceAccess> accesses = graph.accesses(0);
+  ASSERT_EQ(accesses.size(), 2u);
+  EXPECT_EQ(accesses[0].resource, graph.resourceOf(lights));
+  EXPECT_EQ(accesses[0].access, Access::Uniform);
+  EXPECT_EQ(accesses[0].readVersion, lights.version);
+  EXPECT_EQ(accesses[0].writeVersion, kInvalidIndex);
+  EXPECT_EQ(accesses[1].resource, graph.resourceOf(hdr));
+  EXPECT_EQ(accesses[1].access, Access::StorageWrite);
+  EXPECT_EQ(accesses[1].readVersion, kInvalidIndex);
+  EXPECT_EQ(accesses[1].writeVersion, lit.version);
 }
 
 TEST(Declaration, QueueClassDefaultsToTheNodeTypeAndCanBeOverridden) {
@@ -124,7 +123,7 @@ TEST(Declaration, AttachmentsRecordUsesAndAttachmentState) {
   EXPECT_EQ(attachments.color[0].resolveTarget, newResolve);
   EXPECT_EQ(attachments.depth.target, newDepth);
   EXPECT_FALSE(attachments.depth.readOnly);
-  const auto uses = graph.uses(0);
+  const auto uses = usesOf(graph, 0);
   ASSERT_EQ(uses.size(), 3u);
   EXPECT_EQ(uses[0].access, Access::ColorAttachmentWrite);
   EXPECT_EQ(uses[1].access, Access::ResolveDst);
@@ -142,10 +141,10 @@ TEST(Declaration, LoadingAttachmentsReadThePreviousContents) {
   NodeBuilder test = graph.addNode("DepthTest", NodeType::Graphics);
   const TextureHandle latestDepth = graph.attachments(0).depth.target;
   test.setDepthStencilReadOnly(latestDepth);
-  EXPECT_EQ(graph.uses(0)[0].access, Access::ColorAttachmentReadWrite);
-  EXPECT_EQ(graph.uses(0)[1].access, Access::DepthAttachmentReadWrite);
-  EXPECT_EQ(graph.uses(1)[0].access, Access::DepthAttachmentRead);
-  EXPECT_EQ(graph.uses(1)[0].writeVersion, kInvalidIndex);
+  EXPECT_EQ(usesOf(graph, 0)[0].access, Access::ColorAttachmentReadWrite);
+  EXPECT_EQ(usesOf(graph, 0)[1].access, Access::DepthAttachmentReadWrite);
+  EXPECT_EQ(usesOf(graph, 1)[0].access, Access::DepthAttachmentRead);
+  EXPECT_EQ(usesOf(graph, 1)[0].writeVersion, kInvalidIndex);
   EXPECT_TRUE(graph.attachments(1).depth.readOnly);
   EXPECT_TRUE(graph.attachments(1).color.empty());
 }
@@ -247,8 +246,8 @@ TEST(Declaration, EachUseRecordsWhatAccessInfoSaysForItsAccessNodeTypeAndStages)
           node.read(buffer, access, stages);
         }
         const AccessInfo expected = accessInfo(access, type, stages);
-        ASSERT_EQ(graph.uses(0).size(), 1u);
-        const Use& use = graph.uses(0)[0];
+        ASSERT_EQ(usesOf(graph, 0).size(), 1u);
+        const Use& use = usesOf(graph, 0)[0];
         const std::string what = std::string(toString(access)) + " by a " + std::string(toString(type)) +
                                  " node, stages " + std::to_string(stages);
         EXPECT_EQ(use.stages, expected.stages) << what;
@@ -262,10 +261,10 @@ TEST(Declaration, EachUseRecordsWhatAccessInfoSaysForItsAccessNodeTypeAndStages)
   }
 }
 
-// Names are copied into the graph (see NameStore): they outlive the strings they were declared
+// Names are copied into the graph: they outlive the strings they were declared
 // from, survive copies and moves of the graph, and end in a NUL (Vulkan debug labels take them).
 TEST(Declaration, NamesAreTheGraphsOwnCopiesAndSurviveCopiesAndMoves) {
-  constexpr uint32_t kNodes = 20000;  // more names than one block of the store holds
+  constexpr uint32_t kNodes = 20000;
   auto nameOf = [](uint32_t i) { return "node number " + std::to_string(i); };
   auto expectNames = [&](const FrameGraph& graph, const std::string& longName) {
     ASSERT_EQ(graph.nodes().size(), kNodes + 2);

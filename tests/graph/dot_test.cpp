@@ -4,6 +4,8 @@
 
 #include <fgb/graph/dot.hpp>
 
+#include <fgb/graph/barrier_names.hpp>
+
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -76,7 +78,34 @@ TEST_F(DotFixture, BriefAndFullDumpsRender) {
     EXPECT_NE(brief.find(name), std::string::npos) << name;
   }
   EXPECT_GT(full.size(), brief.size());
-  EXPECT_NE(full.find("SHADER_READ_ONLY"), std::string::npos);  // barriers/layouts in the full dump
+  // Barriers in words: Cull (compute, queue 1) hands the light list over to Forward on queue 0, and
+  // Forward's colour target becomes Tonemap's sampled input.
+  EXPECT_NE(full.find("release lights {list}: compute \u2192 none, storage-write \u2192 none, queue 1 \u2192 0"),
+            std::string::npos) << full;
+  EXPECT_NE(full.find("acquire lights {list}: none \u2192 vertex+fragment, none \u2192 storage-read, queue 1 \u2192 0"),
+            std::string::npos) << full;
+  EXPECT_NE(full.find("hdr: color-output \u2192 vertex+fragment, color-write \u2192 sampled-read, color-attachment \u2192 shader-read-only"),
+            std::string::npos) << full;
+  EXPECT_EQ(full.find("0x"), std::string::npos) << "a mask left in hex:\n" << full;
+}
+
+TEST(BarrierNames, EveryStageAccessAndLayoutHasAWord) {
+  for (uint32_t bit = 1; bit <= kStageAllCommands; bit <<= 1) EXPECT_EQ(stageNames(bit).find("0x"), std::string::npos) << bit;
+  for (uint32_t bit = 1; bit <= kAccessHostWrite; bit <<= 1) EXPECT_EQ(accessNames(bit).find("0x"), std::string::npos) << bit;
+  EXPECT_EQ(stageNames(kStageEarlyFragmentTests | kStageLateFragmentTests), "early-fragment-tests+late-fragment-tests");
+  EXPECT_EQ(accessNames(kAccessNone), "none");
+  EXPECT_EQ(accessNames(1u << 30), "0x40000000");  // an unnamed bit stays visible
+  for (Layout layout : {Layout::Undefined, Layout::General, Layout::ColorAttachment, Layout::DepthStencilAttachment,
+                        Layout::DepthStencilReadOnly, Layout::ShaderReadOnly, Layout::TransferSrc, Layout::TransferDst}) {
+    EXPECT_NE(layoutName(layout), "?");
+  }
+  Barrier release;
+  release.kind = Barrier::Kind::Release;
+  release.srcStages = kStageComputeShader;
+  release.srcAccess = kAccessShaderStorageWrite;
+  release.srcQueue = 1;
+  release.dstQueue = 0;
+  EXPECT_EQ(describeBarrier(release, "lights", false), "release lights: compute \u2192 none, storage-write \u2192 none, queue 1 \u2192 0");
 }
 
 TEST_F(DotFixture, NamesWithQuotesBracesAndAnglesAreEscaped) {

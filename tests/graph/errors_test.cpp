@@ -114,7 +114,7 @@ TEST(BadInput, AnUnknownAccessIsAnErrorNamingTheNode) {
   const auto unknown = static_cast<Access>(200);
   EXPECT_THAT(graphErrorOf([&] { node.read(texture, unknown); }), HasSubstr("unknown access 200"));
   EXPECT_THAT(graphErrorOf([&] { node.write(texture, unknown); }), HasSubstr("Odd"));
-  EXPECT_TRUE(graph.uses(0).empty());
+  EXPECT_TRUE(usesOf(graph, 0).empty());
 }
 
 TEST(BadInput, AnUnknownNodeTypeOrQueueClassIsAnErrorNamingTheNode) {

@@ -77,22 +77,88 @@ TEST(Report, HtmlIsSelfContainedWithThreeEscapedCharts) {
   EXPECT_EQ(svgs, 3u);
   EXPECT_THAT(html, HasSubstr("Draw &lt;main&gt;"));
   EXPECT_THAT(html, Not(HasSubstr("Draw <main>")));
-  EXPECT_THAT(html, Not(HasSubstr("<script")));
-  EXPECT_THAT(html, Not(HasSubstr("src=")));  // no external resources
+  EXPECT_THAT(html, Not(HasSubstr("<script")));  // only the golden flip view needs one
+  EXPECT_THAT(html, Not(HasSubstr("src=")));      // no pictures given, none referenced
   EXPECT_THAT(html, Not(HasSubstr("<link")));
 }
 
-TEST(Report, TimelineUsesReportedStartTimes) {
+std::size_t count(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+TEST(Report, HtmlShowsTheFrameInlineAndWithAGoldenThreeImagesAndAFlipView) {
+  const ReportImages frameOnly{"frame-bytes", "", "", 8, 4};
+  const std::string plain = htmlReport(fakeRun(), frameOnly);
+  EXPECT_THAT(plain, HasSubstr(R"(id="frame" src="data:image/png;base64,)" + base64("frame-bytes") + "\""));
+  EXPECT_EQ(count(plain, "<img"), 1u);
+
+  const ReportImages withGolden{"frame-bytes", "reference-bytes", "heat-bytes", 8, 4};
+  const std::string html = htmlReport(fakeRun(), withGolden);
+  EXPECT_EQ(count(html, "<img"), 4u);  // reference, test, heat map, flip view
+  EXPECT_EQ(count(html, "src=\"data:image/png;base64,"), 3u);  // each picture once: the flip view borrows them
+  EXPECT_EQ(count(html, "src=\""), count(html, "src=\"data:"));  // nothing outside the file
+  for (const char* id : {"golden-reference", "frame", "golden-heatmap", "flip-view", "flip-toggle"}) {
+    EXPECT_THAT(html, HasSubstr("id=\"" + std::string(id) + "\"")) << id;
+  }
+  EXPECT_THAT(html, HasSubstr("<script>"));
+}
+
+TEST(Report, Base64MatchesRfc4648) {
+  EXPECT_EQ(base64(""), "");
+  EXPECT_EQ(base64("f"), "Zg==");
+  EXPECT_EQ(base64("fo"), "Zm8=");
+  EXPECT_EQ(base64("foo"), "Zm9v");
+  EXPECT_EQ(base64("foobar"), "Zm9vYmFy");
+  EXPECT_EQ(base64(std::string("\xff\x00\xfe", 3)), "/wD+");
+}
+
+TEST(Report, TimelineDrawsEachPassFromItsBeginToItsEnd) {
   RunResult run = fakeRun();
-  EXPECT_THAT(queueTimelineSvg(run), HasSubstr("from GPU timestamps"));
+  const std::string svg = queueTimelineSvg(run);
+  EXPECT_THAT(svg, HasSubstr("begin/end timestamps"));
+  EXPECT_EQ(count(svg, "class=\"span\""), 2u);  // Cull and Draw; Debug is culled
+  // The frame of median GPU time (frames 1..4 have 3.1, 5.1, 7.1, 9.1 ms: the third) with its own times:
+  // Draw <main> began at 0.1 + f = 3.1 ms and took 1 + f = 4 ms (f = 3, the frame's index with warm-up).
+  EXPECT_THAT(svg, HasSubstr("Draw &lt;main&gt;: 3.1000 → 7.1000 ms"));
+  EXPECT_THAT(svg, HasSubstr("queues overlap 0.0000 ms"));
   for (auto& p : run.passes) p.startMs.clear();
   EXPECT_THAT(queueTimelineSvg(run), HasSubstr("back to back"));
 }
 
-TEST(Report, TimelineNamesBoxesTooNarrowForTheirLabelBesideThem) {
+TEST(Report, TimelineShowsOverlapBetweenQueues) {
   RunResult run = fakeRun();
-  run.passes[0].gpu.median = 0.001;  // Cull: a sliver in its lane
-  EXPECT_THAT(queueTimelineSvg(run), HasSubstr(R"(fill="#222" font-size="10" text-anchor="start">Cull</text>)"));
+  for (auto& p : run.passes) std::fill(p.startMs.begin(), p.startMs.end(), 0.0);  // Cull and Draw both begin at 0
+  const std::string svg = queueTimelineSvg(run);
+  EXPECT_EQ(count(svg, "class=\"overlap\""), 1u);
+  EXPECT_THAT(svg, HasSubstr("queues overlap 3.1000 ms"));  // Cull's 3.1 ms, all under Draw
+}
+
+TEST(Report, TimelineNamesPassesWithoutABeginInsteadOfGuessing) {
+  RunResult run = fakeRun();
+  run.passes[0].startMs.clear();  // Cull's queue gave no begin timestamp
+  const std::string svg = queueTimelineSvg(run);
+  EXPECT_THAT(svg, HasSubstr("the device gave no begin timestamp for: Cull"));
+  EXPECT_EQ(count(svg, "class=\"span\""), 1u);
+}
+
+TEST(Report, TimelineNamesPassesThatRecordedNoGpuWork) {
+  RunResult run = fakeRun();
+  run.passes[0].startMs.clear();
+  std::fill(run.passes[0].samplesMs.begin(), run.passes[0].samplesMs.end(), 0.0);  // a node that recorded nothing
+  EXPECT_THAT(queueTimelineSvg(run), HasSubstr("recorded no GPU work: Cull"));
+}
+
+TEST(Report, SmallPassesStayReadable) {
+  RunResult run = fakeRun();
+  for (auto& s : run.passes[0].samplesMs) s = 0.001;  // Cull: far under 1% of the frame
+  run.passes[0].gpu = summarize(run.passes[0].samplesMs);
+  const std::string timeline = queueTimelineSvg(run);
+  EXPECT_THAT(timeline, HasSubstr(">Cull</text>"));           // its own row, named
+  EXPECT_THAT(timeline, HasSubstr("0.0010 ms (0.014%)"));     // with its time in words
+  EXPECT_THAT(passBarsSvg(run), HasSubstr("log scale"));      // bars on a log axis
+  EXPECT_THAT(passBarsSvg(fakeRun()), Not(HasSubstr("log scale")));
 }
 
 TEST(Report, HtmlLinksTheHeatMapOfEachFailingGoldenImage) {

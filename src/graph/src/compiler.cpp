@@ -1,75 +1,18 @@
 // The compiler pipeline. Each stage lives in stage_*.cpp and reads/writes CompileState; the order
 // below is the only place that knows the sequence.
-#include "compile_state.hpp"
-
 #include <chrono>
 #include <string>
-#include <type_traits>
+
+#include "compile_state.hpp"
 
 namespace fgb::graph {
-namespace {
-
-// Calls `each` on every array of a CompiledGraph.
-template <typename Each>
-void forEachArray(CompiledGraph& graph, Each&& each) {
-  each(graph.nodes);
-  each(graph.order);
-  each(graph.edges);
-  each(graph.syncEdges);
-  each(graph.steps);
-  each(graph.barriers);
-  each(graph.submits);
-  each(graph.submitsPerQueue);
-  each(graph.resources);
-  each(graph.resourceAlive);
-  each(graph.lifetimes);
-  each(graph.aliasing.placements);
-  each(graph.aliasing.heaps);
-}
-
-template <typename Vector>
-using PoolOf = detail::VectorPool<typename std::remove_reference_t<Vector>::value_type>;
-
-// Runs the stages in order, timing each when a profile was asked for.
-class StageRunner {
- public:
-  StageRunner(detail::CompileState& state, CompileProfile* profile) : state_(state), profile_(profile) {
-    if (profile_ != nullptr) {
-      ++profile_->compiles;
-      last_ = Clock::now();
-    }
-  }
-  void run(CompileStage stage, void (*function)(detail::CompileState&)) {
-    function(state_);
-    if (profile_ == nullptr) return;
-    const Clock::time_point now = Clock::now();
-    profile_->microseconds[static_cast<size_t>(stage)] += std::chrono::duration<double, std::micro>(now - last_).count();
-    last_ = now;
-  }
-
- private:
-  using Clock = std::chrono::steady_clock;
-  detail::CompileState& state_;
-  CompileProfile* profile_;
-  Clock::time_point last_{};
-};
-
-}  // namespace
+namespace {}  // namespace
 
 const char* toString(CompileStage stage) {
-  static constexpr const char* kNames[] = {"resources", "cull",      "dependencies", "sort",
-                                           "ssis",      "submits",   "barriers"};
+  static constexpr const char* kNames[] = {"resources", "cull", "dependencies", "sort", "ssis", "submits", "barriers"};
   static_assert(std::size(kNames) == static_cast<size_t>(CompileStage::Count));
   const auto index = static_cast<size_t>(stage);
   return index < std::size(kNames) ? kNames[index] : "?";
-}
-
-CompiledGraph::~CompiledGraph() {
-  // Node infos and submits go back with their elements: the next compile's resize constructs
-  // none, and wait lists keep their capacity. The stages that fill them overwrite every element.
-  detail::VectorPool<NodeInfo>::give(nodes, detail::VectorPool<NodeInfo>::Keep::Elements);
-  detail::VectorPool<Submit>::give(submits, detail::VectorPool<Submit>::Keep::Elements);
-  forEachArray(*this, [](auto& array) { PoolOf<decltype(array)>::give(array); });
 }
 
 CompiledGraph compile(const FrameGraph& graph, const CompileOptions& options) {
@@ -84,18 +27,29 @@ CompiledGraph compile(const FrameGraph& graph, const CompileOptions& options) {
     }
   }
   CompiledGraph out;
-  forEachArray(out, [](auto& array) { PoolOf<decltype(array)>::take(array); });
   out.queueCount = options.queueCount;
   detail::CompileState state(graph, options, out);
-  StageRunner stages(state, options.profile);
-  stages.run(CompileStage::Resources, detail::resolveResources);
-  stages.run(CompileStage::Cull, detail::cullNodes);
-  // Also detects cycles: over every declared node, so one through culled nodes is reported too.
-  stages.run(CompileStage::Dependencies, detail::buildDependencies);
-  stages.run(CompileStage::Sort, detail::sortByLevel);
-  stages.run(CompileStage::Ssis, detail::pruneCrossQueueEdges);
-  stages.run(CompileStage::Submits, detail::placeSubmits);
-  stages.run(CompileStage::Barriers, detail::placeAndPlanBarriers);
+  // Runs one stage; with a profile, adds the stage's wall time to it.
+  using Clock = std::chrono::steady_clock;
+  Clock::time_point last = Clock::now();
+  if (options.profile != nullptr) ++options.profile->compiles;
+  auto run = [&](CompileStage stage, void (*function)(detail::CompileState&)) {
+    function(state);
+    if (options.profile == nullptr) return;
+    const Clock::time_point now = Clock::now();
+    options.profile->microseconds[static_cast<size_t>(stage)] +=
+        std::chrono::duration<double, std::micro>(now - last).count();
+    last = now;
+  };
+  run(CompileStage::Resources, detail::resolveResources);
+  // Culling first: the dependency stage then orders only alive nodes. It still detects cycles over
+  // every declared node, so that one through culled nodes is reported too.
+  run(CompileStage::Cull, detail::cullNodes);
+  run(CompileStage::Dependencies, detail::buildDependencies);
+  run(CompileStage::Sort, detail::sortByLevel);
+  run(CompileStage::Ssis, detail::pruneCrossQueueEdges);
+  run(CompileStage::Submits, detail::placeSubmits);
+  run(CompileStage::Barriers, detail::placeAndPlanBarriers);
   return out;
 }
 

@@ -1,8 +1,12 @@
 // Graphviz output. Nodes are boxes coloured by type (graphics/compute/transfer), resources are
 // ellipses (imported: double border); edges follow resource versions. Culled nodes are dashed and
 // carry the reason. The full detail adds resource parameters, use kinds, queues, submits,
-// aliasing slots and each step's barriers.
+// aliasing slots and each step's barriers, named in words (fgb/graph/barrier_names.hpp).
 #include <fgb/graph/dot.hpp>
+
+#include <fgb/graph/barrier_names.hpp>
+
+#include "declaration.hpp"
 
 #include <sstream>
 #include <string>
@@ -56,16 +60,8 @@ std::string describeResource(const ResourceDecl& decl, const CompiledGraph& comp
 }
 
 std::string describeBarrier(const FrameGraph& graph, const Barrier& b) {
-  std::ostringstream s;
-  static constexpr const char* kKinds[] = {"", "release ", "acquire "};
-  s << kKinds[static_cast<int>(b.kind)] << graph.resources()[b.resource].name << ": ";
-  if (graph.resources()[b.resource].kind == ResourceKind::Texture) {
-    s << toString(b.oldLayout) << "->" << toString(b.newLayout) << " ";
-  }
-  s << "stages 0x" << std::hex << b.srcStages << "->0x" << b.dstStages << " access 0x" << b.srcAccess << "->0x"
-    << b.dstAccess << std::dec;
-  if (b.srcQueue != b.dstQueue) s << " q" << b.srcQueue << "->q" << b.dstQueue;
-  return s.str();
+  const ResourceDecl& resource = graph.resources()[b.resource];
+  return graph::describeBarrier(b, resource.name, resource.kind == ResourceKind::Texture);
 }
 
 std::string nodeLabel(const FrameGraph& graph, const CompiledGraph& compiled, const CullDiagnostics& cullReasons,
@@ -116,7 +112,7 @@ void writeResources(std::ostringstream& s, const FrameGraph& graph, const Compil
 
 void writeUses(std::ostringstream& s, const FrameGraph& graph, DotDetail detail) {
   for (uint32_t n = 0; n < graph.nodes().size(); ++n) {
-    for (const Use& use : graph.uses(n)) {
+    for (const detail::Use& use : detail::Declared::uses(graph, n)) {
       const std::string label = detail == DotDetail::Full ? std::string(toString(use.access)) : std::string();
       if (use.readVersion != kInvalidIndex) {
         s << "  r" << use.resource << " -> n" << n << " [label=\"" << label << " v" << use.readVersion << "\"];\n";

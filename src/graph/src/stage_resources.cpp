@@ -1,17 +1,15 @@
 // Stage: resolving resource descriptions (dependent fields → values). The memory requirements of
-// alive transients are asked for where placement needs them (see requirements.hpp).
-#include "compile_state.hpp"
-
+// alive transients are asked for where placement needs them (see TransientPlacer::place).
 #include <algorithm>
 #include <string>
 
+#include "compile_state.hpp"
+
 namespace fgb::graph {
 
-namespace {
-
-MemoryRequirements estimate(ResourceKind kind, const ResolvedResource& resolved) {
+MemoryRequirements estimateRequirements(const ResourceDecl& decl, const ResolvedResource& resolved) {
   constexpr uint64_t kAlignment = 256;
-  if (kind == ResourceKind::Buffer) return {resolved.buffer.size, kAlignment, ~0u};
+  if (decl.kind == ResourceKind::Buffer) return {resolved.buffer.size, kAlignment, ~0u};
   const TextureDesc& t = resolved.texture;
   uint64_t bytes = 0;
   uint64_t w = t.extent.width, h = t.extent.height, d = t.extent.depth;
@@ -24,30 +22,18 @@ MemoryRequirements estimate(ResourceKind kind, const ResolvedResource& resolved)
   return {bytes * std::max(1u, t.layers) * std::max(1u, t.samples), kAlignment, ~0u};
 }
 
-}  // namespace
-
-MemoryRequirements estimateRequirements(const ResourceDecl& decl, const ResolvedResource& resolved) {
-  return estimate(decl.kind, resolved);
-}
-
 namespace detail {
 
 void resolveResources(CompileState& state) {
   const auto& decls = state.graph.resources();
-  const auto& versions = state.graph.versions();
+  const auto& versions = state.versions();
   auto& resolved = state.out.resources;
-  // Appended from the declarations, not default-constructed first and then overwritten: each is
-  // written once.
   resolved.clear();
-  resolved.reserve(decls.size());
-  state.resourceTraits.resize(decls.size());
   // A dependent field can only name a version that existed when the resource was declared, so
   // its source has a smaller index and is already resolved.
   for (size_t r = 0; r < decls.size(); ++r) {
     const ResourceDecl& decl = decls[r];
     ResolvedResource& res = resolved.emplace_back(decl.texture, decl.buffer);
-    state.resourceTraits[r] = static_cast<uint8_t>((decl.kind == ResourceKind::Texture ? kResourceTexture : 0) |
-                                                   (decl.imported ? kResourceImported : 0));
     if (decl.kind == ResourceKind::Texture && decl.texture.extentFrom.valid()) {
       const TextureDesc& source = resolved[versions[decl.texture.extentFrom.version].resource].texture;
       const uint32_t shift = decl.texture.extentShift;
@@ -61,10 +47,6 @@ void resolveResources(CompileState& state) {
       res.buffer.sizeFrom = {};
     }
   }
-}
-
-MemoryRequirements estimateFor(ResourceKind kind, const ResolvedResource& resolved) {
-  return estimate(kind, resolved);
 }
 
 }  // namespace detail

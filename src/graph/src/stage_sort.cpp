@@ -7,32 +7,21 @@
 namespace fgb::graph::detail {
 
 void sortByLevel(CompileState& state) {
-  // Counting sort by level; within a level, declaration order (deterministic, and stable). Culled
-  // nodes go to a bucket after the last level, which is then cut off: choosing the bucket (and
-  // what a node's NodeInfo says) by a mask costs less than a branch on whether a node is alive,
-  // which is as good as random.
-  const uint32_t culledBucket = state.maxLevel + 1;
-  auto aliveMask = [&](uint32_t n) { return 0u - uint32_t{state.alive[n]}; };  // all ones if alive
-  auto bucketOf = [&](uint32_t n) { return state.level[n] ^ ((state.level[n] ^ culledBucket) & ~aliveMask(n)); };
-  ScratchVector<uint32_t> bucketStart(size_t{culledBucket} + 2, 0);
-  for (uint32_t n = 0; n < state.nodeCount; ++n) ++bucketStart[bucketOf(n) + 1];
-  for (uint32_t b = 1; b < bucketStart.size(); ++b) bucketStart[b] += bucketStart[b - 1];
-  const uint32_t aliveCount = bucketStart[culledBucket];
-  auto& order = state.out.order;
-  order.resize(state.nodeCount);
-  // With several queues, σ too (see SyncPoint), while the position is at hand.
-  const bool severalQueues = state.queueCount > 1;
-  if (severalQueues) state.sync.resize(state.nodeCount);
+  // Counting sort by level; within a level, declaration order (deterministic, and stable).
+  std::vector<uint32_t> levelStart(size_t{state.maxLevel} + 2, 0);
   for (uint32_t n = 0; n < state.nodeCount; ++n) {
-    const uint32_t position = bucketStart[bucketOf(n)]++;
-    order[position] = n;
-    if (severalQueues) state.sync[n].sigma = position + state.queueOf[n] * aliveCount + 1;
-    // Culled nodes keep what cullNodes reset them to: level 0, no order position.
-    NodeInfo& info = state.out.nodes[n];
-    info.level = state.level[n] & aliveMask(n);
-    info.orderIndex = position | ~aliveMask(n);
+    if (state.alive[n]) ++levelStart[state.level[n] + 1];
   }
-  order.resize(aliveCount);
+  for (size_t l = 1; l < levelStart.size(); ++l) levelStart[l] += levelStart[l - 1];
+  auto& order = state.out.order;
+  order.resize(levelStart.back());
+  for (uint32_t n = 0; n < state.nodeCount; ++n) {
+    if (!state.alive[n]) continue;  // culled nodes keep level 0 and no order position
+    const uint32_t position = levelStart[state.level[n]]++;
+    order[position] = n;
+    state.out.nodes[n].level = state.level[n];
+    state.out.nodes[n].orderIndex = position;
+  }
 }
 
 }  // namespace fgb::graph::detail

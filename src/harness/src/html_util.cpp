@@ -10,13 +10,13 @@
 
 namespace fgb::harness {
 
-std::string base64(const std::vector<uint8_t>& bytes) {
+std::string base64(std::string_view bytes) {
   static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
   std::string out;
   out.reserve((bytes.size() + 2) / 3 * 4);
   for (std::size_t i = 0; i < bytes.size(); i += 3) {
-    const uint32_t b0 = bytes[i], b1 = i + 1 < bytes.size() ? bytes[i + 1] : 0,
-                   b2 = i + 2 < bytes.size() ? bytes[i + 2] : 0;
+    const uint32_t b0 = uint8_t(bytes[i]), b1 = i + 1 < bytes.size() ? uint8_t(bytes[i + 1]) : 0u,
+                   b2 = i + 2 < bytes.size() ? uint8_t(bytes[i + 2]) : 0u;
     const uint32_t triple = (b0 << 16) | (b1 << 8) | b2;
     out += kAlphabet[(triple >> 18) & 63];
     out += kAlphabet[(triple >> 12) & 63];

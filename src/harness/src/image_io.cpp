@@ -212,9 +212,7 @@ void writeExr(const std::filesystem::path& path, const Image& linear) {
   });
 }
 
-namespace {
-// 8-bit RGB bytes of an image as PNG files store them (sRGB-encoded, clamped).
-std::vector<unsigned char> pngBytes(const Image& image) {
+std::string encodePng(const Image& image) {
   const Image encoded = quantizeToSrgb8(image);
   std::vector<unsigned char> bytes(image.pixelCount() * 3);
   for (std::size_t i = 0; i < image.pixelCount(); ++i) {
@@ -222,50 +220,28 @@ std::vector<unsigned char> pngBytes(const Image& image) {
       bytes[i * 3 + c] = static_cast<unsigned char>(std::lround(encoded.rgba[i * 4 + c] * 255.0f));
     }
   }
-  return bytes;
-}
-
-png_image pngHeader(const Image& image) {
   png_image png;
   std::memset(&png, 0, sizeof png);
   png.version = PNG_IMAGE_VERSION;
   png.width = image.width;
   png.height = image.height;
   png.format = PNG_FORMAT_RGB;
-  return png;
-}
-}  // namespace
-
-void writePng(const std::filesystem::path& path, const Image& image) {
-  const std::vector<unsigned char> bytes = pngBytes(image);
-  writeViaTemporary(path, [&](const std::filesystem::path& temporary) {
-    png_image png = pngHeader(image);
-    if (png_image_write_to_file(&png, temporary.c_str(), 0, bytes.data(), 0, nullptr) == 0) {
-      const std::string reason = png.message;
-      png_image_free(&png);
-      throw std::runtime_error(path.string() + ": cannot write PNG (" + reason + ")");
-    }
-  });
-}
-
-std::vector<uint8_t> encodePng(const Image& image) {
-  const std::vector<unsigned char> bytes = pngBytes(image);
-  png_image png = pngHeader(image);
-  png_alloc_size_t size = 0;
-  // First call measures, second writes (libpng's documented two-step use).
-  if (png_image_write_to_memory(&png, nullptr, &size, 0, bytes.data(), 0, nullptr) == 0) {
+  png_alloc_size_t size = 0;  // first call: the size the PNG needs
+  std::string file;
+  bool ok = png_image_write_to_memory(&png, nullptr, &size, 0, bytes.data(), 0, nullptr) != 0;
+  if (ok) {
+    file.resize(size);
+    ok = png_image_write_to_memory(&png, file.data(), &size, 0, bytes.data(), 0, nullptr) != 0;
+    file.resize(size);
+  }
+  if (!ok) {
     const std::string reason = png.message;
     png_image_free(&png);
-    throw std::runtime_error("cannot encode PNG (" + reason + ")");
+    throw std::runtime_error("cannot encode a " + describeSize(image) + " PNG (" + reason + ")");
   }
-  std::vector<uint8_t> out(size);
-  if (png_image_write_to_memory(&png, out.data(), &size, 0, bytes.data(), 0, nullptr) == 0) {
-    const std::string reason = png.message;
-    png_image_free(&png);
-    throw std::runtime_error("cannot encode PNG (" + reason + ")");
-  }
-  out.resize(size);
-  return out;
+  return file;
 }
+
+void writePng(const std::filesystem::path& path, const Image& image) { writeFileAtomic(path, encodePng(image)); }
 
 }  // namespace fgb::harness

@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace fgb::harness {
@@ -12,7 +13,20 @@ constexpr const char* kStyle =
     "body{font-family:sans-serif;max-width:900px;margin:2em auto;color:#222}"
     "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #ccc;padding:3px 8px;text-align:right}"
     "td:first-child,th:first-child{text-align:left}.bad{color:#c0392b;font-weight:bold}.ok{color:#2e7d32}"
-    ".note{color:#555}";
+    ".note{color:#555}"
+    "figure{margin:0}figcaption{color:#555;font-size:90%}img.shot{width:100%;height:auto;border:1px solid #ccc}"
+    ".trio{display:flex;gap:8px}.trio figure{flex:1;min-width:0}#flipper button{font-size:100%}";
+
+// Flips #flip-view between the reference and the test image (the sources are those of the images
+// above it, so each picture is in the file once).
+constexpr const char* kFlipScript =
+    "(function(){var v=document.getElementById('flip-view'),b=document.getElementById('flip-toggle'),"
+    "l=document.getElementById('flip-label'),r=document.getElementById('golden-reference'),"
+    "t=document.getElementById('frame'),test=false;"
+    "function show(){v.src=(test?t:r).src;v.dataset.showing=test?'test':'reference';l.textContent=test?'test (this run)':'reference (golden)';"
+    "b.textContent=test?'Show reference':'Show test';}"
+    "b.addEventListener('click',function(){test=!test;show();});show();"
+    "document.getElementById('flipper').hidden=false;})();";
 
 std::string verdictSpan(const std::string& verdict) {
   const char* cls = verdict == "fail" ? "bad" : (verdict == "pass" ? "ok" : "note");
@@ -69,9 +83,52 @@ std::string goldenHtml(const RunResult& run) {
   return out + "</table>\n";
 }
 
+std::string figure(const std::string& id, std::string_view png, const ReportImages& images, const std::string& alt,
+                   const std::string& captionHtml) {
+  return fmt::format(R"(<figure><img class="shot" id="{}" src="{}" width="{}" height="{}" alt="{}"><figcaption>{}</figcaption></figure>)"
+                     "\n",
+                     id, pngDataUri(png), images.width, images.height, escapeXml(alt), captionHtml);
+}
+
+// The frame inline; with a golden, reference | test | heat map side by side and a flip view.
+std::string picturesHtml(const RunResult& run, const ReportImages& images) {
+  const std::string files = "<a href=\"frame.png\">frame.png</a> (tone-mapped) · <a href=\"frame.exr\">frame.exr</a> (linear HDR)";
+  if (images.frame.empty()) return "<p>Last frame: " + files + "</p>\n";
+  if (images.reference.empty()) return figure("frame", images.frame, images, "last frame", "Last frame: " + files);
+  std::string flipMean;
+  if (run.golden && !run.golden->images.empty() && run.golden->images[0].metrics.flip) {
+    flipMean = fmt::format(", mean {:.5f}", run.golden->images[0].metrics.flip->mean);
+  }
+  std::string html = "<div class=\"trio\">\n";
+  html += figure("golden-reference", images.reference, images, "reference", "Reference (golden)");
+  html += figure("frame", images.frame, images, "test", "Test (this run): " + files);
+  if (!images.heatMap.empty()) html += figure("golden-heatmap", images.heatMap, images, "FLIP heat map", "FLIP heat map" + flipMean);
+  html += "</div>\n";
+  html += fmt::format(R"(<div id="flipper" hidden><p><button id="flip-toggle" type="button">Show test</button> showing <b id="flip-label">reference (golden)</b></p>)"
+                      R"(<img class="shot" id="flip-view" width="{}" height="{}" alt="reference or test, as the button flips them"></div>)"
+                      "\n<script>{}</script>\n",
+                      images.width, images.height, kFlipScript);
+  return html;
+}
+
 }  // namespace
 
-std::string htmlReport(const RunResult& run) {
+std::string base64(std::string_view bytes) {
+  static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((bytes.size() + 2) / 3 * 4);
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    const std::size_t n = std::min<std::size_t>(3, bytes.size() - i);
+    uint32_t chunk = 0;
+    for (std::size_t k = 0; k < 3; ++k) chunk = chunk << 8 | (k < n ? static_cast<unsigned char>(bytes[i + k]) : 0u);
+    for (std::size_t k = 0; k < 4; ++k) out += k <= n ? kAlphabet[(chunk >> (18 - 6 * k)) & 63] : '=';
+  }
+  return out;
+}
+
+std::string pngDataUri(std::string_view png) { return "data:image/png;base64," + base64(png); }
+
+std::string htmlReport(const RunResult& run, const ReportImages& images) {
   std::string html = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n";
   html += fmt::format("<title>fgbench report: {}</title>\n<style>{}</style></head><body>\n", escapeXml(run.scene), kStyle);
   html += fmt::format("<h1>fgbench report: {}</h1>\n", escapeXml(run.scene));
@@ -80,8 +137,8 @@ std::string htmlReport(const RunResult& run) {
                       escapeXml(run.device.apiVersion), run.config.width, run.config.height, msaaLabel(run.config.msaa),
                       run.config.frames, run.config.warmup, escapeXml(run.toolVersion));
   html += "<p class=\"note\">" + escapeXml(timestampSourceNote(run.device)) + "</p>\n";
-  html += "<p>Last frame: <a href=\"frame.png\">frame.png</a> (tone-mapped) · <a href=\"frame.exr\">frame.exr</a> (linear HDR) · "
-          "frame graph <a href=\"graph.dot\">graph.dot</a>, <a href=\"graph-full.dot\">graph-full.dot</a></p>\n";
+  html += "<h2>Frame</h2>\n" + picturesHtml(run, images);
+  html += "<p>Frame graph: <a href=\"graph.dot\">graph.dot</a>, <a href=\"graph-full.dot\">graph-full.dot</a></p>\n";
   html += "<h2>Passes against budget</h2>\n" + passBarsSvg(run);
   html += "<h2>Frame time series</h2>\n" + frameSeriesSvg(run);
   html += "<h2>Queue timeline</h2>\n" + queueTimelineSvg(run);

@@ -15,7 +15,8 @@ namespace fgb::harness {
 namespace {
 
 ImageVerdict compareWithGoldenFile(const std::string& kind, const std::filesystem::path& goldenFile, const Image& rendered,
-                                   const Thresholds& limits, const std::filesystem::path& diffPath, std::string& diffWritten) {
+                                   const Thresholds& limits, const std::filesystem::path& diffPath, std::string& diffWritten,
+                                   GoldenPictures* pictures) {
   const Image reference = readImage(goldenFile);
   if (reference.width != rendered.width || reference.height != rendered.height) {
     throw InputError(goldenFile.string() + ": golden is " + describeSize(reference) + " but the render is " +
@@ -23,10 +24,13 @@ ImageVerdict compareWithGoldenFile(const std::string& kind, const std::filesyste
   }
   const Comparison comparison = compareImages(reference, rendered, metricOptionsFor(limits));
   ImageVerdict verdict = judgeImage(kind, comparison.metrics, limits);
+  if (verdict.failures.empty() && !pictures) return verdict;
+  Image heat = heatMap(comparison.errorMap, comparison.nonFiniteMask, reference.width, reference.height);
   if (!verdict.failures.empty()) {
-    writePng(diffPath, heatMap(comparison.errorMap, comparison.nonFiniteMask, reference.width, reference.height));
+    writePng(diffPath, heat);
     if (diffWritten.empty()) diffWritten = diffPath.string();
   }
+  if (pictures) *pictures = GoldenPictures{reference, std::move(heat)};
   return verdict;
 }
 
@@ -40,27 +44,34 @@ void writeRunOutputs(const std::filesystem::path& dir, const RunArtifacts& a) {
   }
   Stopwatch encoding;
   writeExr(dir / "frame.exr", a.images.hdr);
-  writePng(dir / "frame.png", a.images.display);
+  ReportImages pictures;  // shown inline by report.html
+  pictures.frame = encodePng(a.images.display);
+  pictures.width = a.images.display.width;
+  pictures.height = a.images.display.height;
+  writeFileAtomic(dir / "frame.png", pictures.frame);
   RunResult run = a.run;  // with the encoding time, which only now is known
   run.overhead.encodeMs = encoding.elapsedMs();
+  if (a.golden.reference.width > 0) pictures.reference = encodePng(a.golden.reference);
+  if (a.golden.heatMap.width > 0) pictures.heatMap = encodePng(a.golden.heatMap);
   writeFileAtomic(dir / "timings.json", dumpJson(toJson(run)));
   writeFileAtomic(dir / "timings.csv", toCsv(run));
   writeFileAtomic(dir / "graph.dot", a.graphBrief);
   writeFileAtomic(dir / "graph-full.dot", a.graphFull);
   writeFileAtomic(dir / "report.md", markdownReport(run));
-  writeFileAtomic(dir / "report.html", htmlReport(run));
+  writeFileAtomic(dir / "report.html", htmlReport(run, pictures));
 }
 
-GoldenResult checkGolden(const Golden& golden, const RenderedImages& images, const std::filesystem::path& diffDir) {
+GoldenResult checkGolden(const Golden& golden, const RenderedImages& images, const std::filesystem::path& diffDir,
+                         GoldenPictures* pictures) {
   GoldenResult result;
   result.file = golden.jsonPath.string();
   std::error_code ec;
   std::filesystem::create_directories(diffDir, ec);
   result.images.push_back(compareWithGoldenFile("display", golden.displayImage, quantizeToSrgb8(images.display),
-                                                golden.display, diffDir / "golden-diff.png", result.diffImage));
+                                                golden.display, diffDir / "golden-diff.png", result.diffImage, pictures));
   if (!golden.hdrImage.empty()) {
     result.images.push_back(compareWithGoldenFile("hdr", golden.hdrImage, quantizeToHalf(images.hdr), golden.hdr,
-                                                  diffDir / "golden-diff-hdr.png", result.diffImage));
+                                                  diffDir / "golden-diff-hdr.png", result.diffImage, nullptr));
   }
   bool failed = false;
   for (const auto& image : result.images) failed = failed || !image.failures.empty();

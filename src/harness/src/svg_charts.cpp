@@ -1,27 +1,20 @@
-// Inline SVG charts for report.html: plain elements, no scripts, readable in any browser.
+// Inline SVG charts for report.html: pass bars against budget and the frame time series (the
+// queue timeline is in svg_timeline.cpp). Plain elements, readable in any browser.
 #include <fgb/harness/report.hpp>
+
+#include "svg_common.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <optional>
-#include <utility>
 #include <vector>
 
 namespace fgb::harness {
 namespace {
 
-constexpr int kChartWidth = 760;
-constexpr int kLabelWidth = 190;
-constexpr int kRowHeight = 22;
-
-std::string svgOpen(int width, int height, const std::string& title) {
-  return fmt::format(R"(<svg xmlns="http://www.w3.org/2000/svg" width="{0}" height="{1}" viewBox="0 0 {0} {1}" role="img" aria-label="{2}" font-family="sans-serif" font-size="12">)"
-                     "\n<title>{2}</title>\n",
-                     width, height, escapeXml(title));
-}
+using namespace svg;
 
 std::optional<double> budgetFor(const RunResult& run, const std::string& pass) {
   if (!run.budget) return std::nullopt;
@@ -31,33 +24,25 @@ std::optional<double> budgetFor(const RunResult& run, const std::string& pass) {
   return std::nullopt;
 }
 
-std::string queueColor(const std::string& queue) {
-  if (queue == "compute") return "#e08a2e";
-  if (queue == "transfer") return "#4a9c5d";
-  return "#3f6fb5";  // graphics
+// Linear from 0, or logarithmic when the shortest pass's median is under 1/30 of the longest's:
+// on a linear axis such a pass would be a bar of a pixel or two.
+MsAxis passAxis(const RunResult& run) {
+  double maxMs = 0.0, longestPass = 0.0, shortestPass = 0.0;
+  for (const auto& p : run.passes) {
+    if (p.culled) continue;
+    maxMs = std::max({maxMs, p.gpu.p95, budgetFor(run, p.name).value_or(0.0) * 1.1});
+    longestPass = std::max(longestPass, p.gpu.median);
+    if (p.gpu.median > 0 && (shortestPass == 0.0 || p.gpu.median < shortestPass)) shortestPass = p.gpu.median;
+  }
+  if (shortestPass > 0 && longestPass / shortestPass > 30.0) {
+    return MsAxis{std::pow(10.0, std::floor(std::log10(shortestPass))), std::pow(10.0, std::ceil(std::log10(maxMs * 1.05))), true};
+  }
+  return linearAxis(maxMs * 1.05);
 }
 
-// A tick step of 1, 2 or 5 times a power of ten giving about five ticks over [0, max].
-double niceStep(double max) {
-  const double raw = std::max(max, 1e-9) / 5.0;
-  const double power = std::pow(10.0, std::floor(std::log10(raw)));
-  for (double m : {1.0, 2.0, 5.0, 10.0}) {
-    if (raw <= m * power) return m * power;
-  }
-  return 10.0 * power;
-}
+}  // namespace
 
-std::string axisTicks(double maxMs, double x0, double width, int top, int bottom) {
-  std::string out;
-  const double step = niceStep(maxMs);
-  for (double v = 0.0; v <= maxMs * 1.0001; v += step) {
-    const double x = x0 + v / maxMs * width;
-    out += fmt::format(R"(<line x1="{0:.1f}" y1="{1}" x2="{0:.1f}" y2="{2}" stroke="#ddd"/><text x="{0:.1f}" y="{3}" text-anchor="middle" fill="#555">{4:g}</text>)"
-                       "\n",
-                       x, top, bottom, bottom + 14, v);
-  }
-  return out;
-}
+namespace svg {
 
 // "ms …" caption followed by a colour key for the queues that appear in the run.
 std::string queueLegend(const RunResult& run, int x, int y, const std::string& caption) {
@@ -75,7 +60,7 @@ std::string queueLegend(const RunResult& run, int x, int y, const std::string& c
   return out;
 }
 
-}  // namespace
+}  // namespace svg
 
 std::string escapeXml(const std::string& text) {
   std::string out;
@@ -95,24 +80,21 @@ std::string escapeXml(const std::string& text) {
 
 std::string passBarsSvg(const RunResult& run) {
   const int height = static_cast<int>(run.passes.size()) * kRowHeight + 50;
-  double maxMs = 0.0;
-  for (const auto& p : run.passes) {
-    maxMs = std::max({maxMs, p.gpu.p95, budgetFor(run, p.name).value_or(0.0) * 1.1});
-  }
-  maxMs = maxMs > 0 ? maxMs * 1.05 : 1.0;
+  const MsAxis axis = passAxis(run);
   const double plotWidth = kChartWidth - kLabelWidth - 20;
-  std::string svg = svgOpen(kChartWidth, height, "GPU time per pass (median, p5–p95) against budget, ms");
-  svg += axisTicks(maxMs, kLabelWidth, plotWidth, 10, height - 30);
+  auto xOf = [&](double ms) { return kLabelWidth + axis.fraction(ms) * plotWidth; };
+  std::string svg = open(kChartWidth, height, "chart-passes", "GPU time per pass (median, p5–p95) against budget, ms");
+  svg += axis.ticks(kLabelWidth, plotWidth, 10, height - 30);
   for (std::size_t i = 0; i < run.passes.size(); ++i) {
     const auto& p = run.passes[i];
     const int y = 14 + static_cast<int>(i) * kRowHeight;
-    auto xOf = [&](double ms) { return kLabelWidth + ms / maxMs * plotWidth; };
     svg += fmt::format(R"(<text x="{}" y="{}" text-anchor="end">{}</text>)" "\n", kLabelWidth - 6, y + 12,
                        escapeXml(p.name + (p.culled ? " (culled)" : "")));
+    if (p.culled) continue;
     const std::optional<double> budget = budgetFor(run, p.name);
     const bool over = budget && p.gpu.median > *budget;
-    svg += fmt::format(R"(<rect x="{}" y="{}" width="{:.1f}" height="14" fill="{}"><title>{}: median {:.4f} ms</title></rect>)" "\n",
-                       kLabelWidth, y, xOf(p.gpu.median) - kLabelWidth, over ? "#c0392b" : queueColor(p.queue),
+    svg += fmt::format(R"(<rect class="bar" x="{}" y="{}" width="{:.1f}" height="14" fill="{}"><title>{}: median {:.4f} ms</title></rect>)" "\n",
+                       kLabelWidth, y, std::max(1.0, xOf(p.gpu.median) - kLabelWidth), over ? "#c0392b" : queueColor(p.queue),
                        escapeXml(p.name), p.gpu.median);
     if (p.gpu.n > 1) {
       svg += fmt::format(R"(<line x1="{:.1f}" y1="{}" x2="{:.1f}" y2="{}" stroke="#222"/>)" "\n", xOf(p.gpu.p5), y + 7,
@@ -123,9 +105,10 @@ std::string passBarsSvg(const RunResult& run) {
                          xOf(*budget), y - 2, y + 16, *budget);
     }
   }
+  const std::string scale = axis.logarithmic ? "ms, log scale" : "ms";
   svg += queueLegend(run, 10, height - 2,
-                     run.budget ? "ms · bar: median, line: p5–p95 · dashed: budget, red: over budget"
-                                : "ms · bar: median, line: p5–p95");
+                     run.budget ? scale + " · bar: median, line: p5–p95 · dashed: budget, red: over budget"
+                                : scale + " · bar: median, line: p5–p95");
   return svg + "</svg>\n";
 }
 
@@ -137,7 +120,7 @@ std::string frameSeriesSvg(const RunResult& run) {
   for (double v : run.frameCpuMs) maxMs = std::max(maxMs, v);
   maxMs = maxMs > 0 ? maxMs * 1.1 : 1.0;
   const double plotWidth = kChartWidth - kLeft - 20;
-  std::string svg = svgOpen(kChartWidth, kHeight, "Frame time per measured frame, ms");
+  std::string svg = open(kChartWidth, kHeight, "chart-frames", "Frame time per measured frame, ms");
   const double step = niceStep(maxMs);
   for (double v = 0.0; v <= maxMs; v += step) {
     const double y = kBottom - v / maxMs * (kBottom - kTop);
@@ -170,81 +153,6 @@ std::string frameSeriesSvg(const RunResult& run) {
   svg += polyline(run.frameCpuMs, "#e08a2e", "CPU frame time");
   svg += fmt::format(R"(<text x="{}" y="{}" fill="#3f6fb5">— GPU frame</text><text x="{}" y="{}" fill="#e08a2e">— CPU frame (recording)</text><text x="{}" y="{}" fill="#555">measured frame 1 … {}</text>)" "\n",
                      kLeft, kHeight - 2, kLeft + 90, kHeight - 2, kLeft + 330, kHeight - 2, n);
-  return svg + "</svg>\n";
-}
-
-std::string queueTimelineSvg(const RunResult& run) {
-  // Lanes in a fixed order; passes placed at their median start offset when the workload reported
-  // timestamps, otherwise back to back per queue in declaration order (marked as such).
-  std::vector<std::string> queues;
-  for (const auto& p : run.passes) {
-    if (!p.culled && std::find(queues.begin(), queues.end(), p.queue) == queues.end()) queues.push_back(p.queue);
-  }
-  const bool measuredStarts = std::any_of(run.passes.begin(), run.passes.end(), [](const auto& p) { return !p.startMs.empty(); });
-  struct Box {
-    std::string name, queue;
-    double start, duration;
-  };
-  std::vector<Box> boxes;
-  std::map<std::string, double> cursor;
-  double end = 0.0;
-  for (const auto& p : run.passes) {
-    if (p.culled) continue;
-    const double start = measuredStarts && !p.startMs.empty() ? summarize(p.startMs).median : cursor[p.queue];
-    boxes.push_back({p.name, p.queue, start, p.gpu.median});
-    cursor[p.queue] = start + p.gpu.median;
-    end = std::max(end, start + p.gpu.median);
-  }
-  end = end > 0 ? end * 1.05 : 1.0;
-  constexpr int kLane = 34, kLeft = 90;
-  const int height = static_cast<int>(queues.size()) * kLane + 50;
-  const double plotWidth = kChartWidth - kLeft - 20;
-  std::string svg = svgOpen(kChartWidth, height, "Per-queue timeline of one frame (median times), ms");
-  svg += axisTicks(end, kLeft, plotWidth, 6, height - 30);
-  for (std::size_t q = 0; q < queues.size(); ++q) {
-    svg += fmt::format(R"(<text x="{}" y="{}" text-anchor="end">{}</text>)" "\n", kLeft - 6, 10 + q * kLane + 18,
-                       escapeXml(queues[q]));
-  }
-  std::map<std::string, std::vector<std::pair<double, double>>> labelled;  // x extents of outside labels, per lane
-  for (const auto& b : boxes) {
-    const auto lane = static_cast<std::size_t>(std::find(queues.begin(), queues.end(), b.queue) - queues.begin());
-    const double x = kLeft + b.start / end * plotWidth;
-    const double w = std::max(1.0, b.duration / end * plotWidth);
-    svg += fmt::format(R"(<rect x="{:.1f}" y="{}" width="{:.1f}" height="26" fill="{}" stroke="#fff"><title>{}: {:.4f} ms at {:.4f} ms</title></rect>)" "\n",
-                       x, 10 + lane * kLane, w, queueColor(b.queue), escapeXml(b.name), b.duration, b.start);
-    if (w > 40) {
-      svg += fmt::format(R"(<text x="{:.1f}" y="{}" fill="#fff" font-size="10">{}</text>)" "\n", x + 3, 10 + lane * kLane + 17,
-                         escapeXml(b.name.substr(0, static_cast<std::size_t>(w / 6))));
-    } else {
-      // Too narrow for its name: write it in dark text after the box, or before it, on whichever
-      // side has room up to the neighbouring box in the lane (and inside the chart).
-      double after = kChartWidth - 4 - (x + w), before = x - kLeft;
-      for (const auto& other : boxes) {
-        if (other.queue != b.queue || &other == &b) continue;
-        const double otherX = kLeft + other.start / end * plotWidth;
-        const double otherEnd = otherX + std::max(1.0, other.duration / end * plotWidth);
-        if (other.start > b.start) after = std::min(after, otherX - (x + w));
-        else before = std::min(before, x - otherEnd);
-      }
-      constexpr double kCharWidth = 5.6;  // at font-size 10
-      const auto fits = [&](double room) { return static_cast<std::size_t>(std::max(0.0, (room - 6) / kCharWidth)); };
-      const bool right = fits(after) >= b.name.size() || fits(after) >= fits(before);
-      const std::size_t chars = right ? fits(after) : fits(before);
-      const std::string label = b.name.size() <= chars ? b.name : b.name.substr(0, chars > 0 ? chars - 1 : 0) + "…";
-      const double width = kCharWidth * static_cast<double>(std::min(chars, b.name.size()));
-      const double from = right ? x + w + 3 : x - 3 - width, to = from + width;
-      auto& used = labelled[b.queue];  // one label may not cover another in the same lane
-      const bool clear = std::none_of(used.begin(), used.end(), [&](const auto& r) { return from < r.second && r.first < to; });
-      if (chars >= 4 && clear) {
-        used.emplace_back(from, to);
-        svg += fmt::format(R"(<text x="{:.1f}" y="{}" fill="#222" font-size="10" text-anchor="{}">{}</text>)" "\n",
-                           right ? x + w + 3 : x - 3, 10 + lane * kLane + 17, right ? "start" : "end", escapeXml(label));
-      }
-    }
-  }
-  svg += fmt::format(R"(<text x="{}" y="{}" fill="#555">ms{}</text>)" "\n", kLeft, height - 2,
-                     measuredStarts ? " (start times from GPU timestamps)"
-                                    : " (no start timestamps reported: passes drawn back to back per queue)");
   return svg + "</svg>\n";
 }
 

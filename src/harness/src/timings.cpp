@@ -51,6 +51,7 @@ nlohmann::json toJson(const HarnessOverhead& o) {
                        {"device_ms", s.deviceMs},
                        {"upload_ms", s.uploadMs},
                        {"graph_ms", s.graphMs},
+                       {"graph_compile_ms", s.graphCompileMs},
                        {"pipelines_ms", s.pipelinesMs},
                        {"pipelines", s.pipelines},
                        {"pipeline_cache", s.pipelineCache}}},

@@ -5,6 +5,7 @@
 #include "pixels.hpp"
 
 #include <fgb/core/error.hpp>
+#include <fgb/renderer/describe_device.hpp>
 #include <fgb/graph/dot.hpp>
 #include <fgb/vulkan/backend.hpp>
 
@@ -20,6 +21,7 @@ class ProofWorkload final : public Workload {
     device_ = vulkan::createDevice({.selector = config.device, .validation = config.validation});
     description_ = describeDevice(device_->adapter());
     settings_ = proofSettings(config, device_->sampleCounts());
+    rhi::checkRenderSize(device_->adapter(), settings_.width, settings_.height);
     resources_ = createProofResources(*device_, settings_);
     graph_ = device_->compile(buildProofGraph(settings_, resources_),
                               {.name = "builtin:proof", .queues = settings_.queues, .separateQueues = settings_.separateQueues});

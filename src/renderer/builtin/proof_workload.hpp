@@ -40,6 +40,5 @@ ProofResources createProofResources(rhi::Device& device, const ProofSettings& se
 graph::FrameGraph buildProofGraph(const ProofSettings& settings, const ProofResources& resources);
 
 std::unique_ptr<Workload> openProofWorkload(const WorkloadConfig& config);
-DeviceDescription describeDevice(const rhi::AdapterInfo& adapter);
 
 }  // namespace fgb::render

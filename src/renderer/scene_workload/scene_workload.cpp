@@ -15,6 +15,7 @@
 #include <fgb/core/error.hpp>
 #include <fgb/core/stopwatch.hpp>
 #include <fgb/graph/dot.hpp>
+#include <fgb/renderer/describe_device.hpp>
 #include <fgb/renderer/scene_workload.hpp>
 #include <fgb/scene/cache.hpp>
 #include <fgb/scene/load.hpp>
@@ -53,11 +54,6 @@ std::array<float, 4> backgroundClear(const scene::PostSettings& post) {
   const auto& b = features::kBackgroundRadiance;
   const auto channel = [&](float radiance) { return std::min(radiance * scale, 65504.0f); };  // R16F max
   return {channel(b[0]), channel(b[1]), channel(b[2]), 0.0f};
-}
-
-DeviceDescription describe(const rhi::AdapterInfo& adapter) {
-  return {adapter.index, adapter.name, adapter.driver, adapter.type, adapter.apiVersion, adapter.timestampPeriodNs,
-          adapter.hostTimestamps, adapter.queueFamilies};
 }
 
 uint32_t jsonCount(const nlohmann::json& section, const char* key, uint32_t fallback) {
@@ -110,8 +106,9 @@ class SceneWorkload final : public Workload {
     deviceOptions.validation = config.validation;
     deviceOptions.pipelineCacheDir = (cacheDir / "pipelines").string();
     device_ = vulkan::createDevice(deviceOptions);
-    description_ = describe(device_->adapter());
+    description_ = describeDevice(device_->adapter());
     settings_ = makeSettings(config, loaded_.description, device_->sampleCounts());
+    rhi::checkRenderSize(device_->adapter(), settings_.width, settings_.height);
     startup_.deviceMs = timer.lap();
 
     gpu_ = uploadScene(*device_, loaded_.scene, settings_);
@@ -249,7 +246,10 @@ class SceneWorkload final : public Workload {
       if (feature->enabled()) feature->declare(graph, board);
     rhi::GraphOptions options;
     options.name = "frame";
+    graph::CompileProfile profile;
+    options.compileProfile = &profile;
     graph_ = device_->compile(std::move(graph), options);
+    for (const double us : profile.microseconds) startup_.graphCompileMs += us / 1000.0;
     const graph::Extent extent = targets.outputExtent;
     hdrReadback_ = std::make_unique<ImageReadback>(*device_, hdrTexture_, features::kHdrFormat, extent, kHdrFinal);
     displayReadback_ =
@@ -263,8 +263,10 @@ class SceneWorkload final : public Workload {
       FrameTiming frame;
       for (uint32_t i = 0; i < nodes.size(); ++i) {
         const bool culled = compiled.nodes[i].culled;
+        // Begin offsets are -1 where the pass's queue family has no timestamps (the report says so).
+        const bool timed = !culled && i < timings.nodeMs.size();
         frame.passes.push_back({std::string(nodes[i].name), std::string(graph::toString(nodes[i].queue)), culled,
-                                culled || i >= timings.nodeMs.size() ? 0.0 : timings.nodeMs[i], -1.0});
+                                timed ? timings.nodeMs[i] : 0.0, timed ? timings.nodeStartMs[i] : -1.0});
       }
       frame.gpuFrameMs = timings.gpuMs;
       frame.cpuFrameMs = cpuMs_.empty() ? 0.0 : cpuMs_.front();

@@ -6,6 +6,7 @@
 #include <glm/ext/matrix_transform.hpp>
 #include <glm/trigonometric.hpp>
 
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -249,6 +250,8 @@ SceneDescription parseSceneText(const std::string& text, const std::filesystem::
 }
 
 SceneDescription parseSceneFile(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw InputError(path.string() + ": is a directory, not a scene file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path.string() + ": cannot open scene file");
   std::ostringstream text;

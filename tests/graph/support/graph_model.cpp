@@ -6,7 +6,7 @@ namespace {
 // Chain position of a version: how many writes separate it from the resource's first version.
 int chainPosition(const FrameGraph& graph, uint32_t version) {
   int position = 0;
-  for (uint32_t v = version; graph.versions()[v].previous != kInvalidIndex; v = graph.versions()[v].previous) {
+  for (uint32_t v = version; versionsOf(graph)[v].previous != kInvalidIndex; v = versionsOf(graph)[v].previous) {
     ++position;
   }
   return position;
@@ -27,7 +27,7 @@ GraphModel modelFromGraph(const FrameGraph& graph) {
     model.nodeType.push_back(decl.type);
     model.nodeClass.push_back(decl.queue);
     model.sideEffect.push_back(decl.sideEffect);
-    for (const Use& use : graph.uses(node)) {
+    for (const Use& use : usesOf(graph, node)) {
       ModelUse modelUse{.node = node, .resource = use.resource, .access = use.access,
                         .shaderStages = use.shaderStages};
       if (use.readVersion != kInvalidIndex) modelUse.readPos = chainPosition(graph, use.readVersion);

@@ -4,13 +4,22 @@
 // cross-check it against what FrameGraph recorded, so the reference never trusts the library.
 #pragma once
 
+#include "declaration.hpp"  // the library's own records (fgb_graph_internals)
+
 #include <fgb/graph/frame_graph.hpp>
+
+#include <span>
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
 namespace fgb::graph::test {
+
+using detail::Use;
+using detail::VersionDecl;
+inline std::span<const Use> usesOf(const FrameGraph& graph, uint32_t node) { return detail::Declared::uses(graph, node); }
+inline const std::vector<VersionDecl>& versionsOf(const FrameGraph& graph) { return detail::Declared::versions(graph); }
 
 inline constexpr int kNoPosition = -1;
 

@@ -13,7 +13,7 @@ uint64_t alignUp(uint64_t value, uint64_t alignment) { return (value + alignment
 Extent expectedExtent(const FrameGraph& graph, uint32_t resource) {
   const TextureDesc& desc = graph.resources()[resource].texture;
   if (!desc.extentFrom.valid()) return desc.extent;
-  const Extent source = expectedExtent(graph, graph.versions()[desc.extentFrom.version].resource);
+  const Extent source = expectedExtent(graph, versionsOf(graph)[desc.extentFrom.version].resource);
   auto shifted = [&desc](uint32_t v) { return std::max(1u, v >> desc.extentShift); };
   return {shifted(source.width), shifted(source.height), shifted(source.depth)};
 }
@@ -21,7 +21,7 @@ Extent expectedExtent(const FrameGraph& graph, uint32_t resource) {
 uint64_t expectedSize(const FrameGraph& graph, uint32_t resource) {
   const BufferDesc& desc = graph.resources()[resource].buffer;
   if (!desc.sizeFrom.valid()) return desc.size;
-  return expectedSize(graph, graph.versions()[desc.sizeFrom.version].resource);
+  return expectedSize(graph, versionsOf(graph)[desc.sizeFrom.version].resource);
 }
 
 MemoryRequirements requirementsFor(const CompileOptions& options, const ResourceDecl& decl,

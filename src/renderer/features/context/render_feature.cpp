@@ -1,5 +1,9 @@
 #include "render_feature.hpp"
 
+#include <fgb/rhi/job_context.hpp>
+
+#include <cstring>
+
 namespace fgb::features {
 std::pair<uint32_t, uint32_t> GpuScene::groupRange(DrawClass drawClass) const {
   uint32_t first = 0;
@@ -39,6 +43,28 @@ graph::NodeBuilder addForwardPass(graph::FrameGraph& graph, FrameTargets& target
   if (targets.exposure.valid())
     node.read(targets.exposure, graph::Access::StorageRead, graph::kStageVertexShader | graph::kStageFragmentShader);
   return node;
+}
+
+rhi::BufferId createReadbackBuffer(rhi::Device& device, const std::string& name, uint64_t bytes) {
+  const rhi::BufferId buffer = device.createBuffer({name, bytes, rhi::kBufferTransferDst, rhi::MemoryUsage::Readback});
+  std::memset(device.mapped(buffer).data(), 0, bytes);
+  return buffer;
+}
+
+void declareReadback(graph::FrameGraph& graph, std::string_view nodeName, graph::BufferHandle source,
+                     rhi::BufferId readback, std::string_view name, uint64_t bytes) {
+  const graph::ImportState hostState{graph::kStageHost | graph::kStageTransfer,
+                                     graph::kAccessHostRead | graph::kAccessTransferWrite, graph::Layout::Undefined,
+                                     graph::QueueClass::Graphics};
+  auto target = graph.importBuffer(name, {bytes, {}}, rhi::external(readback), hostState, hostState);
+  auto node = graph.addNode(nodeName, graph::NodeType::Transfer);
+  node.read(source, graph::Access::TransferSrc);
+  target = node.write(target, graph::Access::TransferDst);
+  node.sideEffect();
+  node.setJob([source, target, bytes](graph::JobContext& context) {
+    auto& ctx = rhi::rhiContext(context);
+    ctx.cmd().copyBuffer(ctx.buffer(source), ctx.buffer(target), bytes);
+  });
 }
 
 }  // namespace fgb::features

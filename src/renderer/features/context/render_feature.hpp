@@ -43,4 +43,11 @@ class IRenderFeature {
 graph::NodeBuilder addForwardPass(graph::FrameGraph& graph, FrameTargets& targets, std::string_view name,
                                   bool writesDepth);
 
+// How features read statistics back: a zero-filled host-readable buffer of `bytes` (created once),
+// into which a side-effect transfer node `nodeName` copies `source` every frame. The graph imports
+// the buffer under its own `name`; the host reads it through Device::mapped() after the frame.
+rhi::BufferId createReadbackBuffer(rhi::Device& device, const std::string& name, uint64_t bytes);
+void declareReadback(graph::FrameGraph& graph, std::string_view nodeName, graph::BufferHandle source,
+                     rhi::BufferId readback, std::string_view name, uint64_t bytes);
+
 }  // namespace fgb::features

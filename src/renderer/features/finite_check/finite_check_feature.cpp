@@ -37,7 +37,7 @@ bool isFloatColor(graph::Format format) {
 graph::Extent extentOf(const graph::FrameGraph& graph, uint32_t resource) {
   const graph::TextureDesc& desc = graph.resources()[resource].texture;
   if (!desc.extentFrom.valid()) return desc.extent;
-  const graph::Extent base = extentOf(graph, graph.versions()[desc.extentFrom.version].resource);
+  const graph::Extent base = extentOf(graph, graph.resourceOf(desc.extentFrom));
   return {std::max(1u, base.width >> desc.extentShift), std::max(1u, base.height >> desc.extentShift), 1};
 }
 
@@ -55,7 +55,7 @@ std::vector<FiniteCheckFeature::Checked> FiniteCheckFeature::findCheckedPasses(c
   std::vector<Checked> passes;
   for (uint32_t node = 0; node < graph.nodes().size(); ++node) {
     Checked checked{node, std::string(graph.nodes()[node].name), {}};
-    for (const graph::Use& use : graph.uses(node)) {
+    for (const graph::ResourceAccess& use : graph.accesses(node)) {
       const graph::ResourceDecl& resource = graph.resources()[use.resource];
       if (use.writeVersion == graph::kInvalidIndex || resource.kind != graph::ResourceKind::Texture) continue;
       if (!isFloatColor(resource.texture.format)) continue;

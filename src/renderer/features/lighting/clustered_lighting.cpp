@@ -49,9 +49,7 @@ void ClusteredLighting::initialize(FeatureInit& init) {
   cullPipeline_ = init.device.createComputePipeline({"clustered light cull", "renderer/light_cull.comp"});
   bounds_ = init.device.createBuffer(
       {"cluster bounds", uint64_t{32} * clusterCount_, rhi::kBufferStorage, rhi::MemoryUsage::DeviceLocal});
-  countsReadback_ = init.device.createBuffer(
-      {"cluster counts readback", uint64_t{4} * clusterCount_, rhi::kBufferTransferDst, rhi::MemoryUsage::Readback});
-  std::memset(init.device.mapped(countsReadback_).data(), 0, uint64_t{4} * clusterCount_);
+  countsReadback_ = createReadbackBuffer(init.device, "cluster counts readback", uint64_t{4} * clusterCount_);
 }
 
 graph::BufferHandle ClusteredLighting::declareBounds(graph::FrameGraph& graph) {
@@ -72,22 +70,6 @@ graph::BufferHandle ClusteredLighting::declareBounds(graph::FrameGraph& graph) {
     state->builtFor = projection;
   });
   return bounds;
-}
-
-void ClusteredLighting::declareStatsReadback(graph::FrameGraph& graph, graph::BufferHandle counts) {
-  const graph::ImportState hostState{graph::kStageHost | graph::kStageTransfer,
-                                     graph::kAccessHostRead | graph::kAccessTransferWrite, graph::Layout::Undefined,
-                                     graph::QueueClass::Graphics};
-  auto target = graph.importBuffer("cluster counts readback", {uint64_t{4} * clusterCount_, {}},
-                                   rhi::external(countsReadback_), hostState, hostState);
-  auto node = graph.addNode("Light Stats Readback", graph::NodeType::Transfer);
-  node.read(counts, Access::TransferSrc);
-  target = node.write(target, Access::TransferDst);
-  node.sideEffect();
-  node.setJob([counts, target, bytes = uint64_t{4} * clusterCount_](graph::JobContext& context) {
-    auto& ctx = rhi::rhiContext(context);
-    ctx.cmd().copyBuffer(ctx.buffer(counts), ctx.buffer(target), bytes);
-  });
 }
 
 void ClusteredLighting::declare(graph::FrameGraph& graph, Blackboard& board) {
@@ -111,7 +93,8 @@ void ClusteredLighting::declare(graph::FrameGraph& graph, Blackboard& board) {
     ctx.cmd().push(push);
     ctx.cmd().dispatch(clusters);  // one workgroup per cluster
   });
-  declareStatsReadback(graph, lists.counts);
+  declareReadback(graph, "Light Stats Readback", lists.counts, countsReadback_, "cluster counts readback",
+                  uint64_t{4} * clusterCount_);
   board.set(lists);
 }
 

@@ -30,7 +30,6 @@ class ClusteredLighting final : public IRenderFeature {
   };
 
   graph::BufferHandle declareBounds(graph::FrameGraph& graph);
-  void declareStatsReadback(graph::FrameGraph& graph, graph::BufferHandle counts);
 
   rhi::Device* device_ = nullptr;
   const GpuScene* scene_ = nullptr;

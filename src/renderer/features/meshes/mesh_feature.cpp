@@ -151,9 +151,7 @@ void MeshFeature::initialize(FeatureInit& init) {
   injectNanPass_ = init.settings.injectNanPass;
   if (depthPrepass_) pipelines_.depthOnly = init.device.createGraphicsPipeline(depthOnlyPipeline(init.settings));
   if (hasTransparent_) pipelines_.transparent = init.device.createGraphicsPipeline(forwardPipeline(init.settings, true));
-  statsReadback_ = init.device.createBuffer(
-      {"mesh cull stats readback", kStatsBytes, rhi::kBufferTransferDst, rhi::MemoryUsage::Readback});
-  std::memset(init.device.mapped(statsReadback_).data(), 0, kStatsBytes);
+  statsReadback_ = createReadbackBuffer(init.device, "mesh cull stats readback", kStatsBytes);
 }
 
 MeshCullOutputs MeshFeature::declareCull(graph::FrameGraph& graph) {
@@ -214,22 +212,6 @@ MeshCullOutputs MeshFeature::declareCull(graph::FrameGraph& graph) {
     ctx.cmd().dispatch(kBatchCount);
   });
   return out;
-}
-
-void MeshFeature::declareStatsReadback(graph::FrameGraph& graph, graph::BufferHandle stats) {
-  const graph::ImportState hostState{graph::kStageHost | graph::kStageTransfer,
-                                     graph::kAccessHostRead | graph::kAccessTransferWrite, graph::Layout::Undefined,
-                                     graph::QueueClass::Graphics};
-  auto target = graph.importBuffer("mesh cull stats readback", {kStatsBytes, {}}, rhi::external(statsReadback_),
-                                   hostState, hostState);
-  auto node = graph.addNode("Mesh Stats Readback", graph::NodeType::Transfer);
-  node.read(stats, Access::TransferSrc);
-  target = node.write(target, Access::TransferDst);
-  node.sideEffect();
-  node.setJob([stats, target](graph::JobContext& context) {
-    auto& ctx = rhi::rhiContext(context);
-    ctx.cmd().copyBuffer(ctx.buffer(stats), ctx.buffer(target), kStatsBytes);
-  });
 }
 
 void MeshFeature::declareDraw(graph::FrameGraph& graph, Blackboard& board, std::vector<DrawClass> classes,
@@ -299,7 +281,7 @@ void MeshFeature::declareDepthPrepass(graph::FrameGraph& graph, Blackboard& boar
 void MeshFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
   if (!enabled()) return;
   const MeshCullOutputs cull = declareCull(graph);
-  declareStatsReadback(graph, cull.stats);
+  declareReadback(graph, "Mesh Stats Readback", cull.stats, statsReadback_, "mesh cull stats readback", kStatsBytes);
   if (depthPrepass_) declareDepthPrepass(graph, board, cull);
   declareDraw(graph, board, {DrawClass::Opaque, DrawClass::Masked}, "Mesh Render", cull);
   if (hasTransparent_) declareDraw(graph, board, {DrawClass::Transparent}, "Mesh Render Transparent", cull);

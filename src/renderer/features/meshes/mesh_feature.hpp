@@ -55,7 +55,6 @@ class MeshFeature final : public IRenderFeature {
 
   MeshCullOutputs declareCull(graph::FrameGraph& graph);
   void declareDepthPrepass(graph::FrameGraph& graph, Blackboard& board, const MeshCullOutputs& cull);
-  void declareStatsReadback(graph::FrameGraph& graph, graph::BufferHandle stats);
   void declareDraw(graph::FrameGraph& graph, Blackboard& board, std::vector<DrawClass> batches,
                    std::string_view nodeName, const MeshCullOutputs& cull);
 

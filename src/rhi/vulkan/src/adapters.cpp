@@ -70,6 +70,7 @@ rhi::AdapterInfo describeAdapter(VkPhysicalDevice device, uint32_t index) {
   info.type = typeName(p.deviceType);
   info.apiVersion = versionString(p.apiVersion);
   info.timestampPeriodNs = p.limits.timestampPeriod;
+  info.maxImageDimension2D = p.limits.maxImageDimension2D;
   // CPU implementations (lavapipe) read the host clock for "GPU" timestamps.
   info.hostTimestamps = p.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
 

@@ -5,6 +5,7 @@
 
 #include "translate.hpp"
 
+#include <fgb/core/align.hpp>
 #include <fgb/core/error.hpp>
 #include <fgb/graph/compiler.hpp>
 
@@ -25,7 +26,15 @@ rhi::BufferDesc bufferDesc(std::string_view name, const graph::BufferDesc& b, rh
   return {std::string(name), b.size, usage, rhi::MemoryUsage::DeviceLocal};
 }
 
-uint64_t alignUp(uint64_t value, uint64_t alignment) { return (value + alignment - 1) / alignment * alignment; }
+// Per resource, the union of `usageFor(access)` over every use the graph declares of it.
+template <typename Usage>
+std::vector<Usage> usagesOf(const graph::FrameGraph& graph, Usage (*usageFor)(graph::Access)) {
+  std::vector<Usage> usage(graph.resources().size(), 0);
+  for (uint32_t n = 0; n < graph.nodes().size(); ++n) {
+    for (const graph::ResourceAccess& use : graph.accesses(n)) usage[use.resource] |= usageFor(use.access);
+  }
+  return usage;
+}
 
 }  // namespace
 
@@ -43,19 +52,18 @@ VulkanGraph::VulkanGraph(VulkanDevice& device, graph::FrameGraph&& graph, const 
     createSyncAndSlots();
     createScopedSets();
   } catch (...) {
-    device_.unregisterGraph(id_);
-    for (uint32_t r = 0; r < ownsResource_.size(); ++r) {
-      if (!ownsResource_[r]) continue;
-      if (buffers_[r].valid()) device_.destroyBuffer(buffers_[r]);
-      if (textures_[r].valid()) device_.destroyTexture(textures_[r]);
-    }
-    for (const auto& heap : heaps_) device_.memory().free(heap);
+    release();  // the destructor will not run
     throw;
   }
 }
 
 VulkanGraph::~VulkanGraph() {
   waitForAll();
+  release();
+}
+
+// Gives back what the graph registered and created: its registration, its transients and their heaps.
+void VulkanGraph::release() {
   device_.unregisterGraph(id_);
   for (uint32_t r = 0; r < ownsResource_.size(); ++r) {
     if (!ownsResource_[r]) continue;
@@ -111,6 +119,7 @@ graph::CompileOptions VulkanGraph::compileOptions() {
   }
   options.buffersShareFamilies = true;  // VulkanDevice::bufferInfo
   options.cull = options_.cull;
+  options.profile = options_.compileProfile;
   options.alias = options_.alias;
 
   // Real requirements of the resource as it will be created (usages gathered from the graph).
@@ -146,17 +155,9 @@ graph::CompileOptions VulkanGraph::compileOptions() {
   return options;
 }
 
-std::vector<rhi::TextureUsage> VulkanGraph::textureUsages() const {
-  std::vector<rhi::TextureUsage> usage(declaration_.resources().size(), 0);
-  for (const auto& use : declaration_.allUses()) usage[use.resource] |= textureUsageFor(use.access);
-  return usage;
-}
+std::vector<rhi::TextureUsage> VulkanGraph::textureUsages() const { return usagesOf(declaration_, textureUsageFor); }
 
-std::vector<rhi::BufferUsage> VulkanGraph::bufferUsages() const {
-  std::vector<rhi::BufferUsage> usage(declaration_.resources().size(), 0);
-  for (const auto& use : declaration_.allUses()) usage[use.resource] |= bufferUsageFor(use.access);
-  return usage;
-}
+std::vector<rhi::BufferUsage> VulkanGraph::bufferUsages() const { return usagesOf(declaration_, bufferUsageFor); }
 
 void VulkanGraph::createResources() {
   const auto& decls = declaration_.resources();
@@ -318,7 +319,7 @@ void VulkanGraph::listTouchedHeaps() {
   std::vector<uint32_t> seenInStep(compiled_.aliasing.heaps.size(), graph::kInvalidIndex);
   for (uint32_t s = 0; s < steps_.size(); ++s) {
     steps_[s].firstHeap = static_cast<uint32_t>(stepHeaps_.size());
-    for (const graph::Use& use : declaration_.uses(steps_[s].node)) {
+    for (const graph::ResourceAccess& use : declaration_.accesses(steps_[s].node)) {
       const uint32_t heap = compiled_.aliasing.placements[use.resource].heap;
       if (heap == graph::kInvalidIndex || seenInStep[heap] == s) continue;
       seenInStep[heap] = s;
@@ -515,7 +516,7 @@ void VulkanGraph::createScopedSets() {
     const auto add = [](std::vector<uint32_t>& list, uint32_t slot) {
       if (slot != rhi::kInvalidId) list.push_back(slot);
     };
-    for (const graph::Use& use : declaration_.uses(steps_[s].node)) {
+    for (const graph::ResourceAccess& use : declaration_.accesses(steps_[s].node)) {
       const bool storage = use.access == graph::Access::StorageRead || use.access == graph::Access::StorageWrite ||
                            use.access == graph::Access::StorageReadWrite;
       if (buffers_[use.resource].valid()) {

@@ -81,6 +81,7 @@ class VulkanGraph final : public rhi::ExecutableGraph {
 
   // executable_graph.cpp
   graph::CompileOptions compileOptions();
+  void release();  // unregisters, destroys the transients, frees the heaps
   void mapQueues(uint32_t requested, bool separate);
   std::vector<rhi::TextureUsage> textureUsages() const;
   std::vector<rhi::BufferUsage> bufferUsages() const;

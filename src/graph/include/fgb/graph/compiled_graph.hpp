@@ -2,9 +2,8 @@
 // left to make. Indices refer to FrameGraph::nodes()/resources() unless named otherwise.
 #pragma once
 
-#include <fgb/graph/frame_graph.hpp>
-
 #include <cstdint>
+#include <fgb/graph/frame_graph.hpp>
 #include <string>
 #include <vector>
 
@@ -18,8 +17,8 @@ struct Edge {
 
 enum class CullReason : uint8_t {
   Alive,
-  OutputsUnread,     // writes only resources nobody alive reads, none imported
-  NoOutputs,         // declares no writes and no side effect
+  OutputsUnread,  // writes only resources nobody alive reads, none imported
+  NoOutputs,      // declares no writes and no side effect
 };
 
 // The text saying why a node was culled is built on demand by cullDiagnostic() or CullDiagnostics
@@ -27,8 +26,8 @@ enum class CullReason : uint8_t {
 struct NodeInfo {
   bool culled = false;
   CullReason reason = CullReason::Alive;
-  uint32_t level = 0;          // longest-path dependency level (alive nodes)
-  uint32_t queue = 0;          // queue index in [0, queueCount)
+  uint32_t level = 0;                   // longest-path dependency level (alive nodes)
+  uint32_t queue = 0;                   // queue index in [0, queueCount)
   uint32_t orderIndex = kInvalidIndex;  // position in CompiledGraph::order
   uint32_t step = kInvalidIndex;        // index into CompiledGraph::steps
   uint32_t submit = kInvalidIndex;      // index into CompiledGraph::submits
@@ -109,7 +108,7 @@ struct Placement {
 
 struct Heap {
   ResourceKind kind = ResourceKind::Texture;  // buffers and images never share a heap (granularity)
-  uint32_t memoryTypeBits = ~0u;  // every resource placed in it has exactly these bits
+  uint32_t memoryTypeBits = ~0u;              // every resource placed in it has exactly these bits
   uint64_t size = 0;
   uint64_t alignment = 1;
 };
@@ -117,8 +116,8 @@ struct Heap {
 struct AliasingPlan {
   std::vector<Placement> placements;  // per resource
   std::vector<Heap> heaps;
-  uint64_t peakBytesAliased = 0;      // sum of heap sizes
-  uint64_t peakBytesUnaliased = 0;    // sum of every transient's aligned size
+  uint64_t peakBytesAliased = 0;    // sum of heap sizes
+  uint64_t peakBytesUnaliased = 0;  // sum of every transient's aligned size
 };
 
 // Resolved descriptions (dependent fields replaced by values).
@@ -129,41 +128,31 @@ struct ResolvedResource {
 };
 
 struct CompiledGraph {
-  // A graph is compiled every frame: destroying a CompiledGraph hands its arrays to a per-thread
-  // pool that the next compile() on that thread draws from, so a frame reuses the previous frame's
-  // storage instead of allocating (and page-faulting) anew.
-  CompiledGraph() = default;
-  ~CompiledGraph();
-  CompiledGraph(const CompiledGraph&) = default;
-  CompiledGraph& operator=(const CompiledGraph&) = default;
-  CompiledGraph(CompiledGraph&&) noexcept = default;
-  CompiledGraph& operator=(CompiledGraph&&) noexcept = default;
-
   uint32_t queueCount = 1;
-  std::vector<NodeInfo> nodes;          // per declared node
-  std::vector<uint32_t> order;          // alive nodes, topological, levels non-decreasing
-  std::vector<Edge> edges;              // dependency edges between alive nodes (deduplicated)
-  std::vector<Edge> syncEdges;          // G*: cross-queue edges kept after SSIS pruning
-  std::vector<Step> steps;              // order, grouped by queue then submit (see submits)
+  std::vector<NodeInfo> nodes;  // per declared node
+  std::vector<uint32_t> order;  // alive nodes, topological, levels non-decreasing
+  std::vector<Edge> edges;      // dependency edges between alive nodes (deduplicated)
+  std::vector<Edge> syncEdges;  // G*: cross-queue edges kept after SSIS pruning
+  std::vector<Step> steps;      // order, grouped by queue then submit (see submits)
   std::vector<Barrier> barriers;
-  std::vector<Submit> submits;          // grouped by queue, ascending signal values per queue
+  std::vector<Submit> submits;  // grouped by queue, ascending signal values per queue
   std::vector<uint32_t> submitsPerQueue;
   std::vector<ResolvedResource> resources;  // per declared resource
-  std::vector<bool> resourceAlive;           // used by at least one alive node
-  std::vector<Lifetime> lifetimes;           // per resource (in step indices)
+  std::vector<bool> resourceAlive;          // used by at least one alive node
+  std::vector<Lifetime> lifetimes;          // per resource (positions in `order`)
   AliasingPlan aliasing;
 };
 
 // Why `node` was culled, for a person: "writes 'a' v3, 'b' v5, none imported; nothing reads them",
 // "...; read only by culled nodes 'x', 'y'", or "declares no writes and no side effect". Empty for a
-// node that was not culled. Scans the uses of the nodes declared after `node`: to describe many
-// nodes, build one CullDiagnostics instead (calling this for every culled node is quadratic).
+// node that was not culled. Indexes the whole graph (O(nodes + uses)): to describe many nodes,
+// build one CullDiagnostics instead.
 std::string cullDiagnostic(const FrameGraph& graph, const CompiledGraph& compiled, uint32_t node);
 
 // cullDiagnostic() for many nodes of one compiled graph (a Graphviz dump describes every culled
-// node). The constructor indexes, in O(nodes + uses), the readers of every version; then
-// describe(node) costs only the uses of `node` and the readers of what it writes. Holds references to
-// `graph` and `compiled`, which must outlive it and stay unchanged.
+// node). The constructor indexes the readers of every version; then describe(node) costs only the
+// uses of `node` and the readers of what it writes. Holds references to `graph` and `compiled`,
+// which must outlive it and stay unchanged.
 class CullDiagnostics {
  public:
   CullDiagnostics(const FrameGraph& graph, const CompiledGraph& compiled);
@@ -174,8 +163,8 @@ class CullDiagnostics {
  private:
   const FrameGraph& graph_;
   const CompiledGraph& compiled_;
-  // Compressed adjacency: the nodes that read version v are readers_[readerStart_[v],
-  // readerStart_[v + 1]), in declaration order, once per use (see detail::indexVersionReaders).
+  // The nodes that read version v are readers_[readerStart_[v], readerStart_[v + 1]), in
+  // declaration order, once per use.
   std::vector<uint32_t> readerStart_;
   std::vector<uint32_t> readers_;
 };

@@ -1,28 +1,28 @@
-// Compiles a declared FrameGraph into a CompiledGraph:
-//   1. edges from versions (RAW, WAR, WAW) and cycle detection (names the nodes on the cycle);
-//   2. culling by flood fill from imported resources and side-effect nodes, with a reason per node;
-//   3. longest-path dependency levels and a topological order stable-sorted by level;
-//   4. queue assignment and SSIS pruning of cross-queue edges (thesis Algorithm 3) giving G*;
-//   5. submit placement and timeline values;
-//   6. lifetimes, extended across queues until the consuming queue has waited;
-//   7. transient memory aliasing by placement;
-//   8. a barrier plan per step (transitions, ownership release/acquire, first use from UNDEFINED).
-// Every stage is O(nodes + resources + edges) (aliasing adds a log factor).
+// Compiles a declared FrameGraph into a CompiledGraph, in stages (compiler.cpp runs them in order):
+//   1. resources: dependent fields resolved to values;
+//   2. culling by flood fill back from imported resources and side-effect nodes, a reason per node;
+//   3. dependency edges among alive nodes from versions (RAW, WAR, WAW, reader chains), their
+//      longest-path levels, and cycle detection over every declared node (names the cycle);
+//   4. a topological order, stable-sorted by level;
+//   5. SSIS pruning of cross-queue edges (thesis Algorithm 3), giving G*;
+//   6. steps and submits with timeline values;
+//   7. one walk over the uses in order: lifetimes, transient memory aliasing by placement (a range is
+//      reused only once every queue that touched it has been waited for), and the barrier plan
+//      (transitions, ownership release/acquire, first use from UNDEFINED).
+// Every stage is linear in nodes + resources + uses + edges, but for placement's search of free
+// ranges and SSIS's greedy cover (both bounded by small factors: free ranges per heap, queues).
 #pragma once
 
+#include <array>
 #include <fgb/graph/compiled_graph.hpp>
 #include <fgb/graph/frame_graph.hpp>
-
-#include <array>
 #include <functional>
 
 namespace fgb::graph {
 
 // Wall time of each compiler stage, summed over the compiles it was handed to (see
 // CompileOptions::profile). Indexed by CompileStage.
-enum class CompileStage : uint8_t {
-  Resources, Cull, Dependencies, Sort, Ssis, Submits, Barriers, Count
-};
+enum class CompileStage : uint8_t { Resources, Cull, Dependencies, Sort, Ssis, Submits, Barriers, Count };
 const char* toString(CompileStage stage);
 
 struct CompileProfile {

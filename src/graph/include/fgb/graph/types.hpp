@@ -53,8 +53,7 @@ enum AccessBits : uint32_t {
 };
 using AccessMask = uint32_t;
 inline constexpr AccessMask kWriteAccesses = kAccessShaderStorageWrite | kAccessColorAttachmentWrite |
-                                             kAccessDepthStencilWrite | kAccessTransferWrite |
-                                             kAccessHostWrite;
+                                             kAccessDepthStencilWrite | kAccessTransferWrite | kAccessHostWrite;
 
 enum class Layout : uint8_t {
   Undefined,
@@ -99,33 +98,15 @@ struct AccessInfo {
 };
 AccessInfo accessInfo(Access access, NodeType nodeType, StageMask shaderStages = kStageNone);
 
-constexpr bool isWriteAccess(Access access) {
-  switch (access) {
-    case Access::StorageWrite:
-    case Access::StorageReadWrite:
-    case Access::ColorAttachmentWrite:
-    case Access::ColorAttachmentReadWrite:
-    case Access::DepthAttachmentWrite:
-    case Access::DepthAttachmentReadWrite:
-    case Access::ResolveDst:
-    case Access::TransferDst: return true;
-    default: return false;
-  }
-}
+// accessInfo(access, ...).writes: whether the access produces a new version.
+bool isWriteAccess(Access access);
 
 std::string_view toString(Access access);
 std::string_view toString(NodeType type);
 std::string_view toString(QueueClass queue);
 std::string_view toString(Layout layout);
 
-// Inline, like isWriteAccess: declaring a node asks for it.
-constexpr QueueClass defaultQueue(NodeType type) {
-  switch (type) {
-    case NodeType::Graphics: return QueueClass::Graphics;
-    case NodeType::Compute: return QueueClass::Compute;
-    case NodeType::Transfer: return QueueClass::Transfer;
-  }
-  return QueueClass::Graphics;
-}
+// The queue class a node of `type` runs on unless declared otherwise.
+QueueClass defaultQueue(NodeType type);
 
 }  // namespace fgb::graph

@@ -5,11 +5,12 @@
 #include <cstdint>
 #include <fgb/harness/image.hpp>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace fgb::harness {
 
-std::string base64(const std::vector<uint8_t>& bytes);
+std::string base64(std::string_view bytes);
 
 // <img> of `image` shrunk to at most `maxWidth` pixels wide, as an inline PNG.
 std::string imgTag(const Image& image, const std::string& alt, uint32_t maxWidth = 420);

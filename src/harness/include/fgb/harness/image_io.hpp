@@ -5,10 +5,9 @@
 
 #include <fgb/harness/image.hpp>
 
-#include <cstdint>
 #include <filesystem>
+#include <string>
 #include <utility>
-#include <vector>
 
 namespace fgb::harness {
 
@@ -27,7 +26,7 @@ Image readPng(const std::filesystem::path& path);  // encoding Srgb, values in [
 void writeExr(const std::filesystem::path& path, const Image& linear);
 // 8-bit RGB. Linear images are sRGB-encoded (clamped); sRGB images are stored as they are.
 void writePng(const std::filesystem::path& path, const Image& image);
-// The PNG file writePng would write, in memory (for data: URIs in single-file reports).
-std::vector<uint8_t> encodePng(const Image& image);
+// The bytes writePng stores, in memory (for data: URIs in report.html).
+std::string encodePng(const Image& image);
 
 }  // namespace fgb::harness

@@ -3,12 +3,24 @@
 
 #include <fgb/harness/timings.hpp>
 
+#include <cstdint>
 #include <string>
+#include <string_view>
 
 namespace fgb::harness {
 
+// Pictures report.html shows inline (data: URIs), each the bytes of a PNG file; empty ones are left
+// out. With a golden, the reference, this run's frame and the FLIP heat map between them appear
+// side by side, with a toggle that flips one view between reference and test.
+struct ReportImages {
+  std::string frame;      // frame.png
+  std::string reference;  // the golden's display image
+  std::string heatMap;    // FLIP heat map of frame against reference
+  uint32_t width = 0, height = 0;
+};
+
 std::string markdownReport(const RunResult& run);
-std::string htmlReport(const RunResult& run);
+std::string htmlReport(const RunResult& run, const ReportImages& images = {});
 
 // The charts, each a standalone <svg> element (exposed for tests and for embedding elsewhere).
 std::string passBarsSvg(const RunResult& run);        // per-pass median (p5–p95) against budget
@@ -22,6 +34,8 @@ std::string timestampSourceNote(const render::DeviceDescription& device);
 std::string hostOverheadNote(const RunResult& run);
 
 std::string escapeXml(const std::string& text);
+std::string base64(std::string_view bytes);
+std::string pngDataUri(std::string_view png);  // "data:image/png;base64,..."
 std::string msaaLabel(uint32_t msaa);  // "4", or "scene default" for 0
 
 }  // namespace fgb::harness

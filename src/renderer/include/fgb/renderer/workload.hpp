@@ -81,6 +81,7 @@ struct StartupTimes {
   uint32_t pipelines = 0;
   std::string pipelineCache = "off";  // on-disk cache at start: off | cold | warm
   double graphMs = 0.0;        // features, frame-graph declaration and compilation
+  double graphCompileMs = 0.0; // graph::compile() of the frame graph alone (part of graphMs)
 };
 
 enum class GraphDetail { Brief, Full };

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <fgb/graph/compiled_graph.hpp>
+#include <fgb/graph/compiler.hpp>
 #include <fgb/graph/frame_graph.hpp>
 #include <fgb/rhi/types.hpp>
 
@@ -25,10 +26,16 @@ struct AdapterInfo {
   double timestampPeriodNs = 1.0;
   uint32_t timestampValidBits = 64;
   bool hostTimestamps = false; // the device's "GPU" clock is the host clock (CPU implementations)
+  uint32_t maxImageDimension2D = 0;  // the largest width or height of a 2D image
   std::vector<std::string> queueFamilies;  // "0: graphics|compute|transfer x1"
   bool usable = true;          // meets the backend's requirements (Vulkan 1.3 features)
   std::string unusableReason;
 };
+
+// A render size the adapter cannot hold as one 2D image is bad input: InputError naming
+// --width/--height and the adapter's limit (instead of an allocation failing later as "out of
+// device memory"). Nothing is checked when the limit is unknown (0).
+void checkRenderSize(const AdapterInfo& adapter, uint32_t width, uint32_t height);
 
 struct DeviceOptions {
   std::string selector = "auto";  // auto | lavapipe | gpu | INDEX
@@ -60,6 +67,8 @@ struct GraphOptions {
   bool cull = true;
   bool alias = true;
   bool timestamps = true;
+  // When set, graph::compile() adds its stages' times to it (CompileOptions::profile).
+  graph::CompileProfile* compileProfile = nullptr;
   // Test only: drop every barrier that keeps the layout (same-layout RAW/WAW/WAR), to prove that
   // synchronization validation catches the hazards they prevent.
   bool testDropSameLayoutBarriers = false;

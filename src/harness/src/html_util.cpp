@@ -1,30 +1,12 @@
-#include <fgb/harness/html_util.hpp>
-
-#include <fgb/harness/image_io.hpp>
-#include <fgb/harness/report.hpp>
-
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
+#include <fgb/harness/html_util.hpp>
+#include <fgb/harness/image_io.hpp>
+#include <fgb/harness/report.hpp>
 
 namespace fgb::harness {
-
-std::string base64(std::string_view bytes) {
-  static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  out.reserve((bytes.size() + 2) / 3 * 4);
-  for (std::size_t i = 0; i < bytes.size(); i += 3) {
-    const uint32_t b0 = uint8_t(bytes[i]), b1 = i + 1 < bytes.size() ? uint8_t(bytes[i + 1]) : 0u,
-                   b2 = i + 2 < bytes.size() ? uint8_t(bytes[i + 2]) : 0u;
-    const uint32_t triple = (b0 << 16) | (b1 << 8) | b2;
-    out += kAlphabet[(triple >> 18) & 63];
-    out += kAlphabet[(triple >> 12) & 63];
-    out += i + 1 < bytes.size() ? kAlphabet[(triple >> 6) & 63] : '=';
-    out += i + 2 < bytes.size() ? kAlphabet[triple & 63] : '=';
-  }
-  return out;
-}
 
 std::string imgTag(const Image& image, const std::string& alt, uint32_t maxWidth) {
   const Image thumb = shrinkToWidth(image, maxWidth);

@@ -1,5 +1,5 @@
-// Pieces of the self-contained HTML reports (sweep.html, stress.html): images as data: URIs and a
-// log10 axis for inline SVG charts.
+// Pieces of the self-contained HTML reports (sweep.html, stress.html): images as data: URIs (with
+// base64 from report.hpp) and a log10 axis for inline SVG charts.
 #pragma once
 
 #include <cstdint>
@@ -9,8 +9,6 @@
 #include <vector>
 
 namespace fgb::harness {
-
-std::string base64(std::string_view bytes);
 
 // <img> of `image` shrunk to at most `maxWidth` pixels wide, as an inline PNG.
 std::string imgTag(const Image& image, const std::string& alt, uint32_t maxWidth = 420);

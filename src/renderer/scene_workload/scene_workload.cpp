@@ -52,6 +52,16 @@ std::array<float, 4> backgroundClear(const scene::PostSettings& post) {
   return {channel(b[0]), channel(b[1]), channel(b[2]), 0.0f};
 }
 
+// render.ssaa multiplies the size the scene passes render at: it must fit the device's images too.
+void checkSupersampledSize(const rhi::AdapterInfo& adapter, const features::RenderSettings& settings) {
+  const uint32_t limit = adapter.maxImageDimension2D;
+  if (settings.ssaa == 1 || limit == 0 || std::max(settings.sceneWidth(), settings.sceneHeight()) <= limit) return;
+  throw InputError("--set render.ssaa=" + std::to_string(settings.ssaa) + ": the scene passes' " +
+                   std::to_string(settings.sceneWidth()) + "x" + std::to_string(settings.sceneHeight()) +
+                   " is larger than the largest image " + adapter.name + " supports, " + std::to_string(limit) + "x" +
+                   std::to_string(limit));
+}
+
 uint32_t jsonCount(const nlohmann::json& section, const char* key, uint32_t fallback) {
   if (!section.is_object() || !section.contains(key) || !section[key].is_number_unsigned()) return fallback;
   return section[key].get<uint32_t>();
@@ -107,6 +117,7 @@ class SceneWorkload final : public Workload {
     description_ = describeDevice(device_->adapter());
     settings_ = makeSettings(config, loaded_.description, device_->sampleCounts());
     rhi::checkRenderSize(device_->adapter(), settings_.width, settings_.height);
+    checkSupersampledSize(device_->adapter(), settings_);
     startup_.deviceMs = timer.lap();
 
     gpu_ = uploadScene(*device_, loaded_.scene, settings_);

@@ -9,7 +9,6 @@
 #include <fgb/scene/knobs.hpp>
 #include <fgb/scene/stats.hpp>
 
-#include <glm/ext/matrix_transform.hpp>
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 

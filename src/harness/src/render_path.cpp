@@ -15,7 +15,7 @@ PassRecord& passNamed(RunResult& run, const PassRecord& like, std::size_t frames
   }
   // A pass first seen now did not run in the earlier frames: culled there, so it is culled overall
   // only if it is culled now too.
-  run.passes.push_back(PassRecord{like.name, like.queue, like.culled, {}, {}, {}, false});
+  run.passes.push_back(PassRecord{like.name, like.queue, like.culled, {}, {}, {}, false, {}});
   run.passes.back().samplesMs.assign(framesBefore, 0.0);
   return run.passes.back();
 }

@@ -22,7 +22,7 @@ void appendFrame(RunResult& run, std::map<std::string, std::size_t>& index, cons
   const std::size_t frameNumber = run.frameGpuMs.size();
   for (const auto& pass : frame.passes) {
     auto [it, inserted] = index.try_emplace(pass.name, run.passes.size());
-    if (inserted) run.passes.push_back(PassRecord{pass.name, pass.queue, pass.culled, {}, {}, {}, false});
+    if (inserted) run.passes.push_back(PassRecord{pass.name, pass.queue, pass.culled, {}, {}, {}, false, {}});
     PassRecord& record = run.passes[it->second];
     record.culled = record.culled && pass.culled;  // culled only if culled in every frame
     // Keep columns aligned with frames even if a pass first appears late.

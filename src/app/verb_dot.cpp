@@ -6,6 +6,7 @@
 #include <fgb/harness/run_loop.hpp>
 #include <fgb/renderer/workload.hpp>
 
+#include <filesystem>
 #include <iostream>
 #include <map>
 
@@ -19,7 +20,17 @@ struct DotOptions {
   CommonOptions common;
 };
 
+// -o names a file in a folder that must exist: a wrong path is bad input, found before rendering.
+void checkOutputFolder(const std::string& output) {
+  if (output.empty() || output == "-") return;
+  const std::filesystem::path folder = std::filesystem::path(output).parent_path();
+  if (!folder.empty() && !std::filesystem::is_directory(folder)) {
+    throw InputError("-o " + output + ": folder " + folder.string() + " does not exist");
+  }
+}
+
 int dotVerb(const DotOptions& o) {
+  checkOutputFolder(o.output);
   const auto workload = render::openWorkload(workloadConfig(o.scene, o.common, harness::parseKnobs(o.common.sets)));
   const std::string dot =
       workload->graphviz(o.detail == "full" ? render::GraphDetail::Full : render::GraphDetail::Brief);

@@ -349,8 +349,11 @@ TEST(CheckFinite, NamesThePassThatInjectedTheNan) {
   EXPECT_EQ(mesh.workload->validationMessages(), 0u);
   const auto meshCounts = mesh.workload->nonFiniteCounts();
   EXPECT_EQ(firstBadPass(meshCounts), "Mesh Render");
-  for (const auto& c : meshCounts)
-    if (c.pass == "SSAA Resolve") EXPECT_GT(c.nan, 0u);  // it spread through the resolve
+  for (const auto& c : meshCounts) {
+    if (c.pass == "SSAA Resolve") {
+      EXPECT_GT(c.nan, 0u);  // it spread through the resolve
+    }
+  }
 
   const auto bloom = renderChecked({{"debug.inject_nan", "Bloom"}}, 1);
   const auto bloomCounts = bloom.workload->nonFiniteCounts();

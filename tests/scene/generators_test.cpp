@@ -89,7 +89,9 @@ TEST(Atrium, ClustersPartitionEachMeshWithBounds) {
       ASSERT_LE(cluster.triangleCount, kClusterMaxTriangles);
       // A cutoff of 1 means "no usable cone" (meshoptimizer then leaves the axis zero).
       EXPECT_LE(std::abs(cluster.coneCutoff), 1.0f);
-      if (cluster.coneCutoff < 1.0f) EXPECT_NEAR(glm::length(cluster.coneAxis), 1.0f, 1e-2f) << mesh.name;
+      if (cluster.coneCutoff < 1.0f) {
+        EXPECT_NEAR(glm::length(cluster.coneAxis), 1.0f, 1e-2f) << mesh.name;
+      }
       for (uint32_t t = 0; t < cluster.triangleCount; ++t) {
         const uint32_t* tri = &s.clusterIndices[cluster.firstIndex + 3 * t];
         fromClusters.insert(sorted(tri));

@@ -1,5 +1,6 @@
 // The declaration model: nodes and queue classes, imported/transient resources, one version per
 // write, the recorded uses, attachments, and the access-kind table.
+#include <fgb/graph/barrier_names.hpp>
 #include "test_helpers.hpp"
 
 #include <gtest/gtest.h>
@@ -325,7 +326,7 @@ TEST(AccessInfo, QueueClassAndNamesAreStable) {
   EXPECT_EQ(defaultQueue(NodeType::Transfer), QueueClass::Transfer);
   EXPECT_EQ(toString(NodeType::Graphics), "graphics");
   EXPECT_EQ(toString(QueueClass::Compute), "compute");
-  EXPECT_FALSE(toString(Layout::ShaderReadOnly).empty());
+  EXPECT_FALSE(layoutName(Layout::ShaderReadOnly).empty());
 }
 
 }  // namespace

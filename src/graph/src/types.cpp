@@ -107,18 +107,4 @@ std::string_view toString(QueueClass queue) {
   return "?";
 }
 
-std::string_view toString(Layout layout) {
-  switch (layout) {
-    case Layout::Undefined: return "UNDEFINED";
-    case Layout::General: return "GENERAL";
-    case Layout::ColorAttachment: return "COLOR_ATTACHMENT";
-    case Layout::DepthStencilAttachment: return "DEPTH_STENCIL_ATTACHMENT";
-    case Layout::DepthStencilReadOnly: return "DEPTH_STENCIL_READ_ONLY";
-    case Layout::ShaderReadOnly: return "SHADER_READ_ONLY";
-    case Layout::TransferSrc: return "TRANSFER_SRC";
-    case Layout::TransferDst: return "TRANSFER_DST";
-  }
-  return "?";
-}
-
 }  // namespace fgb::graph

@@ -9,6 +9,7 @@
 //  - reads of data produced on another queue family are preceded by an acquire, releases and
 //    acquires pair up, and the release happens before the acquire;
 //  - imported textures end in their final layout.
+#include <fgb/graph/barrier_names.hpp>
 #include "invariants.hpp"
 
 #include <algorithm>
@@ -155,8 +156,8 @@ void checkLayoutsOn(Replay& r, uint32_t queue, uint32_t texture) {
       if (b.resource != texture) continue;
       // An acquire's old layout is the releasing queue's; the release/acquire pairing checks it.
       if (known && b.kind != Barrier::Kind::Acquire && b.oldLayout != Layout::Undefined && b.oldLayout != current) {
-        r.problems.push_back(what + ": barrier oldLayout " + std::string(toString(b.oldLayout)) + " but it is in " +
-                             std::string(toString(current)));
+        r.problems.push_back(what + ": barrier oldLayout " + std::string(layoutName(b.oldLayout)) + " but it is in " +
+                             std::string(layoutName(current)));
       }
       discarded = b.oldLayout == Layout::Undefined;
       current = b.newLayout;
@@ -173,10 +174,10 @@ void checkLayoutsOn(Replay& r, uint32_t queue, uint32_t texture) {
     discarded = false;
     if (!known && !(decl.imported && decl.initialState.layout == wanted)) {
       r.problems.push_back(what + ": '" + r.model.nodeName[use.node] + "' uses it with no transition to " +
-                           std::string(toString(wanted)));
+                           std::string(layoutName(wanted)));
     } else if (known && current != wanted) {
-      r.problems.push_back(what + ": '" + r.model.nodeName[use.node] + "' needs " + std::string(toString(wanted)) +
-                           " but it is in " + std::string(toString(current)));
+      r.problems.push_back(what + ": '" + r.model.nodeName[use.node] + "' needs " + std::string(layoutName(wanted)) +
+                           " but it is in " + std::string(layoutName(current)));
     }
     current = wanted;
     known = true;
@@ -223,8 +224,8 @@ void checkFirstAndFinal(Replay& r, uint32_t texture) {
     }
   }
   if (endLayout != decl.finalState.layout) {
-    r.problems.push_back("imported '" + std::string(decl.name) + "' ends in " + std::string(toString(endLayout)) +
-                         ", not " + std::string(toString(decl.finalState.layout)));
+    r.problems.push_back("imported '" + std::string(decl.name) + "' ends in " + std::string(layoutName(endLayout)) +
+                         ", not " + std::string(layoutName(decl.finalState.layout)));
   }
 }
 

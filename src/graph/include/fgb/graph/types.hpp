@@ -104,7 +104,6 @@ bool isWriteAccess(Access access);
 std::string_view toString(Access access);
 std::string_view toString(NodeType type);
 std::string_view toString(QueueClass queue);
-std::string_view toString(Layout layout);
 
 // The queue class a node of `type` runs on unless declared otherwise.
 QueueClass defaultQueue(NodeType type);

@@ -71,7 +71,8 @@ class InstantWorkload : public render::Workload {
     device_.type = "cpu";
     const auto cap = config.knobs.find("lighting.max_per_cluster");
     const double step = cap == config.knobs.end() ? 0.0 : std::log2(std::stod(cap->second));
-    quality_ = config.knobs.count("render.ssaa") ? 1.0 : std::min(0.9, 0.1 + 0.05 * step + 0.1 * std::log2(config.msaa));
+    quality_ =
+        config.knobs.count("render.ssaa") ? 1.0 : std::min(0.9, 0.1 + 0.05 * step + 0.1 * std::log2(config.msaa));
     frameMs_ = 1.0 + 0.2 * step + 0.5 * config.msaa;
   }
   const render::DeviceDescription& device() const override { return device_; }
@@ -108,9 +109,9 @@ SweepPlan plan(const benchmark::State& state) {
   const bool sixteen = state.range(2) >= 16;
   SweepPlan p;
   p.scene = base.scenePath;
-  p.configurations = expandGrid(base, {parseVary(sixteen ? "msaa=1,2,4,8" : "msaa=1,4"),
-                                       parseVary(sixteen ? "lighting.max_per_cluster=4,16,64,256"
-                                                         : "lighting.max_per_cluster=4,64")});
+  p.configurations =
+      expandGrid(base, {parseVary(sixteen ? "msaa=1,2,4,8" : "msaa=1,4"),
+                        parseVary(sixteen ? "lighting.max_per_cluster=4,16,64,256" : "lighting.max_per_cluster=4,64")});
   p.warmup = 2;
   p.frames = kMeasuredFrames;
   p.roundFrames = 16;

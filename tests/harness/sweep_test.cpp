@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
-#include <fgb/core/error.hpp>
 #include <cmath>
+#include <fgb/core/error.hpp>
 #include <fgb/harness/html_util.hpp>
 #include <fgb/harness/sweep.hpp>
 #include <fgb/harness/sweep_report.hpp>
@@ -337,8 +337,7 @@ TEST(SweepHtml, TicksAreDecimalsAndDurationsHaveUnits) {
     ASSERT_GE(ticks.size(), 2u) << lo << ".." << hi;
     for (double t : ticks) {
       const double mantissa = t / std::pow(10.0, std::floor(std::log10(t) + 1e-9));
-      EXPECT_TRUE(std::abs(mantissa - 1) < 1e-6 || std::abs(mantissa - 2) < 1e-6 || std::abs(mantissa - 5) < 1e-6)
-          << t;
+      EXPECT_TRUE(std::abs(mantissa - 1) < 1e-6 || std::abs(mantissa - 2) < 1e-6 || std::abs(mantissa - 5) < 1e-6) << t;
       EXPECT_EQ(tickLabel(t).find('e'), std::string::npos) << t;
     }
   }
@@ -349,7 +348,8 @@ TEST(SweepHtml, LabelsOfCrowdedPointsDoNotOverlap) {
   std::vector<LabelRequest> requests;
   for (int cluster = 0; cluster < 4; ++cluster) {
     for (int k = 0; k < 4; ++k) {
-      const std::string text = "msaa=" + std::to_string(1 << cluster) + " lighting.max_per_cluster=" + std::to_string(4 << (2 * k));
+      const std::string text =
+          "msaa=" + std::to_string(1 << cluster) + " lighting.max_per_cluster=" + std::to_string(4 << (2 * k));
       requests.push_back({200.0 + 150 * cluster + 3 * k, 300.0 - 60 * cluster - 2 * k, text,
                           std::to_string(requests.size() + 1), k == 0, k == 0});
     }

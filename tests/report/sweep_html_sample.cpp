@@ -2,11 +2,10 @@
 // browser test of sweep.html (tests/report): 16 configurations (msaa 1, 2, 4, 8 x four
 // lighting.max_per_cluster values) whose points fall in four tight clusters, one per MSAA, with
 // frame times of seconds (lavapipe's atrium at 640x360) and labels long enough to collide.
-#include <fgb/harness/sweep.hpp>
-#include <fgb/harness/sweep_report.hpp>
-
 #include <cmath>
 #include <exception>
+#include <fgb/harness/sweep.hpp>
+#include <fgb/harness/sweep_report.hpp>
 #include <iostream>
 #include <memory>
 #include <string>

@@ -29,10 +29,10 @@ struct LabelRequest {
 };
 
 struct PlacedLabel {
-  std::string text;       // what is drawn: the full label or its number
-  bool numbered = false;  // the full label did not fit: `text` is the number
-  bool shown = true;      // false: not even the number found a free place; nothing is drawn
-  LabelBox box;           // the estimated extent of the text
+  std::string text;            // what is drawn: the full label or its number
+  bool numbered = false;       // the full label did not fit: `text` is the number
+  bool shown = true;           // false: not even the number found a free place; nothing is drawn
+  LabelBox box;                // the estimated extent of the text
   double x = 0, baseline = 0;  // where the <text> goes (text-anchor="start", at box.x0)
   bool leader = false;         // far enough from its point to need a line to it
 };

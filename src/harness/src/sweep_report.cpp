@@ -84,7 +84,8 @@ nlohmann::json configurationJson(const SweepResult& result, const ConfigurationO
 
 nlohmann::json referenceJson(const ReferenceOutcome& r) {
   nlohmann::json renders = nlohmann::json::array();
-  for (const auto& w : r.renders) renders.push_back({{"open", w.openMs}, {"frames", w.framesMs}, {"readback", w.readbackMs}});
+  for (const auto& w : r.renders)
+    renders.push_back({{"open", w.openMs}, {"frames", w.framesMs}, {"readback", w.readbackMs}});
   return {{"config", configJson(r.workload, r.images)},
           {"repeat_identical", r.identical},
           {"noise", {{"display", toJson(r.repeatDisplay)}, {"hdr", toJson(r.repeatHdr)}}},
@@ -163,14 +164,13 @@ std::vector<std::size_t> frontByTime(const SweepResult& result) {
 }
 
 std::string sweepMethodNote(const SweepResult& result) {
-  std::string stop =
-      result.untilStable
-          ? fmt::format(
-                "each configuration was sampled until the 95% interval of its median was within "
-                "±{:.1f}% of it (at least {} frames, at most {}, checked every {} frames)",
-                result.untilStable->relativeHalfWidth * 100.0, result.untilStable->minFrames, result.frameCap,
-                result.stableCheckFrames)
-          : fmt::format("each configuration was measured for {} frames", result.frameCap);
+  std::string stop = result.untilStable
+                         ? fmt::format(
+                               "each configuration was sampled until the 95% interval of its median was within "
+                               "±{:.1f}% of it (at least {} frames, at most {}, checked every {} frames)",
+                               result.untilStable->relativeHalfWidth * 100.0, result.untilStable->minFrames,
+                               result.frameCap, result.stableCheckFrames)
+                         : fmt::format("each configuration was measured for {} frames", result.frameCap);
   return fmt::format(
       "Times are medians of the GPU frame time with a 95% distribution-free confidence interval (order statistics "
       "x(l), x(n+1-l) from the exact binomial distribution). Configurations were measured in {} interleaved rounds in "
@@ -179,8 +179,8 @@ std::string sweepMethodNote(const SweepResult& result) {
       "noise floor ({:.5f}) is the LDR-FLIP mean between two renders of the reference. A configuration is dominated "
       "when another is significantly faster (one-sided Mann–Whitney U, α = {}) or equal in time, lower or equal in "
       "error beyond the floor, and strictly better in one; the front is the configurations no other dominates.",
-      result.rounds, result.seed, result.warmupFrames, result.rewarmFrames, stop, result.stopReason == "time limit" ? " (stopped by --max-minutes)" : "",
-      result.errorFloor, result.alpha);
+      result.rounds, result.seed, result.warmupFrames, result.rewarmFrames, stop,
+      result.stopReason == "time limit" ? " (stopped by --max-minutes)" : "", result.errorFloor, result.alpha);
 }
 
 nlohmann::json sweepJson(const SweepResult& result) {

@@ -4,11 +4,10 @@
 // timings made the same way whichever workload they open.
 #pragma once
 
+#include <deque>
 #include <fgb/graph/frame_graph.hpp>
 #include <fgb/renderer/workload.hpp>
 #include <fgb/rhi/device.hpp>
-
-#include <deque>
 #include <string>
 #include <unordered_map>
 #include <utility>

@@ -377,5 +377,30 @@ TEST(SweepHtml, LabelsOfCrowdedPointsDoNotOverlap) {
   EXPECT_GE(full, 8u);  // most labels fit in full; the rest are numbered, not dropped
 }
 
+TEST(SweepHtml, LabelsThatFindNoPlaceBecomeNumbersAndStillDoNotOverlap) {
+  // 24 points on one spot of a small plot: not every long label fits around it.
+  std::vector<LabelRequest> requests;
+  for (int i = 0; i < 24; ++i) {
+    requests.push_back({300, 200, "msaa=8 lighting.max_per_cluster=" + std::to_string(1000 + i), std::to_string(i + 1),
+                        false, i == 0});
+  }
+  const LabelBox area{80, 30, 600, 400};
+  const auto labels = placeLabels(requests, area);
+  std::size_t numbered = 0;
+  for (std::size_t i = 0; i < labels.size(); ++i) {
+    if (labels[i].numbered && labels[i].shown) {
+      ++numbered;
+      EXPECT_EQ(labels[i].text, requests[i].number);
+    }
+    for (std::size_t j = i + 1; j < labels.size(); ++j) {
+      if (labels[i].shown && labels[j].shown) {
+        EXPECT_FALSE(labels[i].box.overlaps(labels[j].box)) << i << " and " << j;
+      }
+    }
+  }
+  EXPECT_FALSE(labels[0].numbered);  // the priority (front) label is placed first, in full
+  EXPECT_GT(numbered, 0u);
+}
+
 }  // namespace
 }  // namespace fgb::harness

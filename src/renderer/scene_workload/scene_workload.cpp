@@ -12,6 +12,7 @@
 #include <fgb/core/stopwatch.hpp>
 #include <fgb/graph/dot.hpp>
 #include <fgb/renderer/describe_device.hpp>
+#include <fgb/renderer/frame_timer.hpp>
 #include <fgb/renderer/scene_workload.hpp>
 #include <fgb/scene/cache.hpp>
 #include <fgb/scene/load.hpp>
@@ -20,7 +21,6 @@
 
 #include <algorithm>
 #include <array>
-#include <deque>
 #include <filesystem>
 #include <iostream>
 
@@ -133,23 +133,8 @@ class SceneWorkload final : public Workload {
 
   const DeviceDescription& device() const override { return description_; }
 
-  FrameTiming renderFrame() override {
-    device_->execute(*graph_);
-    cpuMs_.push_back(graph_->lastHostTimes().recordMs);
-    collectTimings();
-    if (ready_.empty()) return {};
-    FrameTiming timing = std::move(ready_.front());
-    ready_.pop_front();
-    return timing;
-  }
-
-  std::vector<FrameTiming> finish() override {
-    device_->waitIdle();
-    collectTimings();
-    std::vector<FrameTiming> rest(ready_.begin(), ready_.end());
-    ready_.clear();
-    return rest;
-  }
+  FrameTiming renderFrame() override { return timer_.execute(*device_, *graph_); }
+  std::vector<FrameTiming> finish() override { return timer_.finish(*device_, *graph_); }
 
   ImageRGBA32F readHdr() override { return hdrReadback_->read(); }
   ImageRGBA32F readDisplay() override { return displayReadback_->read(); }
@@ -265,25 +250,6 @@ class SceneWorkload final : public Workload {
         std::make_unique<ImageReadback>(*device_, displayTexture_, features::kDisplayFormat, extent, kDisplayFinal);
   }
 
-  void collectTimings() {
-    const auto& nodes = graph_->declaration().nodes();
-    const auto& compiled = graph_->compiled();
-    for (const auto& timings : graph_->takeTimings()) {
-      FrameTiming frame;
-      for (uint32_t i = 0; i < nodes.size(); ++i) {
-        const bool culled = compiled.nodes[i].culled;
-        // Begin offsets are -1 where the pass's queue family has no timestamps (the report says so).
-        const bool timed = !culled && i < timings.nodeMs.size();
-        frame.passes.push_back({std::string(nodes[i].name), std::string(graph::toString(nodes[i].queue)), culled,
-                                timed ? timings.nodeMs[i] : 0.0, timed ? timings.nodeStartMs[i] : -1.0});
-      }
-      frame.gpuFrameMs = timings.gpuMs;
-      frame.cpuFrameMs = cpuMs_.empty() ? 0.0 : cpuMs_.front();
-      if (!cpuMs_.empty()) cpuMs_.pop_front();
-      ready_.push_back(std::move(frame));
-    }
-  }
-
   scene::LoadedScene loaded_;
   std::unique_ptr<rhi::Device> device_;
   DeviceDescription description_;
@@ -299,8 +265,7 @@ class SceneWorkload final : public Workload {
   std::unique_ptr<rhi::ExecutableGraph> graph_;
   std::unique_ptr<ImageReadback> hdrReadback_;
   std::unique_ptr<ImageReadback> displayReadback_;
-  std::deque<FrameTiming> ready_;
-  std::deque<double> cpuMs_;
+  GraphFrameTimer timer_;
 };
 
 }  // namespace

@@ -24,7 +24,7 @@ constexpr const char* kStyle =
     "padding:3px 8px;text-align:right;white-space:nowrap;background:#fff}"
     "th{background:#f2f2f2;position:sticky;top:0;vertical-align:bottom}"
     "td:first-child,th:first-child{position:sticky;left:0;z-index:1;text-align:left}th:first-child{z-index:2}"
-    "td:nth-child(2){text-align:left}td.dominated{white-space:normal;min-width:24em;text-align:left}"
+    "td:nth-child(2),td.dominated{text-align:left}"
     ".front td{background:#fff3e0;font-weight:bold}"
     ".note{color:#555}.pick{font-size:1.1em;background:#fff3e0;padding:.6em 1em;border-left:4px solid #e8710a}"
     ".gallery{display:flex;flex-wrap:wrap;gap:18px}.gallery figure{margin:0}.gallery img{display:block;"
@@ -151,10 +151,12 @@ std::string timeErrorSvg(const SweepResult& result) {
 }
 
 std::string passStackSvg(const SweepResult& result) {
-  constexpr int W = 860, label = 260, row = 24, legendRow = 18;
+  constexpr int row = 24, legendRow = 18, barsWidth = 590;
   std::vector<std::string> passes;  // every measured pass, first-seen order: one colour each
   double maxTotal = 0;
+  std::size_t longestLabel = 0;
   for (const auto& c : result.configurations) {
+    longestLabel = std::max(longestLabel, c.configuration.label.size());
     double total = 0;
     for (const auto& p : c.run.passes) {
       if (p.culled) continue;
@@ -166,6 +168,9 @@ std::string passStackSvg(const SweepResult& result) {
   if (maxTotal <= 0) maxTotal = 1;
   const int legendRows = static_cast<int>((passes.size() + 3) / 4);
   const int H = static_cast<int>(result.configurations.size()) * row + 40 + legendRows * legendRow;
+  // The label column fits the longest label (about 7 px a character at 12 px bold sans-serif).
+  const int label = std::clamp(static_cast<int>(longestLabel) * 7 + 12, 120, 600);
+  const int W = std::max(860, label + barsWidth);
   const double plotWidth = W - label - 70;
   auto colourOf = [&](const std::string& name) {
     const auto index = static_cast<std::size_t>(std::find(passes.begin(), passes.end(), name) - passes.begin());
@@ -222,20 +227,26 @@ std::string sweepHtml(const SweepResult& result) {
           "without being more accurate, or less accurate without being faster.</p>\n";
 
   html += "<h2>Time against error</h2>\n" + timeErrorSvg(result);
-  html += "<h2>Configurations</h2>\n<div class=\"table-scroll\"><table><tr><th>configuration</th><th>front</th><th>GPU frame ms</th><th>95% CI</th>"
+  html += "<h2>Configurations</h2>\n<div class=\"table-scroll\"><table><tr><th># configuration</th><th>front</th><th>GPU frame ms</th><th>95% CI</th>"
           "<th>frames</th><th>LDR-FLIP</th><th>HDR-FLIP</th><th>RMSE</th><th>PSNR dB</th><th>NaN/Inf</th><th>dominated by</th></tr>\n";
-  for (const auto& c : result.configurations) {
+  for (std::size_t i = 0; i < result.configurations.size(); ++i) {
+    const auto& c = result.configurations[i];
+    // Dominating configurations by number (their labels on hover): a list of long labels made the
+    // rows of a big grid several lines tall.
     std::string dominatedBy;
-    for (std::size_t d : c.dominatedBy) dominatedBy += (dominatedBy.empty() ? "" : ", ") + result.configurations[d].configuration.label;
+    for (std::size_t d : c.dominatedBy) {
+      dominatedBy += fmt::format(R"({}<span title="{}">#{}</span>)", dominatedBy.empty() ? "" : ", ",
+                                 escapeXml(result.configurations[d].configuration.label), d + 1);
+    }
     html += fmt::format(
-        "<tr{}><td>{}</td><td>{}</td><td>{:.4f}</td><td>[{:.4f}, {:.4f}]</td><td>{}</td><td>{}</td><td>{}</td><td>{:.5f}</td>"
+        "<tr{}><td>#{} {}</td><td>{}</td><td>{:.4f}</td><td>[{:.4f}, {:.4f}]</td><td>{}</td><td>{}</td><td>{}</td><td>{:.5f}</td>"
         "<td>{}</td><td>{}</td><td class=\"dominated\">{}</td></tr>\n",
-        c.onFront ? " class=\"front\"" : "", escapeXml(c.configuration.label), c.onFront ? "front" : "", c.frameGpu.median,
+        c.onFront ? " class=\"front\"" : "", i + 1, escapeXml(c.configuration.label), c.onFront ? "front" : "", c.frameGpu.median,
         c.frameGpu.lower, c.frameGpu.upper, c.frameGpu.n,
         c.display.flip ? fmt::format("{:.5f}", c.display.flip->mean) : "-",
         c.hdr.flip ? fmt::format("{:.5f}", c.hdr.flip->mean) : "-", c.display.rmse,
         std::isfinite(c.display.psnr) ? fmt::format("{:.2f}", c.display.psnr) : "&infin;",
-        c.display.nonFiniteTest + c.hdr.nonFiniteTest, escapeXml(dominatedBy));
+        c.display.nonFiniteTest + c.hdr.nonFiniteTest, dominatedBy);
   }
   html += "</table></div>\n<h2>Per-pass GPU time</h2>\n" + passStackSvg(result);
 

@@ -8,6 +8,7 @@
 #include "../features/lighting/clustered_lighting.hpp"
 #include "../features/meshes/mesh_feature.hpp"
 #include "../features/particles/particle_feature.hpp"
+#include "../features/ssaa/msaa_resolve_feature.hpp"
 #include "../features/ssaa/ssaa_resolve_feature.hpp"
 #include "../features/tonemap/tonemap_feature.hpp"
 #include "../features/visbuffer/visbuffer_feature.hpp"
@@ -25,6 +26,8 @@ RenderPathPlan planRenderPath(const features::RenderSettings& settings) {
   // Forward: every mesh; visbuffer: the transparent ones (MeshFeature reads the path).
   list.push_back(std::make_unique<features::MeshFeature>());
   list.push_back(std::make_unique<features::ParticleFeature>());
+  // After the last feature that draws colour: the MSAA target becomes the HDR image here.
+  list.push_back(std::make_unique<features::MsaaResolveFeature>());
   list.push_back(std::make_unique<features::SsaaResolveFeature>());
   list.push_back(std::make_unique<features::BloomFeature>());
   list.push_back(std::make_unique<features::ExposureFeature>());  // after bloom: see there

@@ -3,6 +3,7 @@
 // tone mapping and the light-complexity debug view; they differ in what draws the opaque scene:
 //   forward:   "Mesh Frustum Cull" + "Mesh Render" (graphics, the thesis' renderer);
 //   visbuffer: the compute nodes of features/visbuffer, then the forward passes for the rest.
+// After the last feature that draws colour, "MSAA Resolve" (features/ssaa) resolves it.
 #pragma once
 
 #include <memory>

@@ -234,23 +234,13 @@ class SceneWorkload final : public Workload {
                         ? targets.hdr
                         : graph.createTexture("hdr msaa", {features::kHdrFormat, {}, 1, 1, settings_.msaa, targets.hdr, 0});
     targets.depth = graph.createTexture("depth", {features::kDepthFormat, {}, 1, 1, settings_.msaa, targets.hdr, 0});
-    for (const auto& feature : features_) {
-      if (!feature->enabled()) continue;
-      targets.colorPasses += feature->colorPasses();
-      hdrWritten_ = hdrWritten_ || feature->writesHdr();
-    }
     return targets;
   }
 
   void buildFrameGraph() {
     graph::FrameGraph graph;
     features::Blackboard board;
-    auto& targets = board.set(makeTargets(graph));
-    // Nothing draws (empty scene): one pass still clears the HDR image for tone mapping.
-    if (targets.colorPasses == 0 && !hdrWritten_) {
-      targets.colorPasses = 1;
-      features::addForwardPass(graph, targets, "Clear", true).setJob([](graph::JobContext&) {});
-    }
+    const auto& targets = board.set(makeTargets(graph));
     for (auto& feature : features_)
       if (feature->enabled()) feature->declare(graph, board);
     rhi::GraphOptions options;
@@ -293,7 +283,6 @@ class SceneWorkload final : public Workload {
   std::vector<std::unique_ptr<features::IRenderFeature>> features_;
   features::FiniteCheckFeature* finiteCheck_ = nullptr;  // owned by features_
   bool hdrStorage_ = false;  // a compute node writes the HDR target
-  bool hdrWritten_ = false;  // a feature writes the HDR target outside the forward colour passes
   rhi::TextureId hdrTexture_;
   rhi::TextureId displayTexture_;
   std::unique_ptr<rhi::ExecutableGraph> graph_;

@@ -27,7 +27,7 @@ void SsaaResolveFeature::initialize(FeatureInit& init) {
 void SsaaResolveFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
   if (!enabled()) return;
   auto& targets = board.get<FrameTargets>();
-  if (targets.colorPasses != 0) throw std::logic_error("SSAA Resolve declared before the last colour pass");
+  if (!targets.colorResolved) throw std::logic_error("SSAA Resolve declared before the MSAA resolve");
   auto node = graph.addNode("SSAA Resolve", graph::NodeType::Graphics);
   const graph::TextureHandle source = node.read(targets.hdr, graph::Access::Sampled, graph::kStageFragmentShader);
   // Every output pixel is written, so the previous contents are not loaded.

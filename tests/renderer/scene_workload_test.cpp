@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <set>
+#include <stdexcept>
 #include <vector>
 #include <string>
 
@@ -417,6 +418,62 @@ TEST(LightingMode, ClusteredListsKeepEveryLightAcrossChunks) {
   EXPECT_EQ(clustered.stats.at("clusters_overflowed"), 0.0);
   EXPECT_GT(meanOf(clustered.hdr), 0.0);
   EXPECT_LT(differingValues(all.hdr, clustered.hdr, 1.0e-2f, 1.0e-3f), all.hdr.pixels.size() / 1000);
+}
+
+// The 8-bit sRGB code of a display value read back (linear).
+int srgbCode(float linear) {
+  const float c = std::clamp(linear, 0.0f, 1.0f);
+  const float encoded = c <= 0.0031308f ? c * 12.92f : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+  return int(std::lround(encoded * 255.0f));
+}
+
+int largestCodeDifference(const ImageRGBA32F& a, const ImageRGBA32F& b) {
+  int largest = 0;
+  for (size_t i = 0; i < a.pixels.size(); ++i)
+    largest = std::max(largest, std::abs(srgbCode(a.pixels[i]) - srgbCode(b.pixels[i])));
+  return largest;
+}
+
+graph::NodeType nodeType(const Workload& workload, const std::string& name) {
+  const auto& nodes = frameGraphOf(workload)->nodes();
+  const auto node = std::find_if(nodes.begin(), nodes.end(), [&](const auto& n) { return n.name == name; });
+  if (node == nodes.end()) throw std::runtime_error("no node " + name);
+  return node->type;
+}
+
+// On the visibility-buffer path "SSAA Resolve" and "Tone mapping" are compute nodes running the
+// fragment passes' GLSL maths. transparency-only has no opaque mesh, so both paths draw the same
+// HDR image: the compute SSAA resolve must give it bit for bit, and the compute tone mapping the
+// same display image up to the sRGB encode's rounding: at most one code (lavapipe's sRGB
+// attachment encode is approximate, e.g. 28.47 becomes 29; tonemap.comp rounds to nearest).
+TEST(VisBuffer, PostPassesAreComputeAndMatchTheFragmentPasses) {
+  const std::string scene = kRepositoryScenes + "/transparency-only.json";
+  const std::map<std::string, std::string> supersampled = {{"render.ssaa", "2"}};
+  auto visKnobs = supersampled;
+  visKnobs["render.path"] = "visbuffer";
+  struct PostPasses {
+    Images images;
+    graph::NodeType resolve;
+    graph::NodeType tonemap;
+  };
+  // One device at a time: each rendering is read and closed before the next opens.
+  const auto renderPost = [](const WorkloadConfig& config) {
+    const auto r = render(config, 2);
+    return PostPasses{{aliveNames(r.passes), r.workload->readHdr(), r.workload->readDisplay(),
+                       r.workload->validationMessages(), r.workload->stats()},
+                      nodeType(*r.workload, "SSAA Resolve"),
+                      nodeType(*r.workload, "Tone mapping")};
+  };
+  const auto vis = renderPost(sized(lavapipeConfig(scene, visKnobs, true), 160, 90, 1));
+  const auto forward = renderPost(sized(lavapipeConfig(scene, supersampled), 160, 90, 1));
+  EXPECT_EQ(vis.resolve, graph::NodeType::Compute);
+  EXPECT_EQ(vis.tonemap, graph::NodeType::Compute);
+  EXPECT_EQ(forward.resolve, graph::NodeType::Graphics);
+  EXPECT_EQ(forward.tonemap, graph::NodeType::Graphics);
+  EXPECT_EQ(vis.images.validationMessages, 0u);
+  EXPECT_GT(meanOf(vis.images.hdr), 0.0);
+  EXPECT_TRUE(vis.images.hdr.pixels == forward.images.hdr.pixels);
+  EXPECT_LE(largestCodeDifference(vis.images.display, forward.images.display), 1);
 }
 
 // With MSAA the resolve is its own node, declared after the last colour pass; single-sampled

@@ -193,6 +193,8 @@ class SceneWorkload final : public Workload {
     RenderPathPlan plan = planRenderPath(settings_);
     features_ = std::move(plan.features);
     hdrStorage_ = plan.computeWritesHdr;
+    displayStorage_ = plan.computeWritesDisplay;
+    displayFormat_ = plan.displayFormat;
     // Last: it inspects every node declared before it (see finite_check_feature.hpp).
     auto finiteCheck = std::make_unique<features::FiniteCheckFeature>();
     finiteCheck_ = finiteCheck.get();
@@ -207,8 +209,9 @@ class SceneWorkload final : public Workload {
     hdrTexture_ = device_->createTexture({"hdr", features::kHdrFormat, extent, 1, 1, 1,
                                           rhi::kTextureColorAttachment | rhi::kTextureSampled |
                                               rhi::kTextureTransferSrc | storage});
-    displayTexture_ = device_->createTexture({"display", features::kDisplayFormat, extent, 1, 1, 1,
-                                              rhi::kTextureColorAttachment | rhi::kTextureTransferSrc});
+    const rhi::TextureUsage displayStorage = displayStorage_ ? rhi::kTextureStorage : rhi::TextureUsage{0};
+    displayTexture_ = device_->createTexture({"display", displayFormat_, extent, 1, 1, 1,
+                                              rhi::kTextureColorAttachment | rhi::kTextureTransferSrc | displayStorage});
     FrameTargets targets;
     targets.outputExtent = extent;
     targets.extent = {settings_.sceneWidth(), settings_.sceneHeight(), 1};
@@ -228,7 +231,7 @@ class SceneWorkload final : public Workload {
       targets.outputHdr = hdr;
       targets.hdr = graph.createTexture("hdr ssaa", {features::kHdrFormat, targets.extent, 1, 1, 1, {}, 0});
     }
-    targets.display = graph.importTexture("display", {features::kDisplayFormat, extent, 1, 1, 1, {}, 0},
+    targets.display = graph.importTexture("display", {displayFormat_, extent, 1, 1, 1, {}, 0},
                                           rhi::external(displayTexture_), kDiscard, kDisplayFinal);
     targets.color = settings_.msaa == 1
                         ? targets.hdr
@@ -252,7 +255,7 @@ class SceneWorkload final : public Workload {
     const graph::Extent extent = targets.outputExtent;
     hdrReadback_ = std::make_unique<ImageReadback>(*device_, hdrTexture_, features::kHdrFormat, extent, kHdrFinal);
     displayReadback_ =
-        std::make_unique<ImageReadback>(*device_, displayTexture_, features::kDisplayFormat, extent, kDisplayFinal);
+        std::make_unique<ImageReadback>(*device_, displayTexture_, displayFormat_, extent, kDisplayFinal);
   }
 
   void collectTimings() {
@@ -283,6 +286,8 @@ class SceneWorkload final : public Workload {
   std::vector<std::unique_ptr<features::IRenderFeature>> features_;
   features::FiniteCheckFeature* finiteCheck_ = nullptr;  // owned by features_
   bool hdrStorage_ = false;  // a compute node writes the HDR target
+  bool displayStorage_ = false;  // a compute node writes the display image
+  graph::Format displayFormat_ = features::kDisplayFormat;  // holds sRGB-encoded bytes in either format
   rhi::TextureId hdrTexture_;
   rhi::TextureId displayTexture_;
   std::unique_ptr<rhi::ExecutableGraph> graph_;

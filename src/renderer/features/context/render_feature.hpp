@@ -22,6 +22,11 @@ struct FeatureInit {
   const RenderSettings& settings;
 };
 
+// How a full-screen post pass runs: as a fragment pass (the thesis' forward renderer) or as a
+// compute dispatch on the graphics queue (the visibility-buffer path: on GPUs that run graphics on
+// a few SMs only, compute reaches all of them). Both forms share their GLSL maths.
+enum class PostPassForm : uint8_t { Fragment, Compute };
+
 class IRenderFeature {
  public:
   virtual ~IRenderFeature() = default;

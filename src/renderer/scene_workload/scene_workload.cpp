@@ -34,6 +34,12 @@ constexpr graph::ImportState kHdrFinal{graph::kStageFragmentShader, graph::kAcce
                                        graph::Layout::ShaderReadOnly, graph::QueueClass::Graphics};
 constexpr graph::ImportState kDisplayFinal{graph::kStageColorAttachmentOutput, graph::kAccessColorAttachmentWrite,
                                            graph::Layout::ColorAttachment, graph::QueueClass::Graphics};
+// With compute post passes (render_paths.hpp): tone mapping samples the HDR image and writes the
+// display image as storage, in compute; leaving them there spares a transition every frame.
+constexpr graph::ImportState kHdrFinalCompute{graph::kStageComputeShader, graph::kAccessShaderSampledRead,
+                                              graph::Layout::ShaderReadOnly, graph::QueueClass::Graphics};
+constexpr graph::ImportState kDisplayFinalCompute{graph::kStageComputeShader, graph::kAccessShaderStorageWrite,
+                                                  graph::Layout::General, graph::QueueClass::Graphics};
 constexpr graph::ImportState kDiscard{graph::kStageNone, graph::kAccessNone, graph::Layout::Undefined,
                                       graph::QueueClass::Graphics};
 
@@ -203,6 +209,10 @@ class SceneWorkload final : public Workload {
     for (auto& feature : features_) feature->initialize(init);
   }
 
+  // Where the frame leaves the imported images (tone mapping is their last user).
+  graph::ImportState hdrFinal() const { return displayStorage_ ? kHdrFinalCompute : kHdrFinal; }
+  graph::ImportState displayFinal() const { return displayStorage_ ? kDisplayFinalCompute : kDisplayFinal; }
+
   FrameTargets makeTargets(graph::FrameGraph& graph) {
     const graph::Extent extent{settings_.width, settings_.height, 1};
     const rhi::TextureUsage storage = hdrStorage_ ? rhi::kTextureStorage : rhi::TextureUsage{0};
@@ -224,7 +234,7 @@ class SceneWorkload final : public Workload {
                                             kExposureState, kExposureState);
     }
     const graph::TextureHandle hdr = graph.importTexture("hdr", {features::kHdrFormat, extent, 1, 1, 1, {}, 0},
-                                                         rhi::external(hdrTexture_), kDiscard, kHdrFinal);
+                                                         rhi::external(hdrTexture_), kDiscard, hdrFinal());
     if (settings_.ssaa == 1) {
       targets.hdr = hdr;
     } else {
@@ -232,7 +242,7 @@ class SceneWorkload final : public Workload {
       targets.hdr = graph.createTexture("hdr ssaa", {features::kHdrFormat, targets.extent, 1, 1, 1, {}, 0});
     }
     targets.display = graph.importTexture("display", {displayFormat_, extent, 1, 1, 1, {}, 0},
-                                          rhi::external(displayTexture_), kDiscard, kDisplayFinal);
+                                          rhi::external(displayTexture_), kDiscard, displayFinal());
     targets.color = settings_.msaa == 1
                         ? targets.hdr
                         : graph.createTexture("hdr msaa", {features::kHdrFormat, {}, 1, 1, settings_.msaa, targets.hdr, 0});
@@ -253,9 +263,9 @@ class SceneWorkload final : public Workload {
     graph_ = device_->compile(std::move(graph), options);
     for (const double us : profile.microseconds) startup_.graphCompileMs += us / 1000.0;
     const graph::Extent extent = targets.outputExtent;
-    hdrReadback_ = std::make_unique<ImageReadback>(*device_, hdrTexture_, features::kHdrFormat, extent, kHdrFinal);
+    hdrReadback_ = std::make_unique<ImageReadback>(*device_, hdrTexture_, features::kHdrFormat, extent, hdrFinal());
     displayReadback_ =
-        std::make_unique<ImageReadback>(*device_, displayTexture_, displayFormat_, extent, kDisplayFinal);
+        std::make_unique<ImageReadback>(*device_, displayTexture_, displayFormat_, extent, displayFinal());
   }
 
   void collectTimings() {

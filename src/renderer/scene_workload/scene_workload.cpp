@@ -34,6 +34,12 @@ constexpr graph::ImportState kHdrFinal{graph::kStageFragmentShader, graph::kAcce
                                        graph::Layout::ShaderReadOnly, graph::QueueClass::Graphics};
 constexpr graph::ImportState kDisplayFinal{graph::kStageColorAttachmentOutput, graph::kAccessColorAttachmentWrite,
                                            graph::Layout::ColorAttachment, graph::QueueClass::Graphics};
+// With compute post passes (render_paths.hpp): tone mapping samples the HDR image and writes the
+// display image as storage, in compute; leaving them there spares a transition every frame.
+constexpr graph::ImportState kHdrFinalCompute{graph::kStageComputeShader, graph::kAccessShaderSampledRead,
+                                              graph::Layout::ShaderReadOnly, graph::QueueClass::Graphics};
+constexpr graph::ImportState kDisplayFinalCompute{graph::kStageComputeShader, graph::kAccessShaderStorageWrite,
+                                                  graph::Layout::General, graph::QueueClass::Graphics};
 constexpr graph::ImportState kDiscard{graph::kStageNone, graph::kAccessNone, graph::Layout::Undefined,
                                       graph::QueueClass::Graphics};
 
@@ -178,6 +184,8 @@ class SceneWorkload final : public Workload {
     RenderPathPlan plan = planRenderPath(settings_);
     features_ = std::move(plan.features);
     hdrStorage_ = plan.computeWritesHdr;
+    displayStorage_ = plan.computeWritesDisplay;
+    displayFormat_ = plan.displayFormat;
     // Last: it inspects every node declared before it (see finite_check_feature.hpp).
     auto finiteCheck = std::make_unique<features::FiniteCheckFeature>();
     finiteCheck_ = finiteCheck.get();
@@ -186,14 +194,19 @@ class SceneWorkload final : public Workload {
     for (auto& feature : features_) feature->initialize(init);
   }
 
+  // Where the frame leaves the imported images (tone mapping is their last user).
+  graph::ImportState hdrFinal() const { return displayStorage_ ? kHdrFinalCompute : kHdrFinal; }
+  graph::ImportState displayFinal() const { return displayStorage_ ? kDisplayFinalCompute : kDisplayFinal; }
+
   FrameTargets makeTargets(graph::FrameGraph& graph) {
     const graph::Extent extent{settings_.width, settings_.height, 1};
     const rhi::TextureUsage storage = hdrStorage_ ? rhi::kTextureStorage : rhi::TextureUsage{0};
     hdrTexture_ = device_->createTexture({"hdr", features::kHdrFormat, extent, 1, 1, 1,
                                           rhi::kTextureColorAttachment | rhi::kTextureSampled |
                                               rhi::kTextureTransferSrc | storage});
-    displayTexture_ = device_->createTexture({"display", features::kDisplayFormat, extent, 1, 1, 1,
-                                              rhi::kTextureColorAttachment | rhi::kTextureTransferSrc});
+    const rhi::TextureUsage displayStorage = displayStorage_ ? rhi::kTextureStorage : rhi::TextureUsage{0};
+    displayTexture_ = device_->createTexture({"display", displayFormat_, extent, 1, 1, 1,
+                                              rhi::kTextureColorAttachment | rhi::kTextureTransferSrc | displayStorage});
     FrameTargets targets;
     targets.outputExtent = extent;
     targets.extent = {settings_.sceneWidth(), settings_.sceneHeight(), 1};
@@ -206,36 +219,26 @@ class SceneWorkload final : public Workload {
                                             kExposureState, kExposureState);
     }
     const graph::TextureHandle hdr = graph.importTexture("hdr", {features::kHdrFormat, extent, 1, 1, 1, {}, 0},
-                                                         rhi::external(hdrTexture_), kDiscard, kHdrFinal);
+                                                         rhi::external(hdrTexture_), kDiscard, hdrFinal());
     if (settings_.ssaa == 1) {
       targets.hdr = hdr;
     } else {
       targets.outputHdr = hdr;
       targets.hdr = graph.createTexture("hdr ssaa", {features::kHdrFormat, targets.extent, 1, 1, 1, {}, 0});
     }
-    targets.display = graph.importTexture("display", {features::kDisplayFormat, extent, 1, 1, 1, {}, 0},
-                                          rhi::external(displayTexture_), kDiscard, kDisplayFinal);
+    targets.display = graph.importTexture("display", {displayFormat_, extent, 1, 1, 1, {}, 0},
+                                          rhi::external(displayTexture_), kDiscard, displayFinal());
     targets.color = settings_.msaa == 1
                         ? targets.hdr
                         : graph.createTexture("hdr msaa", {features::kHdrFormat, {}, 1, 1, settings_.msaa, targets.hdr, 0});
     targets.depth = graph.createTexture("depth", {features::kDepthFormat, {}, 1, 1, settings_.msaa, targets.hdr, 0});
-    for (const auto& feature : features_) {
-      if (!feature->enabled()) continue;
-      targets.colorPasses += feature->colorPasses();
-      hdrWritten_ = hdrWritten_ || feature->writesHdr();
-    }
     return targets;
   }
 
   void buildFrameGraph() {
     graph::FrameGraph graph;
     features::Blackboard board;
-    auto& targets = board.set(makeTargets(graph));
-    // Nothing draws (empty scene): one pass still clears the HDR image for tone mapping.
-    if (targets.colorPasses == 0 && !hdrWritten_) {
-      targets.colorPasses = 1;
-      features::addForwardPass(graph, targets, "Clear", true).setJob([](graph::JobContext&) {});
-    }
+    const auto& targets = board.set(makeTargets(graph));
     for (auto& feature : features_)
       if (feature->enabled()) feature->declare(graph, board);
     rhi::GraphOptions options;
@@ -245,9 +248,9 @@ class SceneWorkload final : public Workload {
     graph_ = device_->compile(std::move(graph), options);
     for (const double us : profile.microseconds) startup_.graphCompileMs += us / 1000.0;
     const graph::Extent extent = targets.outputExtent;
-    hdrReadback_ = std::make_unique<ImageReadback>(*device_, hdrTexture_, features::kHdrFormat, extent, kHdrFinal);
+    hdrReadback_ = std::make_unique<ImageReadback>(*device_, hdrTexture_, features::kHdrFormat, extent, hdrFinal());
     displayReadback_ =
-        std::make_unique<ImageReadback>(*device_, displayTexture_, features::kDisplayFormat, extent, kDisplayFinal);
+        std::make_unique<ImageReadback>(*device_, displayTexture_, displayFormat_, extent, displayFinal());
   }
 
   scene::LoadedScene loaded_;
@@ -259,7 +262,8 @@ class SceneWorkload final : public Workload {
   std::vector<std::unique_ptr<features::IRenderFeature>> features_;
   features::FiniteCheckFeature* finiteCheck_ = nullptr;  // owned by features_
   bool hdrStorage_ = false;  // a compute node writes the HDR target
-  bool hdrWritten_ = false;  // a feature writes the HDR target outside the forward colour passes
+  bool displayStorage_ = false;  // a compute node writes the display image
+  graph::Format displayFormat_ = features::kDisplayFormat;  // holds sRGB-encoded bytes in either format
   rhi::TextureId hdrTexture_;
   rhi::TextureId displayTexture_;
   std::unique_ptr<rhi::ExecutableGraph> graph_;

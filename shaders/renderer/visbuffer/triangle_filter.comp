@@ -1,6 +1,6 @@
 #version 460
 // "Triangle Filter" (The Forge's triangle filtering): one workgroup per visible cluster, one
-// invocation per triangle. A triangle is dropped when it is degenerate, behind the eye or beyond
+// invocation per two of its (at most 128) triangles. A triangle is dropped when it is degenerate, behind the eye or beyond
 // a frustum plane, back-facing (single-sided materials), or too small to cover a pixel centre.
 // Survivors covering at most 8x8 pixel centres go to the small list (one raster thread each);
 // larger ones go to the large list set up (packLargeTriangle), and their 8x8-pixel tiles, in
@@ -9,7 +9,10 @@
 #extension GL_GOOGLE_include_directive : require
 #include "../include/visbuffer_triangle.glsl"
 
-layout(local_size_x = 128) in;
+// Two triangles per invocation: the cluster's draw, instance and transform are loaded per
+// invocation (see loadCluster), so fewer invocations per cluster load them fewer times.
+const uint kTrianglesPerInvocation = 2u;
+layout(local_size_x = 64) in;
 
 const int kSmallPixels = 8;
 
@@ -98,5 +101,8 @@ void main() {
   if (clusterSlot >= visCountersRead[pc.args].c.visibleClusters) return;  // uniform in the workgroup
   loadFrameGlobals();
   ClusterSetup c = loadCluster(clusterSlot);
-  if (gl_LocalInvocationIndex < c.triangles) filterTriangle(c, clusterSlot, gl_LocalInvocationIndex);
+  for (uint i = 0u; i < kTrianglesPerInvocation; ++i) {
+    uint triangle = gl_LocalInvocationIndex + i * gl_WorkGroupSize.x;
+    if (triangle < c.triangles) filterTriangle(c, clusterSlot, triangle);
+  }
 }

@@ -392,6 +392,9 @@ TEST(VisBuffer, ComputeNodesReplaceMeshRenderAndTheImageMatchesForward) {
   EXPECT_LT(vis.stats.at("vis_clusters_visible"), vis.stats.at("vis_clusters"));  // something was culled
   EXPECT_GT(vis.stats.at("vis_triangles_rasterised"), 0.0);
   EXPECT_EQ(vis.stats.at("vis_large_overflow"), 0.0);
+  // Every large triangle has at least one tile job (at most 16 8x8 tiles of its box each).
+  EXPECT_GT(vis.stats.at("vis_triangles_large"), 0.0);
+  EXPECT_GE(vis.stats.at("vis_raster_tile_jobs"), vis.stats.at("vis_triangles_large"));
   ASSERT_EQ(vis.hdr.pixels.size(), forward.hdr.pixels.size());
   EXPECT_GT(meanOf(vis.hdr), 0.5 * meanOf(forward.hdr));
   EXPECT_LT(differingValues(vis.hdr, forward.hdr, 0.1f, 0.02f), vis.hdr.pixels.size() / 20);

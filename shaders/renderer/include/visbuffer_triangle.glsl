@@ -22,7 +22,7 @@ layout(push_constant) uniform Push {
   uint args;           // VisCounters snapshot with the indirect arguments of this node
   uint visible;         // visible-cluster list
   uint smallList;       // ids of small triangles
-  uint largeList;       // uvec4 per large triangle: id, first tile, tile counts, first job
+  uint largeList;       // 4 uvec4 per large triangle, set up by "Triangle Filter" (packLargeTriangle)
   uint largeCapacity;
   uint words;           // the visibility buffer (uint64 per pixel)
   uint depthOut;        // float per pixel, copied into the depth image ("Visibility Depth Resolve")
@@ -32,6 +32,9 @@ layout(push_constant) uniform Push {
   uint clusterCounts;   // FGB_NONE: no clustered lighting
   uint clusterIndices;
   uint flags;           // bit 0: reversed Z; bit 1: raster the large-triangle tiles (else small)
+  uint tileJobs;        // uvec2 per tile job: large-list slot, job index within the triangle
+  uint tileJobCapacity;
+  uint pad;
   vec4 background;      // (at byte 112) HDR clear of pixels no triangle covers (pre-exposed, alpha 0)
 } pc;
 
@@ -154,31 +157,38 @@ bool isTopLeft(ivec2 a, ivec2 b) {
   return (d.y == 0 && d.x > 0) || d.y < 0;
 }
 
-EdgeSetup edgeSetup(ScreenTriangle t) {
-  EdgeSetup s;
-  s.v[0] = t.fixedPos[0];
-  s.v[1] = t.area > 0 ? t.fixedPos[1] : t.fixedPos[2];
-  s.v[2] = t.area > 0 ? t.fixedPos[2] : t.fixedPos[1];
-  s.area = abs(t.area);
-  s.bias = ivec3(isTopLeft(s.v[1], s.v[2]) ? 0 : -1, isTopLeft(s.v[2], s.v[0]) ? 0 : -1,
-                 isTopLeft(s.v[0], s.v[1]) ? 0 : -1);
-  return s;
-}
-
 int64_t edgeFunction(ivec2 a, ivec2 b, ivec2 p) {
   return int64_t(b.x - a.x) * int64_t(p.y - a.y) - int64_t(b.y - a.y) * int64_t(p.x - a.x);
 }
 
-// Screen-space (affine) weights of vertices 0, 1, 2 of the ScreenTriangle at a pixel centre, or a
-// negative x when the sample is outside.
-vec3 coverage(EdgeSetup s, ScreenTriangle t, ivec2 pixel) {
+EdgeSetup edgeSetupOrdered(ivec2 v0, ivec2 v1, ivec2 v2, int64_t area) {
+  EdgeSetup s;
+  s.v[0] = v0;
+  s.v[1] = v1;
+  s.v[2] = v2;
+  s.area = area;
+  s.bias = ivec3(isTopLeft(v1, v2) ? 0 : -1, isTopLeft(v2, v0) ? 0 : -1, isTopLeft(v0, v1) ? 0 : -1);
+  return s;
+}
+
+// Screen-space (affine) weights of vertices 0, 1, 2 at a pixel centre (in the triangle's own
+// vertex order: `swapped` when edgeSetup exchanged vertices 1 and 2), or a negative x when the
+// sample is outside.
+vec3 coverage(EdgeSetup s, bool swapped, ivec2 pixel) {
   ivec2 p = pixel * kSubPixel + kSubPixel / 2;
   int64_t w0 = edgeFunction(s.v[1], s.v[2], p) + s.bias.x;
   int64_t w1 = edgeFunction(s.v[2], s.v[0], p) + s.bias.y;
   int64_t w2 = edgeFunction(s.v[0], s.v[1], p) + s.bias.z;
   if (w0 < 0 || w1 < 0 || w2 < 0) return vec3(-1.0);
   vec3 w = vec3(float(w0 - s.bias.x), float(w1 - s.bias.y), float(w2 - s.bias.z)) / float(s.area);
-  return t.area > 0 ? w : w.xzy;  // back to the triangle's own vertex order
+  return swapped ? w.xzy : w;
+}
+vec3 coverage(EdgeSetup s, ScreenTriangle t, ivec2 pixel) { return coverage(s, !(t.area > 0), pixel); }
+
+EdgeSetup edgeSetup(ScreenTriangle t) {
+  bool keep = t.area > 0;
+  return edgeSetupOrdered(t.fixedPos[0], keep ? t.fixedPos[1] : t.fixedPos[2], keep ? t.fixedPos[2] : t.fixedPos[1],
+                          abs(t.area));
 }
 
 // Small triangles travel from "Triangle Filter" to "Visibility Raster" already set up (two uvec4
@@ -205,6 +215,66 @@ void packSmallTriangle(ScreenTriangle t, uint id, bool masked, out uvec4 a, out 
             packOffset(t.fixedPos[1] - origin));
   b = uvec4(packOffset(t.fixedPos[2] - origin), floatBitsToUint(t.clip[0].z / t.clip[0].w),
             floatBitsToUint(t.clip[1].z / t.clip[1].w), floatBitsToUint(t.clip[2].z / t.clip[2].w));
+}
+
+// The large-triangle path's tile jobs. (VisCounters::largeTotals' low 40 bits and tileJobs count
+// these jobs, not single tiles, and tileGroups dispatches one workgroup per job.)
+const uint kTilesPerJob = 16u;              // 8x8 tiles of one triangle per job, at most
+const uint kNoLargeTriangle = 0xffffffffu;  // a job whose triangle did not fit the large list
+FGB_STORAGE_BUFFER(Uvec2Block, visUvec2s, ) { uvec2 values[]; } visUvec2s[FGB_MAX_STORAGE_BUFFERS];
+FGB_READONLY_STORAGE_BUFFER(Uvec2ReadBlock, visUvec2sRead) { uvec2 values[]; } visUvec2sRead[FGB_MAX_STORAGE_BUFFERS];
+
+// Large triangles travel set up too (4 uvec4 per triangle): "Visibility Raster" runs jobs of at
+// most kTilesPerJob 8x8 tiles of one triangle, and each job reads its triangle from here instead
+// of rebuilding it. Triangles that are alpha-masked or not `projected` (eye plane, guard band) are
+// flagged: those jobs rebuild the triangle (loadTriangle) for the per-pixel alpha test or the
+// homogeneous edge functions.
+const uint kLargeMasked = 1u;
+const uint kLargeHomogeneous = 2u;  // not projected: the fixed-point fields are unused
+const uint kLargeSwapped = 4u;      // edgeSetup exchanged vertices 1 and 2 (negative area)
+
+struct LargeTriangle {
+  uint id;
+  uint flags;
+  ivec4 pixels;  // covered pixel-centre range x0, y0, x1, y1 (inclusive)
+  EdgeSetup edges;
+  vec3 ndcZ;     // NDC depth of vertices 0, 1, 2 in the triangle's own order
+};
+
+uint packPixel(ivec2 pixel) { return uint(pixel.x) | (uint(pixel.y) << 16); }
+ivec2 unpackPixel(uint packed) { return ivec2(packed & 0xffffu, packed >> 16); }
+
+void packLargeTriangle(ScreenTriangle t, uint id, bool masked, out uvec4 e[4]) {
+  uint flags = (masked ? kLargeMasked : 0u) | (t.projected ? 0u : kLargeHomogeneous) | (t.area > 0 ? 0u : kLargeSwapped);
+  e[0] = uvec4(id, flags, packPixel(t.pixels.xy), packPixel(t.pixels.zw));
+  e[1] = uvec4(0u);
+  e[2] = uvec4(0u);
+  e[3] = uvec4(0u);
+  if (!t.projected) return;
+  EdgeSetup s = edgeSetup(t);
+  e[1] = uvec4(uint(s.area), uint(s.area >> 32), uvec2(s.v[0]));
+  e[2] = uvec4(uvec2(s.v[1]), uvec2(s.v[2]));
+  e[3] = uvec4(floatBitsToUint(t.clip[0].z / t.clip[0].w), floatBitsToUint(t.clip[1].z / t.clip[1].w),
+               floatBitsToUint(t.clip[2].z / t.clip[2].w), 0u);
+}
+
+LargeTriangle unpackLargeTriangle(uvec4 e[4]) {
+  LargeTriangle l;
+  l.id = e[0].x;
+  l.flags = e[0].y;
+  l.pixels = ivec4(unpackPixel(e[0].z), unpackPixel(e[0].w));
+  int64_t area = int64_t(uint64_t(e[1].x) | (uint64_t(e[1].y) << 32));
+  l.edges = edgeSetupOrdered(ivec2(e[1].zw), ivec2(e[2].xy), ivec2(e[2].zw), area);
+  l.ndcZ = uintBitsToFloat(e[3].xyz);
+  return l;
+}
+
+// The 8x8 tiles of the triangle's pixel range, and how many jobs cover them.
+uvec2 firstTileOf(ivec4 pixels) { return uvec2(pixels.xy) / kTileSize; }
+uvec2 tileCountsOf(ivec4 pixels) { return uvec2(pixels.zw) / kTileSize - firstTileOf(pixels) + 1u; }
+uint tileJobsOf(ivec4 pixels) {
+  uvec2 tiles = tileCountsOf(pixels);
+  return (tiles.x * tiles.y + kTilesPerJob - 1u) / kTilesPerJob;
 }
 
 #endif

@@ -1,14 +1,18 @@
 #version 460
 // "Triangle Filter" (The Forge's triangle filtering): one workgroup per visible cluster, one
-// invocation per triangle. A triangle is dropped when it is degenerate, behind the eye or beyond
+// invocation per two of its (at most 128) triangles. A triangle is dropped when it is degenerate, behind the eye or beyond
 // a frustum plane, back-facing (single-sided materials), or too small to cover a pixel centre.
 // Survivors covering at most 8x8 pixel centres go to the small list (one raster thread each);
-// larger ones to the large list with their 8x8-pixel tiles, which "Visibility Raster" spreads
-// over one workgroup per tile so no thread walks a big triangle.
+// larger ones go to the large list set up (packLargeTriangle), and their 8x8-pixel tiles, in
+// jobs of at most kTilesPerJob, to the tile-job list: "Visibility Raster" runs one workgroup per
+// job, so no workgroup walks a big triangle and none searches for its triangle.
 #extension GL_GOOGLE_include_directive : require
 #include "../include/visbuffer_triangle.glsl"
 
-layout(local_size_x = 128) in;
+// Two triangles per invocation: the cluster's draw, instance and transform are loaded per
+// invocation (see loadCluster), so fewer invocations per cluster load them fewer times.
+const uint kTrianglesPerInvocation = 2u;
+layout(local_size_x = 64) in;
 
 const int kSmallPixels = 8;
 
@@ -22,65 +26,83 @@ bool outsideFrustum(vec4 c[3]) {
   return c[0].z > c[0].w && c[1].z > c[1].w && c[2].z > c[2].w;
 }
 
-void appendLarge(uint id, ivec4 pixels) {
-  uvec2 firstTile = uvec2(pixels.xy) / kTileSize;
-  uvec2 tiles = uvec2(pixels.zw) / kTileSize - firstTile + 1u;
-  uint64_t totals = atomicAdd(visCounters[pc.counters].c.largeTotals, (uint64_t(1) << 40) | uint64_t(tiles.x * tiles.y));
-  uint slot = uint(totals >> 40);
-  if (slot >= pc.largeCapacity) {
-    atomicAdd(visCounters[pc.counters].c.overflow, 1u);
-    return;
-  }
-  uint firstJob = uint(totals & 0xffffffffffUL);
-  visUvec4s[pc.largeList].values[slot] = uvec4(id, firstTile.x | (firstTile.y << 16), tiles.x | (tiles.y << 16), firstJob);
+// The workgroup's cluster (one cluster of one instance). Every invocation loads it itself rather
+// than invocation 0 for all behind a barrier: the loads are the same addresses (broadcast), and a
+// shader without barriers runs as straight SIMD code on CPU devices (lavapipe runs the invocations
+// of a shader with barriers as coroutines, which cost more than the loads).
+struct ClusterSetup {
+  ClusterDraw draw;
+  mat4 modelViewProj;
+  uint firstIndex;
+  uint triangles;
+};
+
+ClusterSetup loadCluster(uint clusterSlot) {
+  ClusterSetup c;
+  c.draw = visDraws[pc.draws].draws[fgbUintsRead[pc.visible].values[clusterSlot]];
+  c.modelViewProj = modelViewProj(fgbInstances[pc.instances].instances[c.draw.instance].model);
+  c.firstIndex = visClusters[pc.clusters].clusters[c.draw.cluster].firstIndex;
+  c.triangles = visClusters[pc.clusters].clusters[c.draw.cluster].triangleCount;
+  return c;
 }
 
-// What every invocation of the workgroup (one cluster of one instance) shares, loaded once.
-shared mat4 sModelViewProj;
-shared ClusterDraw sDraw;
-shared uint sFirstIndex;
-shared uint sTriangles;
-
-void main() {
-  uint clusterSlot = linearGroup();
-  if (clusterSlot >= visCountersRead[pc.args].c.visibleClusters) return;  // uniform in the workgroup
-  if (gl_LocalInvocationIndex == 0u) {
-    loadFrameGlobals();
-    ClusterDraw draw = visDraws[pc.draws].draws[fgbUintsRead[pc.visible].values[clusterSlot]];
-    sDraw = draw;
-    sModelViewProj = modelViewProj(fgbInstances[pc.instances].instances[draw.instance].model);
-    sFirstIndex = visClusters[pc.clusters].clusters[draw.cluster].firstIndex;
-    sTriangles = visClusters[pc.clusters].clusters[draw.cluster].triangleCount;
+void appendLarge(ScreenTriangle t, uint id, bool masked) {
+  uint jobs = tileJobsOf(t.pixels);
+  uint64_t totals = atomicAdd(visCounters[pc.counters].c.largeTotals, (uint64_t(1) << 40) | uint64_t(jobs));
+  uint slot = uint(totals >> 40);
+  uint firstJob = uint(totals & 0xffffffffffUL);
+  if (slot >= pc.largeCapacity || uint64_t(firstJob) + jobs > pc.tileJobCapacity) {
+    atomicAdd(visCounters[pc.counters].c.overflow, 1u);
+    slot = kNoLargeTriangle;  // its jobs (those within capacity) are written empty
+  } else {
+    uvec4 e[4];
+    packLargeTriangle(t, id, masked, e);
+    for (uint i = 0u; i < 4u; ++i) visUvec4s[pc.largeList].values[4u * slot + i] = e[i];
   }
-  barrier();
-  loadFrameGlobals();
-  uint triangle = gl_LocalInvocationID.x;
-  if (triangle >= sTriangles) return;
-  VisTriangle tri;
-  tri.instance = sDraw.instance;
-  tri.flags = sDraw.flags;
-  uint first = sFirstIndex + 3u * triangle;
-  tri.vertices = uvec3(fgbUintsRead[pc.indices].values[first], fgbUintsRead[pc.indices].values[first + 1u],
-                       fgbUintsRead[pc.indices].values[first + 2u]) + sDraw.firstVertex;
-  if (tri.vertices.x == tri.vertices.y || tri.vertices.y == tri.vertices.z || tri.vertices.x == tri.vertices.z) return;
-  ScreenTriangle t = setupTriangle(sModelViewProj, tri.vertices);
+  // One invocation writes all of the triangle's jobs: a few for most, and a full-screen box at
+  // 1920x1080 has 2 025 (8 bytes each), far less than rasterising it.
+  uint end = uint(min(uint64_t(firstJob) + jobs, uint64_t(pc.tileJobCapacity)));
+  for (uint job = firstJob; job < end; ++job) visUvec2s[pc.tileJobs].values[job] = uvec2(slot, job - firstJob);
+}
+
+// Filters one triangle of the workgroup's cluster: drops it, or appends it to the small list or
+// (appendLarge) the large one.
+void filterTriangle(ClusterSetup c, uint clusterSlot, uint triangle) {
+  uint flags = c.draw.flags;
+  uint first = c.firstIndex + 3u * triangle;
+  uvec3 vertices = uvec3(fgbUintsRead[pc.indices].values[first], fgbUintsRead[pc.indices].values[first + 1u],
+                         fgbUintsRead[pc.indices].values[first + 2u]) + c.draw.firstVertex;
+  if (vertices.x == vertices.y || vertices.y == vertices.z || vertices.x == vertices.z) return;
+  ScreenTriangle t = setupTriangle(c.modelViewProj, vertices);
   if (t.clip[0].w <= 0.0 && t.clip[1].w <= 0.0 && t.clip[2].w <= 0.0) return;
   if (outsideFrustum(t.clip)) return;
   if (t.pixels.x > t.pixels.z || t.pixels.y > t.pixels.w) return;  // covers no pixel centre
   if (t.projected && t.area == 0) return;
-  if ((tri.flags & kDrawSingleSided) != 0u) {
-    bool front = framebufferFront(t) != ((tri.flags & kDrawMirrored) != 0u);
+  if ((flags & kDrawSingleSided) != 0u) {
+    bool front = framebufferFront(t) != ((flags & kDrawMirrored) != 0u);
     if (!front) return;
   }
   uint id = (clusterSlot << kClusterTriangleBits) | triangle;
+  bool masked = (flags & kDrawAlphaMasked) != 0u;
   ivec2 span = t.pixels.zw - t.pixels.xy + 1;
   if (t.projected && span.x <= kSmallPixels && span.y <= kSmallPixels && packable(t)) {
     uint slot = atomicAdd(visCounters[pc.counters].c.smallTriangles, 1u);
     uvec4 a, b;
-    packSmallTriangle(t, id, (tri.flags & kDrawAlphaMasked) != 0u, a, b);
+    packSmallTriangle(t, id, masked, a, b);
     visUvec4s[pc.smallList].values[2u * slot] = a;
     visUvec4s[pc.smallList].values[2u * slot + 1u] = b;
   } else {
-    appendLarge(id, t.pixels);
+    appendLarge(t, id, masked);
+  }
+}
+
+void main() {
+  uint clusterSlot = linearGroup();
+  if (clusterSlot >= visCountersRead[pc.args].c.visibleClusters) return;  // uniform in the workgroup
+  loadFrameGlobals();
+  ClusterSetup c = loadCluster(clusterSlot);
+  for (uint i = 0u; i < kTrianglesPerInvocation; ++i) {
+    uint triangle = gl_LocalInvocationIndex + i * gl_WorkGroupSize.x;
+    if (triangle < c.triangles) filterTriangle(c, clusterSlot, triangle);
   }
 }

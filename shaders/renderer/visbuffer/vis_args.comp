@@ -12,6 +12,7 @@ layout(push_constant) uniform Push {
   uint counters;       // read
   uint args;           // written: the counters with the arguments filled in
   uint smallPerGroup;  // small triangles per raster workgroup
+  uint tileJobCapacity;
 } pc;
 
 void main() {
@@ -19,12 +20,12 @@ void main() {
   uvec3 filterGroups = dispatchFor(c.visibleClusters, 1u);
   uvec3 small = dispatchFor(c.smallTriangles, pc.smallPerGroup);
   uint largeTriangles = uint(c.largeTotals >> 40);
-  uint tiles = uint(c.largeTotals & 0xffffffffffUL);
-  uvec3 tileGroups = dispatchFor(tiles, 1u);
+  uint jobs = min(uint(c.largeTotals & 0xffffffffffUL), pc.tileJobCapacity);
+  uvec3 tileGroups = dispatchFor(jobs, 1u);
   c.filterGroups = uint[3](filterGroups.x, filterGroups.y, filterGroups.z);
   c.smallGroups = uint[3](small.x, small.y, small.z);
   c.largeTriangles = largeTriangles;
-  c.tileJobs = tiles;
+  c.tileJobs = jobs;
   c.tileGroups = uint[3](tileGroups.x, tileGroups.y, tileGroups.z);
   visCounters[pc.args].c = c;
 }

@@ -111,40 +111,47 @@ void rasterSmall() {
   }
 }
 
-// The large triangle whose tiles include job `job`: the last entry with firstJob <= job.
-uint largeEntryOf(uint job) {
-  uint lo = 0u, hi = min(visCountersRead[pc.args].c.largeTriangles, pc.largeCapacity);
-  while (hi - lo > 1u) {
-    uint mid = (lo + hi) / 2u;
-    if (visUvec4sRead[pc.largeList].values[mid].w <= job) lo = mid;
-    else hi = mid;
+// One workgroup per tile job, one invocation per pixel of each of its tiles. Every invocation
+// reads the job's triangle itself (same addresses: broadcast loads) instead of invocation 0 for
+// all behind a barrier: without barriers the shader runs as straight SIMD code on CPU devices
+// (lavapipe runs a shader with barriers as coroutines). Triangles flagged masked or homogeneous are
+// rebuilt (loadTriangle: the alpha test needs vertices and material, the homogeneous edge
+// functions the clip positions); the others come set up from the large list.
+void rasterTileJob() {
+  uint jobIndex = linearGroup();
+  if (jobIndex >= visCountersRead[pc.args].c.tileJobs) return;  // uniform across the workgroup
+  uvec2 job = visUvec2sRead[pc.tileJobs].values[jobIndex];
+  if (job.x == kNoLargeTriangle) return;  // the large list overflowed (counted)
+  uvec4 e[4];
+  for (uint i = 0u; i < 4u; ++i) e[i] = visUvec4sRead[pc.largeList].values[4u * job.x + i];
+  LargeTriangle l = unpackLargeTriangle(e);
+  bool general = (l.flags & (kLargeMasked | kLargeHomogeneous)) != 0u;
+  RasterTriangle r;
+  if (general) r = loadTriangle(l.id);
+  uvec2 firstTile = firstTileOf(l.pixels), tiles = tileCountsOf(l.pixels);
+  uint firstLocal = job.y * kTilesPerJob, endLocal = min(firstLocal + kTilesPerJob, tiles.x * tiles.y);
+  ivec2 inTile = ivec2(gl_LocalInvocationID.x % kTileSize, gl_LocalInvocationID.x / kTileSize);
+  uint64_t id = uint64_t(l.id);
+  uint width = uint(viewportSize().x);
+  bool swapped = (l.flags & kLargeSwapped) != 0u;
+  for (uint local = firstLocal; local < endLocal; ++local) {
+    ivec2 pixel = ivec2((firstTile + uvec2(local % tiles.x, local / tiles.x)) * kTileSize) + inTile;
+    if (any(lessThan(pixel, l.pixels.xy)) || any(greaterThan(pixel, l.pixels.zw))) continue;
+    if (general) {
+      rasterPixel(r, pixel);
+      continue;
+    }
+    vec3 w = coverage(l.edges, swapped, pixel);
+    if (w.x < 0.0) continue;
+    float z = dot(w, l.ndcZ);
+    if (!(z >= 0.0 && z <= 1.0)) continue;  // depth clipping (also drops NaN)
+    atomicMax(visWords[pc.words].words[uint(pixel.y) * width + uint(pixel.x)],
+              (uint64_t(depthKey(z, reversedZ())) << 32) | id);
   }
-  return lo;
-}
-
-// One invocation finds the tile's triangle and sets it up for the whole workgroup.
-shared RasterTriangle sTriangle;
-shared uvec2 sTile;
-
-void rasterTile() {
-  uint job = linearGroup();
-  if (job >= visCountersRead[pc.args].c.tileJobs) return;  // uniform across the workgroup
-  if (gl_LocalInvocationIndex == 0u) {
-    uvec4 entry = visUvec4sRead[pc.largeList].values[largeEntryOf(job)];
-    uint local = job - entry.w;
-    uint tilesX = entry.z & 0xffffu;
-    sTile = uvec2(entry.y & 0xffffu, entry.y >> 16) + uvec2(local % tilesX, local / tilesX);
-    sTriangle = loadTriangle(entry.x);
-  }
-  barrier();
-  RasterTriangle r = sTriangle;
-  ivec2 pixel = ivec2(sTile * kTileSize + uvec2(gl_LocalInvocationID.x % kTileSize, gl_LocalInvocationID.x / kTileSize));
-  if (any(lessThan(pixel, r.screen.pixels.xy)) || any(greaterThan(pixel, r.screen.pixels.zw))) return;
-  rasterPixel(r, pixel);
 }
 
 void main() {
   loadFrameGlobals();
-  if ((pc.flags & kFlagLargeTiles) != 0u) rasterTile();
+  if ((pc.flags & kFlagLargeTiles) != 0u) rasterTileJob();
   else rasterSmall();
 }

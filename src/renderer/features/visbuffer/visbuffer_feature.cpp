@@ -20,7 +20,7 @@ struct VisCounters {
   uint32_t filterGroups[3];
   uint32_t smallTriangles;
   uint32_t smallGroups[3];
-  uint64_t largeTotals;  // high 24 bits: large triangles, low 40 bits: their tiles
+  uint64_t largeTotals;  // high 24 bits: large triangles, low 40 bits: their tile jobs
   uint32_t largeTriangles;
   uint32_t tileJobs;
   uint32_t tileGroups[3];
@@ -49,6 +49,7 @@ struct ArgsPush {
   uint32_t counters;
   uint32_t args;
   uint32_t smallPerGroup;
+  uint32_t tileJobCapacity;
 };
 
 // Mirrors the push block of shaders/renderer/include/visbuffer_triangle.glsl.
@@ -57,15 +58,17 @@ struct VisPush {
   uint32_t positions, normals, tangents, uvs;  // float offsets of the vertex streams
   uint32_t counters, args, visible, smallList, largeList, largeCapacity, words, depthOut, hdr;
   uint32_t materialSampler, lights, clusterCounts, clusterIndices, flags;
-  uint32_t pad[3];
+  uint32_t tileJobs, tileJobCapacity, pad;
   glm::vec4 background;
 };
 static_assert(offsetof(VisPush, background) == 112 && sizeof(VisPush) == rhi::kPushConstantBytes);
 
 constexpr uint32_t kFlagReversedZ = 1;
 constexpr uint32_t kFlagLargeTiles = 2;
-constexpr uint32_t kRasterGroupSize = 64;  // visibility_raster.comp's local size
-constexpr uint32_t kShadeGroupSize = 8;    // material_shade.comp: 8 x 8
+constexpr uint32_t kRasterGroupSize = 64;     // visibility_raster.comp's local size
+constexpr uint64_t kLargeTriangleBytes = 64;  // 4 uvec4 (packLargeTriangle in visbuffer_triangle.glsl)
+constexpr uint64_t kTileJobBytes = 8;         // uvec2: large-list slot, job index within the triangle
+constexpr uint32_t kShadeGroupSize = 8;       // material_shade.comp: 8 x 8
 
 // Reversed Z: the projection maps nearer points to larger depth.
 bool projectsReversedZ(const FrameConstantsGpu& constants) {
@@ -86,6 +89,7 @@ struct VisBufferFeature::Buffers {
   graph::BufferHandle visible;
   graph::BufferHandle smallList;
   graph::BufferHandle largeList;
+  graph::BufferHandle tileJobs;
   graph::BufferHandle words;
   graph::BufferHandle depth;
   graph::Extent extent;
@@ -105,6 +109,9 @@ void VisBufferFeature::initialize(FeatureInit& init) {
   const uint64_t pixels = uint64_t{init.settings.sceneWidth()} * init.settings.sceneHeight();
   largeCapacity_ = uint32_t(std::min<uint64_t>(std::max<uint64_t>(init.scene.clusterGeometry.triangles, 1),
                                                std::max<uint64_t>(65536, pixels / 8)));
+  // A large triangle has one tile job per 16 8x8 tiles of its box, rounded up: room for one job
+  // per triangle plus pixels / 16 more (boxes adding up to 64 screens' worth of tiles).
+  tileJobCapacity_ = uint32_t(std::min<uint64_t>(uint64_t{largeCapacity_} + pixels / 16, UINT32_MAX));
   reversedZ_ = projectsReversedZ(init.scene.constants);
   pipelines_.cull = init.device.createComputePipeline({"cluster cull", "renderer/visbuffer/cluster_cull.comp"});
   pipelines_.args = init.device.createComputePipeline({"visibility arguments", "renderer/visbuffer/vis_args.comp"});
@@ -129,7 +136,8 @@ VisBufferFeature::Buffers VisBufferFeature::declareBuffers(graph::FrameGraph& gr
   b.rasterArgs = graph.createBuffer("triangle filter args", {sizeof(VisCounters), {}});
   b.visible = graph.createBuffer("visible clusters", {uint64_t{4} * geometry.drawCount, {}});
   b.smallList = graph.createBuffer("small triangles", {uint64_t{32} * geometry.triangles, {}});  // 2 uvec4 each
-  b.largeList = graph.createBuffer("large triangles", {uint64_t{16} * largeCapacity_, {}});
+  b.largeList = graph.createBuffer("large triangles", {kLargeTriangleBytes * largeCapacity_, {}});
+  b.tileJobs = graph.createBuffer("large triangle tile jobs", {kTileJobBytes * tileJobCapacity_, {}});
   b.words = graph.createBuffer("visibility buffer", {uint64_t{8} * pixels, {}});
   b.depth = graph.createBuffer("visibility depth", {uint64_t{4} * pixels, {}});
 
@@ -146,6 +154,7 @@ VisBufferFeature::Buffers VisBufferFeature::declareBuffers(graph::FrameGraph& gr
   p.tangents = uint32_t(scene.streams.tangents / 4);
   p.uvs = uint32_t(scene.streams.uvs / 4);
   p.largeCapacity = largeCapacity_;
+  p.tileJobCapacity = tileJobCapacity_;
   p.materialSampler = device_->samplerIndex(scene.materialSampler);
   p.lights = device_->storageBufferIndex(scene.lights);
   p.clusterCounts = p.clusterIndices = rhi::kInvalidId;
@@ -185,8 +194,8 @@ void VisBufferFeature::declareClusterCull(graph::FrameGraph& graph, Buffers& b) 
   push.draws = b.push.draws;
   push.clusters = b.push.clusters;
   push.drawCount = drawCount_;
-  node.setJob([push, pipelines = pipelines_, counters = b.counters, visible = b.visible,
-               args = b.cullArgs](graph::JobContext& context) mutable {
+  node.setJob([push, pipelines = pipelines_, counters = b.counters, visible = b.visible, args = b.cullArgs,
+               jobCapacity = tileJobCapacity_](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
     push.counters = ctx.storageBufferIndex(counters);
@@ -196,7 +205,7 @@ void VisBufferFeature::declareClusterCull(graph::FrameGraph& graph, Buffers& b) 
     cmd.dispatch((push.drawCount + 63) / 64);
     cmd.computeBarrier();  // the arguments read every workgroup's count
     cmd.bindPipeline(pipelines.args);
-    cmd.push(ArgsPush{push.counters, ctx.storageBufferIndex(args), kRasterGroupSize});
+    cmd.push(ArgsPush{push.counters, ctx.storageBufferIndex(args), kRasterGroupSize, jobCapacity});
     cmd.dispatch(1);
   });
 }
@@ -209,6 +218,7 @@ void VisBufferFeature::declareTriangleFilter(graph::FrameGraph& graph, Buffers& 
   b.counters = node.write(b.counters, Access::StorageReadWrite);
   b.smallList = node.write(b.smallList, Access::StorageWrite);
   b.largeList = node.write(b.largeList, Access::StorageWrite);
+  b.tileJobs = node.write(b.tileJobs, Access::StorageWrite);
   b.rasterArgs = node.write(b.rasterArgs, Access::StorageReadWrite);  // see cullArgs in Cluster Cull
   node.setJob([push = b.push, pipelines = pipelines_, b](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
@@ -218,12 +228,13 @@ void VisBufferFeature::declareTriangleFilter(graph::FrameGraph& graph, Buffers& 
     push.visible = ctx.storageBufferIndex(b.visible);
     push.smallList = ctx.storageBufferIndex(b.smallList);
     push.largeList = ctx.storageBufferIndex(b.largeList);
+    push.tileJobs = ctx.storageBufferIndex(b.tileJobs);
     cmd.bindPipeline(pipelines.filter);
     cmd.push(push);
     cmd.dispatchIndirect(ctx.buffer(b.cullArgs), kFilterArgsOffset);
     cmd.computeBarrier();
     cmd.bindPipeline(pipelines.args);
-    cmd.push(ArgsPush{push.counters, ctx.storageBufferIndex(b.rasterArgs), kRasterGroupSize});
+    cmd.push(ArgsPush{push.counters, ctx.storageBufferIndex(b.rasterArgs), kRasterGroupSize, push.tileJobCapacity});
     cmd.dispatch(1);
   });
 }
@@ -235,6 +246,7 @@ void VisBufferFeature::declareRaster(graph::FrameGraph& graph, Buffers& b) const
   node.read(b.visible, Access::StorageRead);
   node.read(b.smallList, Access::StorageRead);
   node.read(b.largeList, Access::StorageRead);
+  node.read(b.tileJobs, Access::StorageRead);
   b.words = node.write(b.words, Access::StorageReadWrite);
   node.setJob([push = b.push, pipelines = pipelines_, b](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
@@ -243,6 +255,7 @@ void VisBufferFeature::declareRaster(graph::FrameGraph& graph, Buffers& b) const
     push.visible = ctx.storageBufferIndex(b.visible);
     push.smallList = ctx.storageBufferIndex(b.smallList);
     push.largeList = ctx.storageBufferIndex(b.largeList);
+    push.tileJobs = ctx.storageBufferIndex(b.tileJobs);
     push.words = ctx.storageBufferIndex(b.words);
     cmd.bindPipeline(pipelines.raster);
     cmd.push(push);
@@ -342,7 +355,7 @@ void VisBufferFeature::addStats(std::map<std::string, double>& stats) const {
   stats["vis_triangles_small"] = read.smallTriangles;
   stats["vis_triangles_large"] = read.largeTriangles;
   stats["vis_triangles_rasterised"] = double(read.smallTriangles) + read.largeTriangles;
-  stats["vis_raster_tiles"] = read.tileJobs;
+  stats["vis_raster_tile_jobs"] = read.tileJobs;
   stats["vis_large_overflow"] = read.overflow;
 }
 

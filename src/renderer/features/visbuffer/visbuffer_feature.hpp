@@ -58,6 +58,7 @@ class VisBufferFeature final : public IRenderFeature {
   rhi::BufferId statsReadback_;
   uint32_t drawCount_ = 0;
   uint32_t largeCapacity_ = 0;
+  uint32_t tileJobCapacity_ = 0;
   bool reversedZ_ = false;
 };
 

@@ -1,10 +1,20 @@
 #include "render_feature.hpp"
 
+#include <cstring>
 #include <fgb/rhi/job_context.hpp>
 
-#include <cstring>
-
 namespace fgb::features {
+
+rhi::PipelineId createPostPassPipeline(rhi::Device& device, PostPassForm form, const std::string& name,
+                                       const std::string& shader, graph::Format colorFormat) {
+  if (form == PostPassForm::Compute) return device.createComputePipeline({name, "renderer/" + shader + ".comp"});
+  rhi::GraphicsPipelineDesc desc;
+  desc.name = name;
+  desc.vertexShader = "common/fullscreen.vert";
+  desc.fragmentShader = "renderer/" + shader + ".frag";
+  desc.colorFormats = {colorFormat};
+  return device.createGraphicsPipeline(desc);
+}
 std::pair<uint32_t, uint32_t> GpuScene::groupRange(DrawClass drawClass) const {
   uint32_t first = 0;
   while (first < groups.size() && groups[first].drawClass < drawClass) ++first;

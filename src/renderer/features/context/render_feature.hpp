@@ -27,15 +27,17 @@ struct FeatureInit {
 // a few SMs only, compute reaches all of them). Both forms share their GLSL maths.
 enum class PostPassForm : uint8_t { Fragment, Compute };
 
+// The pipeline of a full-screen post pass in the given form: "renderer/<shader>.comp", or the
+// full-screen triangle with "renderer/<shader>.frag" drawing into one `colorFormat` target.
+rhi::PipelineId createPostPassPipeline(rhi::Device& device, PostPassForm form, const std::string& name,
+                                       const std::string& shader, graph::Format colorFormat);
+
 class IRenderFeature {
  public:
   virtual ~IRenderFeature() = default;
   [[nodiscard]] virtual std::string_view name() const = 0;
   // False when the scene needs none of this feature's work: it then declares nothing.
   [[nodiscard]] virtual bool enabled() const { return true; }
-  // Writes the whole HDR target before the forward colour passes (which then load it). Informational:
-  // whether anything drew is read from FrameTargets::colorCleared when the resolve is declared.
-  [[nodiscard]] virtual bool writesHdr() const { return false; }
   // Once per run, after the scene upload: pipelines and persistent GPU resources.
   virtual void initialize(FeatureInit& init) = 0;
   // Declares this frame's nodes. Called once; the compiled graph is executed every frame.

@@ -19,16 +19,7 @@ constexpr uint32_t kGroupSize = 8;  // ssaa_resolve.comp's local size (8 x 8)
 void SsaaResolveFeature::initialize(FeatureInit& init) {
   factor_ = init.settings.ssaa;
   if (!enabled()) return;
-  if (form_ == PostPassForm::Compute) {
-    pipeline_ = init.device.createComputePipeline({"ssaa resolve", "renderer/ssaa_resolve.comp"});
-    return;
-  }
-  rhi::GraphicsPipelineDesc desc;
-  desc.name = "ssaa resolve";
-  desc.vertexShader = "common/fullscreen.vert";
-  desc.fragmentShader = "renderer/ssaa_resolve.frag";
-  desc.colorFormats = {kHdrFormat};
-  pipeline_ = init.device.createGraphicsPipeline(desc);
+  pipeline_ = createPostPassPipeline(init.device, form_, "ssaa resolve", "ssaa_resolve", kHdrFormat);
 }
 
 void SsaaResolveFeature::declare(graph::FrameGraph& graph, Blackboard& board) {

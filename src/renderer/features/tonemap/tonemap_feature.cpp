@@ -26,16 +26,7 @@ graph::Format TonemapFeature::displayFormat(PostPassForm form) {
 }
 
 void TonemapFeature::initialize(FeatureInit& init) {
-  if (form_ == PostPassForm::Compute) {
-    pipeline_ = init.device.createComputePipeline({"tone mapping", "renderer/tonemap.comp"});
-  } else {
-    rhi::GraphicsPipelineDesc desc;
-    desc.name = "tone mapping";
-    desc.vertexShader = "common/fullscreen.vert";
-    desc.fragmentShader = "renderer/tonemap.frag";
-    desc.colorFormats = {kDisplayFormat};
-    pipeline_ = init.device.createGraphicsPipeline(desc);
-  }
+  pipeline_ = createPostPassPipeline(init.device, form_, "tone mapping", "tonemap", kDisplayFormat);
   samplerIndex_ = init.device.samplerIndex(init.scene.linearClampSampler);
   exposureBuffer_ = init.device.storageBufferIndex(init.scene.exposure);
   bloomIntensity_ = init.scene.scene->post.bloom.intensity;

@@ -28,7 +28,6 @@ class VisBufferFeature final : public IRenderFeature {
  public:
   [[nodiscard]] std::string_view name() const override { return "visbuffer"; }
   [[nodiscard]] bool enabled() const override { return drawCount_ > 0; }
-  [[nodiscard]] bool writesHdr() const override { return enabled(); }
   void initialize(FeatureInit& init) override;
   void declare(graph::FrameGraph& graph, Blackboard& board) override;
   void addStats(std::map<std::string, double>& stats) const override;

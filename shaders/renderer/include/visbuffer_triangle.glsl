@@ -197,9 +197,8 @@ ivec2 unpackOffset(uint packed) { return ivec2(int(packed << 16) >> 16, int(pack
 // pixels yet reach far beyond them: it takes the tile path).
 bool packable(ScreenTriangle t) {
   ivec2 origin = t.pixels.xy * kSubPixel;
-  for (int i = 0; i < 3; ++i)
-    if (any(greaterThan(abs(t.fixedPos[i] - origin), ivec2(16 * kSubPixel)))) return false;
-  return true;
+  ivec2 reach = max(abs(t.fixedPos[0] - origin), max(abs(t.fixedPos[1] - origin), abs(t.fixedPos[2] - origin)));
+  return !any(greaterThan(reach, ivec2(16 * kSubPixel)));
 }
 
 const uint kSmallMasked = 0x80000000u;  // in a.y: alpha-masked (the raster loads its material)

@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <fgb/core/error.hpp>
-#include <fgb/core/stopwatch.hpp>
 #include <fgb/harness/golden.hpp>
 #include <fgb/harness/json_io.hpp>
 #include <fgb/harness/progress.hpp>
@@ -90,6 +89,9 @@ harness::SweepPlan makePlan(const CLI::App& command, SweepOptions& o, std::vecto
   plan.cpuStabilityRule = rule;
   // --until-stable is the default on CPU devices unless a fixed --frames was asked for.
   plan.untilStableOnCpu = !command.count("--frames");
+  // On lavapipe: no frames beyond what the statistics need (SweepPlan::trimOnCpu).
+  plan.trimOnCpu = true;
+  plan.trimWarmupOnCpu = !command.count("--warmup");
   plan.roundFrames = o.roundFrames;
   plan.maxMinutes = o.maxMinutes;
   plan.seed = o.seed;
@@ -118,9 +120,8 @@ int sweepVerb(const CLI::App& command, SweepOptions o) {
   bar.finish();
   result.toolVersion = FGBENCH_VERSION;
   result.axes = axes;
-  Stopwatch reporting;
   harness::writeSweepOutputs(o.out, result);
-  result.overhead.reportMs = reporting.elapsedMs();
+  if (chatty) std::cerr << harness::sweepWallSummary(result);
 
   if (o.common.json) {
     std::cout << harness::dumpJson(harness::sweepJson(result));

@@ -52,7 +52,7 @@ TEST(Lifetimes, ASideEffectNodeKeepsItsInputAliveUntilItRuns) {
   BufferHandle work = g.createBuffer("w0", bufferDesc(kSize));
   work = g.addNode("Work0", NodeType::Compute).write(work, Access::StorageWrite);
   for (int i = 1; i < 4; ++i) {  // a chain that pushes the readback to a late level
-    const BufferHandle next = g.createBuffer("w" + std::to_string(i), bufferDesc(kSize));
+    const BufferHandle next = g.createBuffer(std::string("w").append(std::to_string(i)), bufferDesc(kSize));
     NodeBuilder b = g.addNode("Work" + std::to_string(i), NodeType::Compute);
     b.read(work, Access::StorageRead);
     work = b.write(next, Access::StorageWrite);

@@ -170,7 +170,7 @@ TEST(RandomDags, DefaultOptionsAndEstimatedRequirementsHold) {
 
 INSTANTIATE_TEST_SUITE_P(Queues, RandomDags, ::testing::Values(1u, 2u, 3u),
                          [](const ::testing::TestParamInfo<uint32_t>& queues) {
-                           return "Q" + std::to_string(queues.param);
+                           return std::string("Q").append(std::to_string(queues.param));
                          });
 
 }  // namespace

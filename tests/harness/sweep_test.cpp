@@ -1,10 +1,16 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fgb/core/error.hpp>
+#include <fgb/harness/html_util.hpp>
 #include <fgb/harness/sweep.hpp>
 #include <fgb/harness/sweep_report.hpp>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
+
+#include "label_placement.hpp"
+#include "test_util.hpp"
 
 namespace fgb::harness {
 namespace {
@@ -240,6 +246,160 @@ TEST(Sweep, OutputsCarryTheFrontAndInlineEverything) {
   EXPECT_EQ(images, 7u);
   EXPECT_NE(timeErrorSvg(result).find("polyline"), std::string::npos);
   EXPECT_NE(sweepTable(result).find("* msaa=1"), std::string::npos);
+}
+
+std::string readText(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+TEST(Sweep, AccountsForItsWallTimeByPhaseAndConfiguration) {
+  std::vector<std::string> log;
+  const WorkloadOpener open = [&](const render::WorkloadConfig& c) { return std::make_unique<GridWorkload>(c, log); };
+  testing::ScratchDir dir;
+  SweepResult result = runSweep(open, gridPlan());
+  writeSweepOutputs(dir.path(), result);
+  ASSERT_EQ(result.references.size(), 1u);
+  EXPECT_EQ(result.references[0].renders.size(), 2u);  // the reference and its repeat (noise floor)
+  for (const auto& c : result.configurations) {
+    EXPECT_EQ(c.wall.visits, 3u) << c.configuration.label;  // 24 frames in rounds of 8
+    EXPECT_EQ(c.wall.rewarmFrames, 0u);
+    EXPECT_EQ(c.wall.warmupFrames, 3u);
+    EXPECT_GE(c.wall.measureMs, 0.0);
+  }
+  EXPECT_GT(result.overhead.reportMs, 0.0);
+  const nlohmann::json j = nlohmann::json::parse(readText(dir / "sweep.json"));
+  for (const char* phase : {"open", "references", "warmup", "measure", "close", "metrics", "report", "total"}) {
+    EXPECT_TRUE(j["wall_ms"].contains(phase)) << phase;
+  }
+  EXPECT_GT(j["wall_ms"]["report"].get<double>(), 0.0);
+  EXPECT_EQ(j["configurations"][0]["wall_ms"]["measured_frames"], 24);
+  EXPECT_EQ(j["configurations"][0]["wall_ms"]["visits"], 3);
+  EXPECT_EQ(j["references"][0]["renders_ms"].size(), 2u);
+  const std::string summary = sweepWallSummary(result);
+  EXPECT_NE(summary.find("references"), std::string::npos);
+  EXPECT_NE(summary.find("msaa=4: open"), std::string::npos);
+  EXPECT_NE(summary.find("24 measured + 0 re-warm frames in 3 visit(s)"), std::string::npos);
+}
+
+// On a CPU device with trimOnCpu a sweep renders only the frames its statistics use: warm-up up to
+// the compared frame, no re-warm frame per visit, and a visit ends once the configuration is stable.
+TEST(Sweep, OnACpuDeviceRendersNoFrameBeyondNeed) {
+  auto framesRendered = [](bool trim, SweepResult& result) {
+    std::vector<std::string> log;
+    const WorkloadOpener open = [&](const render::WorkloadConfig& c) { return std::make_unique<GridWorkload>(c, log); };
+    SweepPlan plan = gridPlan();
+    plan.warmup = 8;
+    plan.rewarmFrames = 1;
+    plan.roundFrames = 16;
+    plan.untilStable = StabilityRule{0.5, 12, 16};  // wide: stable as soon as it has 12 frames
+    plan.trimOnCpu = trim;
+    plan.trimWarmupOnCpu = trim;
+    plan.cpuStableCheckFrames = 4;
+    result = runSweep(open, plan);
+    return log.size();
+  };
+  SweepResult trimmed, full;
+  const std::size_t trimmedFrames = framesRendered(true, trimmed), fullFrames = framesRendered(false, full);
+  const std::size_t referenceFrames = 2 * 2;
+  // Trimmed: 2 warm-up frames (the compared frame is the second) and 12 measured, checked every 4.
+  EXPECT_EQ(trimmed.warmupFrames, 2u);
+  EXPECT_EQ(trimmed.rewarmFrames, 0u);
+  EXPECT_EQ(trimmed.stableCheckFrames, 4u);
+  EXPECT_EQ(trimmedFrames, referenceFrames + 3 * (2 + 12));
+  // Untrimmed: 8 warm-up frames, 1 re-warm and a whole round of 16 frames each.
+  EXPECT_EQ(fullFrames, referenceFrames + 3 * (8 + 1 + 16));
+  for (const auto& c : trimmed.configurations) {
+    EXPECT_EQ(c.run.frameGpuMs.size(), 12u) << c.configuration.label;
+    EXPECT_TRUE(c.stable);
+  }
+  // The same front either way.
+  EXPECT_EQ(frontByTime(trimmed), frontByTime(full));
+}
+
+TEST(SweepHtml, TicksAreDecimalsAndDurationsHaveUnits) {
+  EXPECT_EQ(durationLabel(2380.0), "2.4 s");
+  EXPECT_EQ(durationLabel(380.0), "380 ms");
+  EXPECT_EQ(durationLabel(0.9), "0.9 ms");
+  EXPECT_EQ(durationLabel(0.05), "50 µs");
+  EXPECT_EQ(durationLabel(2000.0), "2 s");
+  EXPECT_EQ(tickLabel(0.0005), "0.0005");
+  EXPECT_EQ(tickLabel(2000.0), "2000");
+  EXPECT_EQ(tickLabel(0.02), "0.02");
+  // A narrow range still gets two 1-2-5 ticks, each a 1, 2 or 5 times a power of ten.
+  for (const auto& [lo, hi] : {std::pair{2300.0, 2450.0}, std::pair{0.0031, 0.0033}, std::pair{0.9, 1.1}}) {
+    const LogAxis axis = paddedLogAxis(lo, hi);
+    EXPECT_LE(axis.lo, lo);
+    EXPECT_GE(axis.hi, hi);
+    const auto ticks = axis.ticks();
+    ASSERT_GE(ticks.size(), 2u) << lo << ".." << hi;
+    for (double t : ticks) {
+      const double mantissa = t / std::pow(10.0, std::floor(std::log10(t) + 1e-9));
+      EXPECT_TRUE(std::abs(mantissa - 1) < 1e-6 || std::abs(mantissa - 2) < 1e-6 || std::abs(mantissa - 5) < 1e-6) << t;
+      EXPECT_EQ(tickLabel(t).find('e'), std::string::npos) << t;
+    }
+  }
+}
+
+TEST(SweepHtml, LabelsOfCrowdedPointsDoNotOverlap) {
+  // 16 points in four tight clusters, as a sweep of MSAA x a speed-only knob draws them.
+  std::vector<LabelRequest> requests;
+  for (int cluster = 0; cluster < 4; ++cluster) {
+    for (int k = 0; k < 4; ++k) {
+      const std::string text =
+          "msaa=" + std::to_string(1 << cluster) + " lighting.max_per_cluster=" + std::to_string(4 << (2 * k));
+      requests.push_back({200.0 + 150 * cluster + 3 * k, 300.0 - 60 * cluster - 2 * k, text,
+                          std::to_string(requests.size() + 1), k == 0, k == 0});
+    }
+  }
+  const LabelBox area{80, 30, 850, 450};
+  const auto labels = placeLabels(requests, area);
+  ASSERT_EQ(labels.size(), requests.size());
+  std::size_t full = 0;
+  for (std::size_t i = 0; i < labels.size(); ++i) {
+    if (requests[i].priority) {
+      EXPECT_TRUE(labels[i].shown && !labels[i].numbered) << "front label " << i << " not shown in full";
+    }
+    if (!labels[i].shown) continue;
+    full += labels[i].numbered ? 0 : 1;
+    EXPECT_TRUE(labels[i].box.inside(area)) << i;
+    EXPECT_GE(labels[i].box.x1 - labels[i].box.x0 + 1e-9, estimateTextWidth(labels[i].text, 12, requests[i].bold));
+    for (std::size_t j = 0; j < requests.size(); ++j) {
+      const LabelBox marker{requests[j].x - 6, requests[j].y - 6, requests[j].x + 6, requests[j].y + 6};
+      EXPECT_FALSE(labels[i].box.overlaps(marker)) << "label " << i << " covers point " << j;
+      if (j > i && labels[j].shown) {
+        EXPECT_FALSE(labels[i].box.overlaps(labels[j].box)) << i << " and " << j;
+      }
+    }
+  }
+  EXPECT_GE(full, 8u);  // most labels fit in full; the rest are numbered, not dropped
+}
+
+TEST(SweepHtml, LabelsThatFindNoPlaceBecomeNumbersAndStillDoNotOverlap) {
+  // 24 points on one spot of a small plot: not every long label fits around it.
+  std::vector<LabelRequest> requests;
+  for (int i = 0; i < 24; ++i) {
+    requests.push_back({300, 200, "msaa=8 lighting.max_per_cluster=" + std::to_string(1000 + i), std::to_string(i + 1),
+                        false, i == 0});
+  }
+  const LabelBox area{80, 30, 600, 400};
+  const auto labels = placeLabels(requests, area);
+  std::size_t numbered = 0;
+  for (std::size_t i = 0; i < labels.size(); ++i) {
+    if (labels[i].numbered && labels[i].shown) {
+      ++numbered;
+      EXPECT_EQ(labels[i].text, requests[i].number);
+    }
+    for (std::size_t j = i + 1; j < labels.size(); ++j) {
+      if (labels[i].shown && labels[j].shown) {
+        EXPECT_FALSE(labels[i].box.overlaps(labels[j].box)) << i << " and " << j;
+      }
+    }
+  }
+  EXPECT_FALSE(labels[0].numbered);  // the priority (front) label is placed first, in full
+  EXPECT_GT(numbered, 0u);
 }
 
 }  // namespace

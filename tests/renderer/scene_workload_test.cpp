@@ -1,6 +1,7 @@
 // Renders small scenes through the scene workload and checks what the frame graph declares (the
 // thesis' node names, and no work a scene does not need) and that the image is plausible.
 #include <fgb/core/error.hpp>
+#include <fgb/graph/frame_graph.hpp>
 #include <fgb/renderer/scene_workload.hpp>
 
 #include <gtest/gtest.h>
@@ -9,6 +10,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <set>
+#include <stdexcept>
 #include <vector>
 #include <string>
 
@@ -57,15 +59,16 @@ std::set<std::string> aliveNames(const std::vector<PassTiming>& passes) {
 
 double meanOf(const ImageRGBA32F& image) {
   double sum = 0.0;
-  for (size_t i = 0; i < image.pixels.size(); i += 4) sum += image.pixels[i] + image.pixels[i + 1] + image.pixels[i + 2];
+  for (size_t i = 0; i < image.pixels.size(); i += 4)
+    sum += image.pixels[i] + image.pixels[i + 1] + image.pixels[i + 2];
   return sum / double(image.pixels.size() / 4 * 3);
 }
 
 // The thesis' pass names, in the order the renderer declares them.
 std::vector<std::string> thesisPasses(const std::vector<PassTiming>& passes) {
-  static const std::set<std::string> kThesis = {"Clustered Light Cull", "Particle Emit", "Particle Update",
-                                                "Particle Render",      "Mesh Frustum Cull", "Mesh Render",
-                                                "Bloom",                "Tone mapping"};
+  static const std::set<std::string> kThesis = {
+      "Clustered Light Cull", "Particle Emit", "Particle Update", "Particle Render",
+      "Mesh Frustum Cull",    "Mesh Render",   "Bloom",           "Tone mapping"};
   std::vector<std::string> names;
   for (const auto& pass : passes)
     if (!pass.culled && kThesis.count(pass.name)) names.push_back(pass.name);
@@ -254,9 +257,12 @@ Images renderImages(const WorkloadConfig& config, uint32_t frames) {
 // cannot differ. Validation is on: the resolve node's accesses are checked too.
 TEST(Supersampling, ResolvesTheScenePassesRenderedAtTwiceTheSizeWithABoxFilter) {
   const auto supersampled = renderImages(
-      sized(lavapipeConfig("atrium-small.json", {{"render.ssaa", "2"}, {"lighting.mode", "all"}}, true), 160, 90, 1), 1);
-  const auto large = renderImages(sized(lavapipeConfig("atrium-small.json", {{"lighting.mode", "all"}}), 320, 180, 1), 1);
-  const auto plain = renderImages(sized(lavapipeConfig("atrium-small.json", {{"lighting.mode", "all"}}), 160, 90, 1), 1);
+      sized(lavapipeConfig("atrium-small.json", {{"render.ssaa", "2"}, {"lighting.mode", "all"}}, true), 160, 90, 1),
+      1);
+  const auto large =
+      renderImages(sized(lavapipeConfig("atrium-small.json", {{"lighting.mode", "all"}}), 320, 180, 1), 1);
+  const auto plain =
+      renderImages(sized(lavapipeConfig("atrium-small.json", {{"lighting.mode", "all"}}), 160, 90, 1), 1);
   EXPECT_EQ(supersampled.validationMessages, 0u);
   EXPECT_TRUE(supersampled.passes.count("SSAA Resolve"));
   EXPECT_FALSE(large.passes.count("SSAA Resolve"));
@@ -373,11 +379,12 @@ namespace {
 // (transparent meshes and particles stay forward passes), under validation, and the image is the
 // forward one up to texture filtering and triangle-edge rounding.
 TEST(VisBuffer, ComputeNodesReplaceMeshRenderAndTheImageMatchesForward) {
-  const auto vis = renderImages(
-      sized(lavapipeConfig("atrium-small.json", {{"render.path", "visbuffer"}}, true), 160, 90, 1), 2);
+  const auto vis =
+      renderImages(sized(lavapipeConfig("atrium-small.json", {{"render.path", "visbuffer"}}, true), 160, 90, 1), 2);
   const auto forward = renderImages(sized(lavapipeConfig("atrium-small.json", {}), 160, 90, 1), 2);
   EXPECT_EQ(vis.validationMessages, 0u);
-  for (const char* node : {"Visibility Clear", "Cluster Cull", "Triangle Filter", "Visibility Raster", "Material Shade"})
+  for (const char* node :
+       {"Visibility Clear", "Cluster Cull", "Triangle Filter", "Visibility Raster", "Material Shade"})
     EXPECT_TRUE(vis.passes.count(node)) << node;
   EXPECT_FALSE(vis.passes.count("Mesh Render"));
   EXPECT_TRUE(forward.passes.count("Mesh Render"));
@@ -400,6 +407,96 @@ TEST(VisBuffer, RefusesMsaaNamingSupersampling) {
   } catch (const InputError& error) {
     EXPECT_NE(std::string(error.what()).find("render.ssaa"), std::string::npos) << error.what();
   }
+}
+
+// The light cull's lists hold every light that reaches a cluster, over several 64-light chunks
+// (150 lights): with no overflow the clustered image is the every-light reference's.
+TEST(LightingMode, ClusteredListsKeepEveryLightAcrossChunks) {
+  const auto all = renderImages(lavapipeConfig("many-lights-small.json", {{"lighting.mode", "all"}}), 1);
+  const auto clustered =
+      renderImages(lavapipeConfig("many-lights-small.json", {{"lighting.max_per_cluster", "1024"}}, true), 1);
+  EXPECT_EQ(clustered.validationMessages, 0u);
+  ASSERT_EQ(clustered.stats.at("lights"), 150.0);
+  EXPECT_GT(clustered.stats.at("lights_per_cluster_max"), 64.0);  // a cluster's list spans chunks
+  EXPECT_EQ(clustered.stats.at("clusters_overflowed"), 0.0);
+  EXPECT_GT(meanOf(clustered.hdr), 0.0);
+  EXPECT_LT(differingValues(all.hdr, clustered.hdr, 1.0e-2f, 1.0e-3f), all.hdr.pixels.size() / 1000);
+}
+
+// The 8-bit sRGB code of a display value read back (linear).
+int srgbCode(float linear) {
+  const float c = std::clamp(linear, 0.0f, 1.0f);
+  const float encoded = c <= 0.0031308f ? c * 12.92f : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+  return int(std::lround(encoded * 255.0f));
+}
+
+int largestCodeDifference(const ImageRGBA32F& a, const ImageRGBA32F& b) {
+  int largest = 0;
+  for (size_t i = 0; i < a.pixels.size(); ++i)
+    largest = std::max(largest, std::abs(srgbCode(a.pixels[i]) - srgbCode(b.pixels[i])));
+  return largest;
+}
+
+graph::NodeType nodeType(const Workload& workload, const std::string& name) {
+  const auto& nodes = frameGraphOf(workload)->nodes();
+  const auto node = std::find_if(nodes.begin(), nodes.end(), [&](const auto& n) { return n.name == name; });
+  if (node == nodes.end()) throw std::runtime_error("no node " + name);
+  return node->type;
+}
+
+// On the visibility-buffer path "SSAA Resolve" and "Tone mapping" are compute nodes running the
+// fragment passes' GLSL maths. transparency-only has no opaque mesh, so both paths draw the same
+// HDR image: the compute SSAA resolve must give it bit for bit, and the compute tone mapping the
+// same display image up to the sRGB encode's rounding: at most one code (lavapipe's sRGB
+// attachment encode is approximate, e.g. 28.47 becomes 29; tonemap.comp rounds to nearest).
+TEST(VisBuffer, PostPassesAreComputeAndMatchTheFragmentPasses) {
+  const std::string scene = kRepositoryScenes + "/transparency-only.json";
+  const std::map<std::string, std::string> supersampled = {{"render.ssaa", "2"}};
+  auto visKnobs = supersampled;
+  visKnobs["render.path"] = "visbuffer";
+  struct PostPasses {
+    Images images;
+    graph::NodeType resolve;
+    graph::NodeType tonemap;
+  };
+  // One device at a time: each rendering is read and closed before the next opens.
+  const auto renderPost = [](const WorkloadConfig& config) {
+    const auto r = render(config, 2);
+    return PostPasses{{aliveNames(r.passes), r.workload->readHdr(), r.workload->readDisplay(),
+                       r.workload->validationMessages(), r.workload->stats()},
+                      nodeType(*r.workload, "SSAA Resolve"),
+                      nodeType(*r.workload, "Tone mapping")};
+  };
+  const auto vis = renderPost(sized(lavapipeConfig(scene, visKnobs, true), 160, 90, 1));
+  const auto forward = renderPost(sized(lavapipeConfig(scene, supersampled), 160, 90, 1));
+  EXPECT_EQ(vis.resolve, graph::NodeType::Compute);
+  EXPECT_EQ(vis.tonemap, graph::NodeType::Compute);
+  EXPECT_EQ(forward.resolve, graph::NodeType::Graphics);
+  EXPECT_EQ(forward.tonemap, graph::NodeType::Graphics);
+  EXPECT_EQ(vis.images.validationMessages, 0u);
+  EXPECT_GT(meanOf(vis.images.hdr), 0.0);
+  EXPECT_TRUE(vis.images.hdr.pixels == forward.images.hdr.pixels);
+  EXPECT_LE(largestCodeDifference(vis.images.display, forward.images.display), 1);
+}
+
+// With MSAA the resolve is its own node, declared after the last colour pass; single-sampled
+// there is none (the colour passes wrote the HDR image).
+TEST(MsaaResolve, IsItsOwnNodeAfterTheLastColourPass) {
+  {
+    const auto msaa = render(sized(lavapipeConfig("atrium-small.json", {}, true), 160, 90, 4), 1);
+    EXPECT_EQ(msaa.workload->validationMessages(), 0u);
+    const auto& nodes = frameGraphOf(*msaa.workload)->nodes();
+    const auto position = [&](const std::string& name) {
+      return std::find_if(nodes.begin(), nodes.end(), [&](const auto& n) { return n.name == name; }) - nodes.begin();
+    };
+    ASSERT_LT(position("MSAA Resolve"), std::ptrdiff_t(nodes.size()));
+    EXPECT_GT(position("MSAA Resolve"), position("Particle Render"));
+    EXPECT_GT(position("MSAA Resolve"), position("Mesh Render Transparent"));
+    EXPECT_LT(position("MSAA Resolve"), position("Bloom"));
+    EXPECT_TRUE(aliveNames(msaa.passes).count("MSAA Resolve"));
+  }
+  const auto single = render(sized(lavapipeConfig("atrium-small.json", {}), 160, 90, 1), 1);
+  EXPECT_FALSE(aliveNames(single.passes).count("MSAA Resolve"));
 }
 
 }  // namespace

@@ -4,12 +4,17 @@
 #   - each selector in EXPECT matches exactly the expected number of elements ("SEL=N"; a selector
 #     starting with "points " counts the points of the matching SVG polylines instead);
 #   - a flip toggle, where the page has one (#flip-toggle), flips #flip-view from the reference
-#     (#golden-reference) to the test frame (#frame) and back (data-showing names which it shows).
+#     (#golden-reference) to the test frame (#frame) and back (data-showing names which it shows);
+#   - for each selector in NO_OVERLAP, no two of its elements overlap on the rendered page (their
+#     bounding boxes, e.g. a chart's point labels); it must match at least two elements;
+#   - for each "SEL=REGEX" in FORBID_TEXT (split at the first '='), no element matching SEL has text
+#     matching REGEX (a JavaScript regular expression, e.g. an axis tick printed as 2.38e+03); SEL
+#     must match at least one element.
 # It also saves a screenshot, PAGE.png, for a person to look at. A probe script is added to a copy of
 # the page (PAGE.probe.html, same folder, so relative links behave the same); the page itself is
 # not changed.
 # Inputs (-D): CHROMIUM, PAGE, EXPECT (";"-separated SEL=N) or EXPECT_FILE (one SEL=N per line),
-# MIN_IMAGES (default 1).
+# MIN_IMAGES (default 1), NO_OVERLAP (";"-separated selectors), FORBID_TEXT (";"-separated SEL=REGEX).
 foreach(var CHROMIUM PAGE)
   if(NOT DEFINED ${var} OR "${${var}}" STREQUAL "" OR "${${var}}" MATCHES "NOTFOUND$")
     message(FATAL_ERROR "browser-check: ${var} is missing (${${var}}); scripts/setup.sh --tests installs chromium")
@@ -36,11 +41,34 @@ foreach(entry IN LISTS EXPECT)
   string(APPEND expect_js "\"${selector_js}\":${count},")
 endforeach()
 
+# A CMake string as a JavaScript string literal.
+function(js_string out text)
+  string(REPLACE "\\" "\\\\" text "${text}")
+  string(REPLACE "\"" "\\\"" text "${text}")
+  set(${out} "\"${text}\"" PARENT_SCOPE)
+endfunction()
+set(no_overlap_js "")
+foreach(selector IN LISTS NO_OVERLAP)
+  js_string(selector_js "${selector}")
+  string(APPEND no_overlap_js "${selector_js},")
+endforeach()
+set(forbid_js "")
+foreach(entry IN LISTS FORBID_TEXT)
+  string(FIND "${entry}" "=" eq)
+  string(SUBSTRING "${entry}" 0 ${eq} selector)
+  math(EXPR after "${eq} + 1")
+  string(SUBSTRING "${entry}" ${after} -1 regex)
+  js_string(selector_js "${selector}")
+  js_string(regex_js "${regex}")
+  string(APPEND forbid_js "[${selector_js},${regex_js}],")
+endforeach()
+
 set(probe [=[
 <script>
 window.addEventListener('load', function () {
   var expect = {@expect_js@};
-  var out = {images: [], counts: {}, flip: null};
+  var noOverlap = [@no_overlap_js@], forbid = [@forbid_js@];
+  var out = {images: [], counts: {}, flip: null, overlaps: [], forbidden: []};
   document.querySelectorAll('img').forEach(function (i) {
     out.images.push({id: i.id || i.alt, complete: i.complete, width: i.naturalWidth});
   });
@@ -53,6 +81,25 @@ window.addEventListener('load', function () {
     }
     out.counts[sel] = n;
   }
+  noOverlap.forEach(function (sel) {
+    var els = Array.prototype.slice.call(document.querySelectorAll(sel));
+    var boxes = els.map(function (e) { return e.getBoundingClientRect(); });
+    var pairs = [];
+    for (var i = 0; i < els.length; ++i) {
+      for (var j = i + 1; j < els.length; ++j) {
+        var a = boxes[i], b = boxes[j], slack = 0.5;  // touching edges are not an overlap
+        if (a.left < b.right - slack && b.left < a.right - slack && a.top < b.bottom - slack && b.top < a.bottom - slack) {
+          pairs.push('"' + els[i].textContent + '" and "' + els[j].textContent + '"');
+        }
+      }
+    }
+    out.overlaps.push({selector: sel, count: els.length, pairs: pairs.join(', ')});
+  });
+  forbid.forEach(function (rule) {
+    var els = document.querySelectorAll(rule[0]), pattern = new RegExp(rule[1]), bad = [];
+    els.forEach(function (e) { if (pattern.test(e.textContent)) bad.push('"' + e.textContent + '"'); });
+    out.forbidden.push({selector: rule[0], regex: rule[1], count: els.length, matches: bad.join(', ')});
+  });
   var toggle = document.getElementById('flip-toggle');
   if (toggle) {
     var view = document.getElementById('flip-view');
@@ -131,6 +178,39 @@ foreach(entry IN LISTS EXPECT)
     message(STATUS "'${selector}': ${got}")
   endif()
 endforeach()
+string(JSON overlap_count LENGTH "${json}" overlaps)
+if(overlap_count GREATER 0)
+  math(EXPR last "${overlap_count} - 1")
+  foreach(i RANGE ${last})
+    string(JSON selector GET "${json}" overlaps ${i} selector)
+    string(JSON count GET "${json}" overlaps ${i} count)
+    string(JSON pairs GET "${json}" overlaps ${i} pairs)
+    if(count LESS 2)
+      string(APPEND failures "\n  '${selector}': ${count} element(s), too few to check for overlaps")
+    elseif(NOT pairs STREQUAL "")
+      string(APPEND failures "\n  '${selector}' overlap: ${pairs}")
+    else()
+      message(STATUS "'${selector}': ${count} elements, none overlapping")
+    endif()
+  endforeach()
+endif()
+string(JSON forbid_count LENGTH "${json}" forbidden)
+if(forbid_count GREATER 0)
+  math(EXPR last "${forbid_count} - 1")
+  foreach(i RANGE ${last})
+    string(JSON selector GET "${json}" forbidden ${i} selector)
+    string(JSON regex GET "${json}" forbidden ${i} regex)
+    string(JSON count GET "${json}" forbidden ${i} count)
+    string(JSON matches GET "${json}" forbidden ${i} matches)
+    if(count EQUAL 0)
+      string(APPEND failures "\n  '${selector}': no element, so nothing to check against /${regex}/")
+    elseif(NOT matches STREQUAL "")
+      string(APPEND failures "\n  '${selector}' text matching /${regex}/: ${matches}")
+    else()
+      message(STATUS "'${selector}': ${count} elements, none matching /${regex}/")
+    endif()
+  endforeach()
+endif()
 string(JSON flip_type TYPE "${json}" flip)
 if(flip_type STREQUAL "OBJECT")
   foreach(key startsOnReference flipsToTest backToReference)
@@ -145,7 +225,7 @@ endif()
 # A screenshot of the page as it is, for a person to look at.
 set(screenshot "${PAGE}.png")
 file(REMOVE "${screenshot}")
-execute_process(COMMAND ${CHROMIUM} ${chromium_args} --window-size=1000,2600 --screenshot=${screenshot} "file://${PAGE}"
+execute_process(COMMAND ${CHROMIUM} ${chromium_args} --window-size=1280,2600 --screenshot=${screenshot} "file://${PAGE}"
                 RESULT_VARIABLE rc ERROR_VARIABLE chromium_err TIMEOUT 120)
 if(NOT rc STREQUAL "0" OR NOT EXISTS "${screenshot}")
   string(APPEND failures "\n  no screenshot (${rc}): ${chromium_err}")

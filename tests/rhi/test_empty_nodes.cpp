@@ -101,7 +101,9 @@ TEST_P(EmptyNodes, AGraphOfOnlyEmptyNodesRunsRepeatedly) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Queues, EmptyNodes, testing::Values(1u, 3u),
-                         [](const testing::TestParamInfo<uint32_t>& param) { return "Q" + std::to_string(param.param); });
+                         [](const testing::TestParamInfo<uint32_t>& param) {
+                           return std::string("Q").append(std::to_string(param.param));
+                         });
 
 }  // namespace
 }  // namespace fgb::test

@@ -65,8 +65,11 @@ vec3 pointLight(Surface s, vec3 worldPosition, PointLight light) {
   float distance = length(toLight);
   float attenuation = pointLightAttenuation(distance, light.positionRadius.w);
   if (!(attenuation > 0.0)) return vec3(0.0);
-  // A light on the surface (distance 0) lights it head-on rather than from a NaN direction.
-  return shadeLight(s, safeNormalize(toLight, s.normal), light.color.rgb * attenuation);
+  // A light on the surface (distance 0) gives a zero direction, which shadeLight turns away like a
+  // light behind the surface, instead of a NaN one. This runs for every light of every pixel: one
+  // max() keeps it as cheap as the plain division (a branch and a second length were +4% of Mesh
+  // Render on an H100).
+  return shadeLight(s, toLight * (1.0 / max(distance, 1e-30)), light.color.rgb * attenuation);
 }
 
 // Point lights of this point's cluster; also returns how many were considered (debug view).

@@ -1,56 +1,49 @@
-#include <array>
+#include <bit>
 #include <cstdio>
 #include <fgb/graph/barrier_names.hpp>
-#include <utility>
+#include <iterator>
 
 namespace fgb::graph {
 namespace {
 
-using BitName = std::pair<uint32_t, std::string_view>;
+// Bit i of a mask is named kStageBitNames[i] / kAccessBitNames[i] (types.hpp numbers the bits in
+// this order, from 1u << 0).
+constexpr std::string_view kStageBitNames[] = {"draw-indirect",
+                                               "vertex-input",
+                                               "vertex",
+                                               "fragment",
+                                               "early-fragment-tests",
+                                               "late-fragment-tests",
+                                               "color-output",
+                                               "compute",
+                                               "transfer",
+                                               "resolve",
+                                               "host",
+                                               "all-commands"};
+static_assert(std::size(kStageBitNames) == std::bit_width(uint32_t{kStageAllCommands}));
 
-constexpr std::array kStageNames{
-    BitName{kStageDrawIndirect, "draw-indirect"},
-    BitName{kStageVertexInput, "vertex-input"},
-    BitName{kStageVertexShader, "vertex"},
-    BitName{kStageFragmentShader, "fragment"},
-    BitName{kStageEarlyFragmentTests, "early-fragment-tests"},
-    BitName{kStageLateFragmentTests, "late-fragment-tests"},
-    BitName{kStageColorAttachmentOutput, "color-output"},
-    BitName{kStageComputeShader, "compute"},
-    BitName{kStageTransfer, "transfer"},
-    BitName{kStageResolve, "resolve"},
-    BitName{kStageHost, "host"},
-    BitName{kStageAllCommands, "all-commands"},
-};
+constexpr std::string_view kAccessBitNames[] = {"indirect-read",  "index-read",   "vertex-read",   "uniform-read",
+                                                "sampled-read",   "storage-read", "storage-write", "color-read",
+                                                "color-write",    "depth-read",   "depth-write",   "transfer-read",
+                                                "transfer-write", "host-read",    "host-write"};
+static_assert(std::size(kAccessBitNames) == std::bit_width(uint32_t{kAccessHostWrite}));
 
-constexpr std::array kAccessNames{
-    BitName{kAccessIndirectCommandRead, "indirect-read"},
-    BitName{kAccessIndexRead, "index-read"},
-    BitName{kAccessVertexAttributeRead, "vertex-read"},
-    BitName{kAccessUniformRead, "uniform-read"},
-    BitName{kAccessShaderSampledRead, "sampled-read"},
-    BitName{kAccessShaderStorageRead, "storage-read"},
-    BitName{kAccessShaderStorageWrite, "storage-write"},
-    BitName{kAccessColorAttachmentRead, "color-read"},
-    BitName{kAccessColorAttachmentWrite, "color-write"},
-    BitName{kAccessDepthStencilRead, "depth-read"},
-    BitName{kAccessDepthStencilWrite, "depth-write"},
-    BitName{kAccessTransferRead, "transfer-read"},
-    BitName{kAccessTransferWrite, "transfer-write"},
-    BitName{kAccessHostRead, "host-read"},
-    BitName{kAccessHostWrite, "host-write"},
-};
+constexpr std::string_view kLayoutNames[] = {
+    "undefined",        "general",      "color-attachment", "depth-stencil-attachment", "depth-stencil-read-only",
+    "shader-read-only", "transfer-src", "transfer-dst"};
+static_assert(std::size(kLayoutNames) == static_cast<size_t>(Layout::TransferDst) + 1);
 
 // Names of the set bits joined by '+'; bits without a name (none today) are kept as hex, so a new
 // bit can never vanish from the dump.
-template <std::size_t N>
-std::string bitNames(uint32_t mask, const std::array<BitName, N>& names) {
+template <size_t N>
+std::string bitNames(uint32_t mask, const std::string_view (&names)[N]) {
   if (mask == 0) return "none";
   std::string out;
-  for (const auto& [bit, name] : names) {
+  for (size_t i = 0; i < N; ++i) {
+    const uint32_t bit = 1u << i;
     if ((mask & bit) == 0) continue;
     if (!out.empty()) out += '+';
-    out += name;
+    out += names[i];
     mask &= ~bit;
   }
   if (mask != 0) {
@@ -65,32 +58,15 @@ std::string bitNames(uint32_t mask, const std::array<BitName, N>& names) {
 }  // namespace
 
 std::string stageNames(StageMask stages) {
-  return bitNames(stages, kStageNames);
+  return bitNames(stages, kStageBitNames);
 }
 std::string accessNames(AccessMask access) {
-  return bitNames(access, kAccessNames);
+  return bitNames(access, kAccessBitNames);
 }
 
 std::string_view layoutName(Layout layout) {
-  switch (layout) {
-    case Layout::Undefined:
-      return "undefined";
-    case Layout::General:
-      return "general";
-    case Layout::ColorAttachment:
-      return "color-attachment";
-    case Layout::DepthStencilAttachment:
-      return "depth-stencil-attachment";
-    case Layout::DepthStencilReadOnly:
-      return "depth-stencil-read-only";
-    case Layout::ShaderReadOnly:
-      return "shader-read-only";
-    case Layout::TransferSrc:
-      return "transfer-src";
-    case Layout::TransferDst:
-      return "transfer-dst";
-  }
-  return "?";
+  const auto index = static_cast<size_t>(layout);
+  return index < std::size(kLayoutNames) ? kLayoutNames[index] : "?";
 }
 
 std::string describeBarrier(const Barrier& b, std::string_view resourceName, bool isTexture) {

@@ -47,8 +47,7 @@ struct CompileState {
   // Per node: its dependencies are out.edges[edgeStart[n] .. edgeEnd[n]) (the edges into n).
   std::vector<uint32_t> edgeStart;
   std::vector<uint32_t> edgeEnd;
-  std::vector<uint32_t> level;  // per node: longest-path level (alive nodes)
-  uint32_t maxLevel = 0;
+  uint32_t maxLevel = 0;  // the largest NodeInfo::level (dependencies)
   // With several queues (SSIS), per node: σ(u) = order position + queue·V + 1 (V alive nodes)
   // numbers each queue's nodes contiguously, so comparing σ on one queue compares order; `known`
   // holds, per queue, the largest σ that u is ordered after (0: none).
@@ -59,8 +58,8 @@ struct CompileState {
 // Stages, in pipeline order.
 void resolveResources(CompileState& state);      // out.resources: dependent fields resolved
 void cullNodes(CompileState& state);             // queueOf, alive + NodeInfo reasons, aliveUses
-void buildDependencies(CompileState& state);     // out.edges (RAW/WAR/WAW + reader chains), levels; cycles
-void sortByLevel(CompileState& state);           // out.order, NodeInfo level and order position
+void buildDependencies(CompileState& state);     // out.edges (RAW/WAR/WAW, reader chains), NodeInfo levels; cycles
+void sortByLevel(CompileState& state);           // out.order, NodeInfo order positions
 void pruneCrossQueueEdges(CompileState& state);  // SSIS: out.syncEdges, sigma, known
 void placeSubmits(CompileState& state);          // out.steps, out.submits and their waits
 // Lifetimes, memory requirements, aliasing plan and barriers, in one walk over the order.

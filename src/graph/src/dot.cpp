@@ -2,12 +2,8 @@
 // ellipses (imported: double border); edges follow resource versions. Culled nodes are dashed and
 // carry the reason. The full detail adds resource parameters, use kinds, queues, submits,
 // aliasing slots and each step's barriers, named in words (fgb/graph/barrier_names.hpp).
-#include <fgb/graph/dot.hpp>
-
 #include <fgb/graph/barrier_names.hpp>
-
-#include "declaration.hpp"
-
+#include <fgb/graph/dot.hpp>
 #include <sstream>
 #include <string>
 
@@ -28,14 +24,8 @@ std::string escape(std::string_view text) {
   return out;
 }
 
-std::string_view fillColour(NodeType type) {
-  switch (type) {
-    case NodeType::Graphics: return "#f4a261";
-    case NodeType::Compute: return "#8ecae6";
-    case NodeType::Transfer: return "#b5e48c";
-  }
-  return "white";
-}
+// By NodeType (FrameGraph::addNode accepts no other value).
+constexpr std::string_view kFillColours[] = {"#f4a261", "#8ecae6", "#b5e48c"};
 
 std::string describeResource(const ResourceDecl& decl, const CompiledGraph& compiled, uint32_t r) {
   std::ostringstream s;
@@ -59,11 +49,6 @@ std::string describeResource(const ResourceDecl& decl, const CompiledGraph& comp
   return s.str();
 }
 
-std::string describeBarrier(const FrameGraph& graph, const Barrier& b) {
-  const ResourceDecl& resource = graph.resources()[b.resource];
-  return graph::describeBarrier(b, resource.name, resource.kind == ResourceKind::Texture);
-}
-
 std::string nodeLabel(const FrameGraph& graph, const CompiledGraph& compiled, const CullDiagnostics& cullReasons,
                       uint32_t n, DotDetail detail) {
   const NodeDecl& node = graph.nodes()[n];
@@ -75,15 +60,17 @@ std::string nodeLabel(const FrameGraph& graph, const CompiledGraph& compiled, co
     return s.str();
   }
   if (detail == DotDetail::Brief) return s.str();
-  s << "\\n" << toString(node.type) << " on queue " << info.queue << ", level " << info.level << ", submit "
-    << info.submit;
-  const Step& step = compiled.steps[info.step];
-  for (uint32_t i = 0; i < step.before.count; ++i) {
-    s << "\\nbefore: " << escape(describeBarrier(graph, compiled.barriers[step.before.first + i]));
-  }
-  for (uint32_t i = 0; i < step.after.count; ++i) {
-    s << "\\nafter: " << escape(describeBarrier(graph, compiled.barriers[step.after.first + i]));
-  }
+  s << "\\n" << toString(node.type) << " on queue " << info.queue;
+  s << ", level " << info.level << ", submit " << info.submit;
+  auto listBarriers = [&](std::string_view when, BarrierRange range) {
+    for (uint32_t i = range.first; i < range.first + range.count; ++i) {
+      const ResourceDecl& resource = graph.resources()[compiled.barriers[i].resource];
+      const bool texture = resource.kind == ResourceKind::Texture;
+      s << "\\n" << when << ": " << escape(describeBarrier(compiled.barriers[i], resource.name, texture));
+    }
+  };
+  listBarriers("before", compiled.steps[info.step].before);
+  listBarriers("after", compiled.steps[info.step].after);
   return s.str();
 }
 
@@ -94,12 +81,12 @@ void writeNodes(std::ostringstream& s, const FrameGraph& graph, const CompiledGr
     const NodeDecl& node = graph.nodes()[n];
     const bool culled = compiled.nodes[n].culled;
     s << "  n" << n << " [shape=box, style=\"" << (culled ? "dashed" : "filled,rounded") << "\", fillcolor=\""
-      << fillColour(node.type) << "\", label=\"" << nodeLabel(graph, compiled, cullReasons, n, detail) << "\"];\n";
+      << kFillColours[static_cast<size_t>(node.type)] << "\", label=\""
+      << nodeLabel(graph, compiled, cullReasons, n, detail) << "\"];\n";
   }
 }
 
-void writeResources(std::ostringstream& s, const FrameGraph& graph, const CompiledGraph& compiled,
-                    DotDetail detail) {
+void writeResources(std::ostringstream& s, const FrameGraph& graph, const CompiledGraph& compiled, DotDetail detail) {
   for (uint32_t r = 0; r < graph.resources().size(); ++r) {
     const ResourceDecl& decl = graph.resources()[r];
     s << "  r" << r << " [shape=ellipse, " << (decl.imported ? "peripheries=2, " : "")
@@ -112,7 +99,7 @@ void writeResources(std::ostringstream& s, const FrameGraph& graph, const Compil
 
 void writeUses(std::ostringstream& s, const FrameGraph& graph, DotDetail detail) {
   for (uint32_t n = 0; n < graph.nodes().size(); ++n) {
-    for (const detail::Use& use : detail::Declared::uses(graph, n)) {
+    for (const ResourceAccess& use : graph.accesses(n)) {
       const std::string label = detail == DotDetail::Full ? std::string(toString(use.access)) : std::string();
       if (use.readVersion != kInvalidIndex) {
         s << "  r" << use.resource << " -> n" << n << " [label=\"" << label << " v" << use.readVersion << "\"];\n";

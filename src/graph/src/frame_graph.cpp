@@ -26,11 +26,16 @@ std::string versionText(uint32_t version) {
   throw GraphError("node " + quoted(node.name) + what);
 }
 
-// Element `index` of an array indexed by node that only grows as far as some node needs it.
-template <typename T>
-T& grownTo(std::vector<T>& array, uint32_t index) {
-  if (array.size() <= index) array.resize(index + 1);
-  return array[index];
+void requireGraphicsNode(const NodeDecl& node, const char* what) {
+  if (node.type != NodeType::Graphics) {
+    failUse(node, " is a " + std::string(toString(node.type)) + " node; " + what + " needs a graphics node");
+  }
+}
+
+void requireNoDepthTarget(const FrameGraph& graph, uint32_t node) {
+  const NodeDecl& decl = graph.nodes()[node];
+  requireGraphicsNode(decl, "a depth target");
+  if (graph.attachments(node).depth.target.valid()) failUse(decl, " has two depth targets");
 }
 
 }  // namespace
@@ -49,18 +54,6 @@ std::vector<ResourceAccess> FrameGraph::accesses(uint32_t node) const {
   return accesses;
 }
 
-const NodeAttachments& FrameGraph::attachments(uint32_t node) const {
-  static const NodeAttachments kNone{};
-  return node < attachments_.size() ? attachments_[node] : kNone;
-}
-
-std::vector<Job> FrameGraph::takeJobs() {
-  std::vector<Job> jobs = std::move(jobs_);
-  jobs.resize(nodes_.size());
-  jobs_.clear();
-  return jobs;
-}
-
 uint32_t FrameGraph::resourceOf(uint32_t version, const char* kind) const {
   if (version >= versions_.size())
     throw GraphError("unknown " + std::string(kind) + " version " + versionText(version));
@@ -68,6 +61,7 @@ uint32_t FrameGraph::resourceOf(uint32_t version, const char* kind) const {
 }
 
 uint32_t FrameGraph::addResource(ResourceDecl decl) {
+  checkDependentField(decl);
   const auto version = static_cast<uint32_t>(versions_.size());
   versions_.push_back({static_cast<uint32_t>(resources_.size()), kInvalidIndex, kInvalidIndex});
   decl.firstVersion = decl.latestVersion = version;
@@ -75,43 +69,40 @@ uint32_t FrameGraph::addResource(ResourceDecl decl) {
   return version;
 }
 
-// A dependent field (extentFrom, sizeFrom) must name a version of a resource of the same kind,
-// declared before: the compiler resolves resources in declaration order.
-void FrameGraph::checkDependentField(std::string_view name, ResourceKind kind, std::string_view field,
-                                     uint32_t version) const {
-  const std::string what = kindName(kind) + " " + quoted(name) + ": dependent field " + std::string(field) + " names ";
+// A dependent field (extentFrom, sizeFrom), when set, must name a version of a resource of the same
+// kind, declared before: the compiler resolves resources in declaration order.
+void FrameGraph::checkDependentField(const ResourceDecl& decl) const {
+  const bool texture = decl.kind == ResourceKind::Texture;
+  const uint32_t version = texture ? decl.texture.extentFrom.version : decl.buffer.sizeFrom.version;
+  if (version == kInvalidIndex) return;
+  const std::string field = texture ? "extentFrom" : "sizeFrom";
+  const std::string what = kindName(decl.kind) + " " + quoted(decl.name) + ": dependent field " + field + " names ";
   if (version >= versions_.size()) throw GraphError(what + "unknown resource version " + std::to_string(version));
   const ResourceDecl& source = resources_[versions_[version].resource];
-  if (source.kind != kind) {
-    throw GraphError(what + kindName(source.kind) + " " + quoted(source.name) + ", not a " + kindName(kind));
+  if (source.kind != decl.kind) {
+    throw GraphError(what + kindName(source.kind) + " " + quoted(source.name) + ", not a " + kindName(decl.kind));
   }
 }
 
 TextureHandle FrameGraph::importTexture(std::string_view name, const TextureDesc& desc, ExternalResource external,
                                         ImportState initial, ImportState final) {
-  if (desc.extentFrom.valid()) checkDependentField(name, ResourceKind::Texture, "extentFrom", desc.extentFrom.version);
   return {addResource({std::string(name), ResourceKind::Texture, true, desc, {}, external, initial, final})};
 }
 
 BufferHandle FrameGraph::importBuffer(std::string_view name, const BufferDesc& desc, ExternalResource external,
                                       ImportState initial, ImportState final) {
-  if (desc.sizeFrom.valid()) checkDependentField(name, ResourceKind::Buffer, "sizeFrom", desc.sizeFrom.version);
   return {addResource({std::string(name), ResourceKind::Buffer, true, {}, desc, external, initial, final})};
 }
 
 TextureHandle FrameGraph::createTexture(std::string_view name, const TextureDesc& desc) {
-  if (desc.extentFrom.valid()) {
-    checkDependentField(name, ResourceKind::Texture, "extentFrom", desc.extentFrom.version);
-  } else if (desc.format == Format::Undefined) {
+  if (!desc.extentFrom.valid() && desc.format == Format::Undefined) {
     throw GraphError("texture " + quoted(name) + ": format is UNDEFINED");
   }
   return {addResource({std::string(name), ResourceKind::Texture, false, desc})};
 }
 
 BufferHandle FrameGraph::createBuffer(std::string_view name, const BufferDesc& desc) {
-  if (desc.sizeFrom.valid()) {
-    checkDependentField(name, ResourceKind::Buffer, "sizeFrom", desc.sizeFrom.version);
-  } else if (desc.size == 0) {
+  if (!desc.sizeFrom.valid() && desc.size == 0) {
     throw GraphError("buffer " + quoted(name) + ": size is 0");
   }
   return {addResource({std::string(name), ResourceKind::Buffer, false, {}, desc})};
@@ -129,6 +120,8 @@ NodeBuilder FrameGraph::addNode(std::string_view name, NodeType type, QueueClass
   }
   const auto node = static_cast<uint32_t>(nodes_.size());
   nodes_.push_back({std::string(name), type, queue, false});
+  attachments_.emplace_back();
+  jobs_.emplace_back();
   if (useStart_.empty()) useStart_.push_back(0);  // a moved-from graph being reused
   useStart_.push_back(useStart_.back());          // the new node's end, moved on by each of its uses
   return NodeBuilder(*this, node);
@@ -200,30 +193,11 @@ BufferHandle NodeBuilder::write(BufferHandle buffer, Access access, StageMask st
   return {graph_->addUse(node_, buffer.version, ResourceKind::Buffer, access, stages, true)};
 }
 
-namespace {
-
-void requireGraphicsNode(const NodeDecl& node, std::string_view what) {
-  if (node.type != NodeType::Graphics) {
-    throw GraphError("node " + quoted(node.name) + " is a " + std::string(toString(node.type)) + " node; " +
-                     std::string(what) + " needs a graphics node");
-  }
-}
-
-void requireNoDepthTarget(const FrameGraph& graph, uint32_t node) {
-  const NodeDecl& decl = graph.nodes()[node];
-  requireGraphicsNode(decl, "a depth target");
-  if (graph.attachments(node).depth.target.valid()) {
-    throw GraphError("node " + quoted(decl.name) + " has two depth targets");
-  }
-}
-
-}  // namespace
-
 TextureHandle NodeBuilder::addColorTarget(TextureHandle target, LoadOp load, ClearValue clear) {
   requireGraphicsNode(graph_->nodes_[node_], "a colour target");
   const Access access = load == LoadOp::Load ? Access::ColorAttachmentReadWrite : Access::ColorAttachmentWrite;
   const TextureHandle written{graph_->addAttachmentUse(node_, target.version, access)};
-  grownTo(graph_->attachments_, node_).color.push_back({written, {}, load, StoreOp::Store, clear});
+  graph_->attachments_[node_].color.push_back({written, {}, load, StoreOp::Store, clear});
   return written;
 }
 
@@ -232,7 +206,7 @@ TextureHandle NodeBuilder::addColorTargetWithResolve(TextureHandle target, Textu
   const TextureHandle written = addColorTarget(target, load, clear);
   if (newTargetVersion != nullptr) *newTargetVersion = written;
   const TextureHandle resolved{graph_->addAttachmentUse(node_, resolveTarget.version, Access::ResolveDst)};
-  grownTo(graph_->attachments_, node_).color.back().resolveTarget = resolved;
+  graph_->attachments_[node_].color.back().resolveTarget = resolved;
   return resolved;
 }
 
@@ -240,14 +214,14 @@ TextureHandle NodeBuilder::setDepthStencil(TextureHandle target, LoadOp load, Cl
   requireNoDepthTarget(*graph_, node_);
   const Access access = load == LoadOp::Load ? Access::DepthAttachmentReadWrite : Access::DepthAttachmentWrite;
   const TextureHandle written{graph_->addAttachmentUse(node_, target.version, access)};
-  grownTo(graph_->attachments_, node_).depth = {written, load, StoreOp::Store, clear, false};
+  graph_->attachments_[node_].depth = {written, load, StoreOp::Store, clear, false};
   return written;
 }
 
 void NodeBuilder::setDepthStencilReadOnly(TextureHandle target) {
   requireNoDepthTarget(*graph_, node_);
   graph_->addAttachmentUse(node_, target.version, Access::DepthAttachmentRead);
-  grownTo(graph_->attachments_, node_).depth = {target, LoadOp::Load, StoreOp::Store, {}, true};
+  graph_->attachments_[node_].depth = {target, LoadOp::Load, StoreOp::Store, {}, true};
 }
 
 NodeBuilder& NodeBuilder::sideEffect() {
@@ -256,7 +230,7 @@ NodeBuilder& NodeBuilder::sideEffect() {
 }
 
 NodeBuilder& NodeBuilder::setJob(Job job) {
-  grownTo(graph_->jobs_, node_) = std::move(job);
+  graph_->jobs_[node_] = std::move(job);
   return *this;
 }
 

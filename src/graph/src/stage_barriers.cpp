@@ -49,7 +49,8 @@ Barrier barrier(Barrier::Kind kind, uint32_t resource, const Side& src, const Si
 // appended grouped by step at the end.
 class BarrierPlanner {
  public:
-  explicit BarrierPlanner(CompileState& state) : state_(state), states_(state.resourceCount) {
+  explicit BarrierPlanner(CompileState& state)
+      : state_(state), states_(state.resourceCount), after_(state.out.steps.size()) {
     state.out.barriers.clear();
   }
 
@@ -86,7 +87,6 @@ class BarrierPlanner {
   void finalState(uint32_t resource) {
     const TrackedState& s = states_[resource];
     const bool texture = state_.isTexture(resource);
-    if (s.lastStep == kInvalidIndex) return;
     const ImportState& final = state_.resource(resource).finalState;
     const uint32_t declaredFinalQueue = state_.options.queueOfClass[static_cast<size_t>(final.queue)];
     const uint32_t finalQueue = s.discardsOnEntry ? s.queue : declaredFinalQueue;
@@ -109,16 +109,14 @@ class BarrierPlanner {
                 {dstStages, dstAccess, texture ? finalLayout : Layout::Undefined, handedOver ? s.queue : finalQueue}));
   }
 
-  // Appends the barriers after steps to the output, grouped by step (in the order found within a
+  // Appends the barriers after steps to the output, step by step (in the order found within a
   // step), and sets each step's after-range.
   void emitAfterBarriers() {
-    std::stable_sort(after_.begin(), after_.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     std::vector<Barrier>& barriers = state_.out.barriers;
-    size_t next = 0;
-    for (uint32_t step = 0; step < state_.out.steps.size(); ++step) {
+    for (uint32_t step = 0; step < after_.size(); ++step) {
       const auto first = static_cast<uint32_t>(barriers.size());
-      for (; next < after_.size() && after_[next].first == step; ++next) barriers.push_back(after_[next].second);
-      state_.out.steps[step].after = {first, static_cast<uint32_t>(barriers.size()) - first};
+      barriers.insert(barriers.end(), after_[step].begin(), after_[step].end());
+      state_.out.steps[step].after = {first, static_cast<uint32_t>(after_[step].size())};
     }
   }
 
@@ -136,7 +134,7 @@ class BarrierPlanner {
   }
 
   void addBefore(const Barrier& barrier) { state_.out.barriers.push_back(barrier); }
-  void addAfter(uint32_t step, const Barrier& barrier) { after_.emplace_back(step, barrier); }
+  void addAfter(uint32_t step, const Barrier& barrier) { after_[step].push_back(barrier); }
 
   // An imported resource's state as the graph finds it.
   [[nodiscard]] TrackedState enterImport(const Use& first) const {
@@ -236,8 +234,8 @@ class BarrierPlanner {
   std::vector<TrackedState> states_;  // per resource
   uint32_t queue_ = 0;                // queue and step of the node whose uses are being planned
   uint32_t step_ = 0;
-  uint32_t firstBefore_ = 0;                         // where the walked node's barriers before it begin
-  std::vector<std::pair<uint32_t, Barrier>> after_;  // barriers after steps, with their step
+  uint32_t firstBefore_ = 0;                 // where the walked node's barriers before it begin
+  std::vector<std::vector<Barrier>> after_;  // per step: the barriers after it, in the order found
 };
 
 // A node's uses, one per resource. A node that uses a resource twice (e.g. read + resolve) is
@@ -264,7 +262,6 @@ std::vector<Use> mergedUses(std::span<const Use> uses) {
 
 // What the walk keeps about a resource for lifetimes and placement.
 struct ResourceWalk {
-  bool started = false;           // its first user was walked
   uint32_t usesLeft = 0;          // alive uses not walked yet: 0 after the last user's
   QueueStages stagesOnQueue{};    // stages used on each queue
   QueueArray lastSigmaOnQueue{};  // largest σ of a user on each queue
@@ -295,9 +292,8 @@ void walkUses(CompileState& state, bool alias, bool firstWalk) {
     for (const Use& use : uses) {
       const uint32_t r = use.resource;
       ResourceWalk& w = walk[r];
-      const bool first = !w.started;
+      const bool first = !state.out.lifetimes[r].used();
       if (first) {
-        w.started = true;
         state.out.lifetimes[r].first = position;
         state.out.resourceAlive[r] = true;
         if (!state.isImported(r)) placer.place(r, node);

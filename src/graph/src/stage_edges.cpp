@@ -137,7 +137,6 @@ class DependencyWalk {
         seenFor_(state.nodeCount, kInvalidIndex) {
     state.edgeStart.assign(state.nodeCount, 0);
     state.edgeEnd.assign(state.nodeCount, 0);
-    state.level.assign(state.nodeCount, 0);
     state.maxLevel = 0;
     state.out.edges.clear();
   }
@@ -151,7 +150,7 @@ class DependencyWalk {
       if (use.writes()) visitWrite(use);
     }
     state_.edgeEnd[node] = static_cast<uint32_t>(state_.out.edges.size());
-    state_.level[node] = level_;
+    state_.out.nodes[node].level = level_;
     state_.maxLevel = std::max(state_.maxLevel, level_);
   }
 
@@ -170,7 +169,7 @@ class DependencyWalk {
     if (predecessor == node_ || seenFor_[predecessor] == node_) return;  // no self-loops or duplicates
     seenFor_[predecessor] = node_;
     state_.out.edges.push_back({predecessor, node_});
-    level_ = std::max(level_, state_.level[predecessor] + 1);
+    level_ = std::max(level_, state_.out.nodes[predecessor].level + 1);
   }
   // Newest first.
   void dependOnAll(const std::vector<uint32_t>& nodes, size_t begin, size_t end) {

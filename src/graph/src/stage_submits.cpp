@@ -35,15 +35,15 @@ void cutSubmits(CompileState& state, const std::vector<uint32_t>& queueStart) {
   const uint32_t levels = state.maxLevel + 1;
   std::vector<uint8_t> rolesAt(static_cast<size_t>(state.queueCount) * levels, 0);
   for (const Edge& e : out.syncEdges) {
-    rolesAt[(state.queueOf[e.from] * levels) + state.level[e.from]] |= kSyncSource;
-    rolesAt[(state.queueOf[e.to] * levels) + state.level[e.to]] |= kSyncTarget;
+    rolesAt[(state.queueOf[e.from] * levels) + out.nodes[e.from].level] |= kSyncSource;
+    rolesAt[(state.queueOf[e.to] * levels) + out.nodes[e.to].level] |= kSyncTarget;
   }
   for (uint32_t queue = 0; queue < state.queueCount; ++queue) {
     const uint8_t* roles = &rolesAt[static_cast<size_t>(queue) * levels];
     uint32_t previousLevel = 0;
     for (uint32_t step = queueStart[queue]; step < queueStart[queue + 1]; ++step) {
       const uint32_t node = out.steps[step].node;
-      const uint32_t level = state.level[node];
+      const uint32_t level = out.nodes[node].level;
       // A new level starts a submit if the last one held a G* source or this one holds a G* target.
       const bool cut =
           level != previousLevel && ((roles[previousLevel] & kSyncSource) != 0 || (roles[level] & kSyncTarget) != 0);

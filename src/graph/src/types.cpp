@@ -1,110 +1,99 @@
 #include <fgb/graph/types.hpp>
+#include <iterator>
 
 namespace fgb::graph {
 namespace {
 
-// What each access does. Stages kStageNone stand for the shader stages of the node's type (or
-// those the use declares).
-AccessInfo accessRow(Access access) {
-  constexpr StageMask kShader = kStageNone;
-  constexpr StageMask kDepth = kStageEarlyFragmentTests | kStageLateFragmentTests;
-  constexpr AccessMask kColorReadWrite = kAccessColorAttachmentRead | kAccessColorAttachmentWrite;
-  constexpr AccessMask kDepthReadWrite = kAccessDepthStencilRead | kAccessDepthStencilWrite;
-  switch (access) {
-    case Access::Sampled: return {true, false, kShader, kAccessShaderSampledRead, Layout::ShaderReadOnly};
-    case Access::StorageRead: return {true, false, kShader, kAccessShaderStorageRead, Layout::General};
-    case Access::StorageWrite: return {false, true, kShader, kAccessShaderStorageWrite, Layout::General};
-    case Access::StorageReadWrite:
-      return {true, true, kShader, kAccessShaderStorageRead | kAccessShaderStorageWrite, Layout::General};
-    case Access::ColorAttachmentWrite:
-      return {false, true, kStageColorAttachmentOutput, kAccessColorAttachmentWrite, Layout::ColorAttachment};
-    case Access::ColorAttachmentReadWrite:
-      return {true, true, kStageColorAttachmentOutput, kColorReadWrite, Layout::ColorAttachment};
-    case Access::DepthAttachmentWrite:
-      return {false, true, kDepth, kAccessDepthStencilWrite, Layout::DepthStencilAttachment};
-    case Access::DepthAttachmentReadWrite: return {true, true, kDepth, kDepthReadWrite, Layout::DepthStencilAttachment};
-    case Access::DepthAttachmentRead: return {true, false, kDepth, kAccessDepthStencilRead, Layout::DepthStencilReadOnly};
-    // Dynamic-rendering resolves run in the colour-attachment-output stage.
-    case Access::ResolveDst:
-      return {false, true, kStageColorAttachmentOutput, kAccessColorAttachmentWrite, Layout::ColorAttachment};
-    case Access::TransferSrc: return {true, false, kStageTransfer, kAccessTransferRead, Layout::TransferSrc};
-    case Access::TransferDst: return {false, true, kStageTransfer, kAccessTransferWrite, Layout::TransferDst};
-    case Access::Indirect: return {true, false, kStageDrawIndirect, kAccessIndirectCommandRead, Layout::General};
-    case Access::Vertex: return {true, false, kStageVertexInput, kAccessVertexAttributeRead, Layout::General};
-    case Access::Index: return {true, false, kStageVertexInput, kAccessIndexRead, Layout::General};
-    case Access::Uniform: return {true, false, kShader, kAccessUniformRead, Layout::General};
-    case Access::HostRead: return {true, false, kStageHost, kAccessHostRead, Layout::General};
-  }
-  return {true, true, kStageAllCommands, kAccessNone, Layout::General};  // unknown: assume everything
+// Each enum below is one table, a row per value in the enum's order (sizes checked by
+// static_assert): a value's name and what it implies are listed once, side by side. `fallback` is
+// for a value past the table, which only a cast from a bad integer makes.
+template <typename Row, size_t N, typename Enum>
+constexpr const Row& rowOf(const Row (&rows)[N], Enum value, const Row& fallback) {
+  const auto index = static_cast<size_t>(value);
+  return index < N ? rows[index] : fallback;
 }
 
-StageMask shaderStagesOf(NodeType type) {
-  switch (type) {
-    case NodeType::Graphics: return kStageVertexShader | kStageFragmentShader;
-    case NodeType::Compute: return kStageComputeShader;
-    case NodeType::Transfer: return kStageTransfer;
-  }
-  return kStageAllCommands;
-}
+struct AccessRow {
+  std::string_view name;
+  AccessInfo info;
+};
+
+// Stages kStageNone stand for the shader stages of the node's type (or those the use declares).
+constexpr StageMask kShader = kStageNone;
+constexpr StageMask kDepth = kStageEarlyFragmentTests | kStageLateFragmentTests;
+constexpr AccessMask kStorageReadWrite = kAccessShaderStorageRead | kAccessShaderStorageWrite;
+constexpr AccessMask kColorReadWrite = kAccessColorAttachmentRead | kAccessColorAttachmentWrite;
+constexpr AccessMask kDepthReadWrite = kAccessDepthStencilRead | kAccessDepthStencilWrite;
+
+constexpr AccessRow kAccessRows[] = {
+    {"sampled", {true, false, kShader, kAccessShaderSampledRead, Layout::ShaderReadOnly}},
+    {"storage-read", {true, false, kShader, kAccessShaderStorageRead, Layout::General}},
+    {"storage-write", {false, true, kShader, kAccessShaderStorageWrite, Layout::General}},
+    {"storage-read-write", {true, true, kShader, kStorageReadWrite, Layout::General}},
+    {"color-write", {false, true, kStageColorAttachmentOutput, kAccessColorAttachmentWrite, Layout::ColorAttachment}},
+    {"color-read-write", {true, true, kStageColorAttachmentOutput, kColorReadWrite, Layout::ColorAttachment}},
+    {"depth-write", {false, true, kDepth, kAccessDepthStencilWrite, Layout::DepthStencilAttachment}},
+    {"depth-read-write", {true, true, kDepth, kDepthReadWrite, Layout::DepthStencilAttachment}},
+    {"depth-read", {true, false, kDepth, kAccessDepthStencilRead, Layout::DepthStencilReadOnly}},
+    // Dynamic-rendering resolves run in the colour-attachment-output stage.
+    {"resolve", {false, true, kStageColorAttachmentOutput, kAccessColorAttachmentWrite, Layout::ColorAttachment}},
+    {"transfer-src", {true, false, kStageTransfer, kAccessTransferRead, Layout::TransferSrc}},
+    {"transfer-dst", {false, true, kStageTransfer, kAccessTransferWrite, Layout::TransferDst}},
+    {"indirect", {true, false, kStageDrawIndirect, kAccessIndirectCommandRead, Layout::General}},
+    {"vertex", {true, false, kStageVertexInput, kAccessVertexAttributeRead, Layout::General}},
+    {"index", {true, false, kStageVertexInput, kAccessIndexRead, Layout::General}},
+    {"uniform", {true, false, kShader, kAccessUniformRead, Layout::General}},
+    {"host-read", {true, false, kStageHost, kAccessHostRead, Layout::General}},
+};
+static_assert(std::size(kAccessRows) == static_cast<size_t>(Access::HostRead) + 1);
+// An unknown access: assume it does everything.
+constexpr AccessRow kUnknownAccess{"?", {true, true, kStageAllCommands, kAccessNone, Layout::General}};
+
+struct NodeTypeRow {
+  std::string_view name;
+  StageMask shaderStages;
+  QueueClass defaultQueue;
+};
+
+constexpr NodeTypeRow kNodeTypeRows[] = {
+    {"graphics", kStageVertexShader | kStageFragmentShader, QueueClass::Graphics},
+    {"compute", kStageComputeShader, QueueClass::Compute},
+    {"transfer", kStageTransfer, QueueClass::Transfer},
+};
+static_assert(std::size(kNodeTypeRows) == static_cast<size_t>(NodeType::Transfer) + 1);
+constexpr NodeTypeRow kUnknownNodeType{"?", kStageAllCommands, QueueClass::Graphics};
+
+constexpr std::string_view kQueueClassNames[] = {"graphics", "compute", "transfer"};
+static_assert(std::size(kQueueClassNames) == kQueueClassCount);
 
 }  // namespace
 
 AccessInfo accessInfo(Access access, NodeType nodeType, StageMask shaderStages) {
-  AccessInfo info = accessRow(access);
-  if (info.stages == kStageNone) info.stages = shaderStages != kStageNone ? shaderStages : shaderStagesOf(nodeType);
+  AccessInfo info = rowOf(kAccessRows, access, kUnknownAccess).info;
+  const StageMask typeStages = rowOf(kNodeTypeRows, nodeType, kUnknownNodeType).shaderStages;
+  if (info.stages == kShader) info.stages = shaderStages != kStageNone ? shaderStages : typeStages;
   return info;
 }
 
-bool isWriteAccess(Access access) { return accessRow(access).writes; }
+bool isWriteAccess(Access access) {
+  return rowOf(kAccessRows, access, kUnknownAccess).info.writes;
+}
 
 QueueClass defaultQueue(NodeType type) {
-  switch (type) {
-    case NodeType::Graphics: return QueueClass::Graphics;
-    case NodeType::Compute: return QueueClass::Compute;
-    case NodeType::Transfer: return QueueClass::Transfer;
-  }
-  return QueueClass::Graphics;
+  return rowOf(kNodeTypeRows, type, kUnknownNodeType).defaultQueue;
 }
 
 std::string_view toString(Access access) {
-  switch (access) {
-    case Access::Sampled: return "sampled";
-    case Access::StorageRead: return "storage-read";
-    case Access::StorageWrite: return "storage-write";
-    case Access::StorageReadWrite: return "storage-read-write";
-    case Access::ColorAttachmentWrite: return "color-write";
-    case Access::ColorAttachmentReadWrite: return "color-read-write";
-    case Access::DepthAttachmentWrite: return "depth-write";
-    case Access::DepthAttachmentReadWrite: return "depth-read-write";
-    case Access::DepthAttachmentRead: return "depth-read";
-    case Access::ResolveDst: return "resolve";
-    case Access::TransferSrc: return "transfer-src";
-    case Access::TransferDst: return "transfer-dst";
-    case Access::Indirect: return "indirect";
-    case Access::Vertex: return "vertex";
-    case Access::Index: return "index";
-    case Access::Uniform: return "uniform";
-    case Access::HostRead: return "host-read";
-  }
-  return "?";
+  return rowOf(kAccessRows, access, kUnknownAccess).name;
 }
 
 std::string_view toString(NodeType type) {
-  switch (type) {
-    case NodeType::Graphics: return "graphics";
-    case NodeType::Compute: return "compute";
-    case NodeType::Transfer: return "transfer";
-  }
-  return "?";
+  return rowOf(kNodeTypeRows, type, kUnknownNodeType).name;
 }
 
 std::string_view toString(QueueClass queue) {
-  switch (queue) {
-    case QueueClass::Graphics: return "graphics";
-    case QueueClass::Compute: return "compute";
-    case QueueClass::Transfer: return "transfer";
-  }
-  return "?";
+  static constexpr std::string_view kUnknown = "?";
+  return rowOf(kQueueClassNames, queue, kUnknown);
 }
 
 }  // namespace fgb::graph

@@ -36,15 +36,60 @@ double LogAxis::at(double v, double from, double to) const {
   return from + t * (to - from);
 }
 
+namespace {
+
+// 1, 2, 5 x 10^k: the values a log axis labels.
+double nextStepUp(double v) {
+  const double power = std::pow(10.0, std::floor(std::log10(v) + 1e-9));
+  for (double m : {1.0, 2.0, 5.0, 10.0}) {
+    if (m * power > v * (1 + 1e-9)) return m * power;
+  }
+  return 10.0 * power;
+}
+
+double nextStepDown(double v) {
+  const double power = std::pow(10.0, std::ceil(std::log10(v) - 1e-9));
+  for (double m : {1.0, 0.5, 0.2, 0.1}) {
+    if (m * power < v * (1 - 1e-9)) return m * power;
+  }
+  return 0.1 * power;
+}
+
+// `v` with `significant` significant digits in plain decimal notation (never an exponent), trailing
+// zeros dropped: 0.0005, 2.5, 380, 12000.
+std::string plainNumber(double v, int significant) {
+  if (v == 0 || !std::isfinite(v)) return fmt::format("{}", v);
+  const int magnitude = static_cast<int>(std::floor(std::log10(std::abs(v))));
+  const int decimals = std::max(0, significant - 1 - magnitude);
+  std::string text = fmt::format("{:.{}f}", v, decimals);
+  if (text.find('.') != std::string::npos) {
+    text.erase(text.find_last_not_of('0') + 1);
+    if (text.back() == '.') text.pop_back();
+  }
+  return text;
+}
+
+}  // namespace
+
 std::vector<double> LogAxis::ticks() const {
   std::vector<double> out;
   for (int e = static_cast<int>(std::floor(std::log10(lo))); e <= static_cast<int>(std::ceil(std::log10(hi))); ++e) {
     for (double m : {1.0, 2.0, 5.0}) {
       const double v = m * std::pow(10.0, e);
+      if (v >= lo * (1 - 1e-9) && v <= hi * (1 + 1e-9)) out.push_back(v);
+    }
+  }
+  return out;
+}
+
+std::vector<double> LogAxis::minorTicks() const {
+  std::vector<double> out;
+  for (int e = static_cast<int>(std::floor(std::log10(lo))); e <= static_cast<int>(std::ceil(std::log10(hi))); ++e) {
+    for (double m : {3.0, 4.0, 6.0, 7.0, 8.0, 9.0}) {
+      const double v = m * std::pow(10.0, e);
       if (v >= lo && v <= hi) out.push_back(v);
     }
   }
-  if (out.size() < 2) out = {lo, std::sqrt(lo * hi), hi};
   return out;
 }
 
@@ -54,11 +99,25 @@ LogAxis paddedLogAxis(double lo, double hi) {
   // At least a factor 1.5 across, centred on the data, so close points do not fill the whole plot.
   const double centre = std::sqrt(lo * hi);
   const double half = std::max(std::sqrt(hi / lo), std::sqrt(1.5)) * 1.08;
-  return {centre / half, centre * half};
+  LogAxis axis{centre / half, centre * half};
+  // At least two labelled (1-2-5) ticks: widen towards the nearer of the next ones outside.
+  while (axis.ticks().size() < 2) {
+    const double up = nextStepUp(axis.hi), down = nextStepDown(axis.lo);
+    if (up / axis.hi <= axis.lo / down) {
+      axis.hi = up;
+    } else {
+      axis.lo = down;
+    }
+  }
+  return axis;
 }
 
-std::string tickLabel(double v) {
-  return fmt::format("{:.3g}", v);
+std::string tickLabel(double v) { return plainNumber(v, 3); }
+
+std::string durationLabel(double ms, int significant) {
+  if (ms >= 1000.0) return plainNumber(ms / 1000.0, significant) + " s";
+  if (ms >= 0.1) return plainNumber(ms, significant) + " ms";
+  return plainNumber(ms * 1000.0, significant) + " µs";
 }
 
 }  // namespace fgb::harness

@@ -43,6 +43,10 @@ std::string nonFiniteCell(const StressRungOutcome& r) {
   return r.rendered ? "0" : "–";
 }
 
+// Tick labels of the stress chart, whose rungs span up to 13 decades (offsets 1e7, near planes 1e-6):
+// 3 significant digits, in exponent form where shorter, as the ladders are written.
+std::string stressTickLabel(double v) { return fmt::format("{:.3g}", v); }
+
 // Error (FLIP mean) against the rung value, both on log axes; failing rungs in red.
 std::string errorSvg(const StressResult& result) {
   std::vector<const StressRungOutcome*> points;
@@ -65,11 +69,11 @@ std::string errorSvg(const StressResult& result) {
   const auto py = [&](double v) { return y.at(std::max(v, ylo), h - bottom, top); };
   for (double t : x.ticks()) {
     svg += fmt::format(R"(<text x="{:.1f}" y="{}" font-size="11" text-anchor="middle">{}</text>)", px(t),
-                       h - bottom + 16, tickLabel(t));
+                       h - bottom + 16, stressTickLabel(t));
   }
   for (double t : y.ticks()) {
     svg += fmt::format(R"(<text x="{}" y="{:.1f}" font-size="11" text-anchor="end">{}</text>)", left - 6, py(t) + 4,
-                       tickLabel(t));
+                       stressTickLabel(t));
   }
   const double limit = py(result.ladder.thresholds.flipMean + flipOf(result.noise));
   svg += fmt::format(R"(<line x1="{}" x2="{}" y1="{:.1f}" y2="{:.1f}" stroke="#c0392b" stroke-dasharray="4 3"/>)", left,

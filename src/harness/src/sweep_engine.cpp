@@ -24,28 +24,17 @@ bool bitIdentical(const Image& a, const Image& b) {
          std::memcmp(a.rgba.data(), b.rgba.data(), a.rgba.size() * sizeof(float)) == 0;
 }
 
-// The images of frame `frames` of a freshly opened workload.
-RenderedImages renderImagesAfter(const WorkloadOpener& open, const render::WorkloadConfig& config, uint32_t frames) {
-  ConfigurationRenderer renderer(open, config);
-  renderer.warmUp(std::max(frames, 1u));
-  return renderer.readImages();
-}
-
-ReferenceOutcome renderReference(const WorkloadOpener& open, const render::WorkloadConfig& config, uint32_t frames) {
+// The images of frame `frames` of a freshly opened workload, and where its time went.
+RenderedImages renderImagesAfter(const WorkloadOpener& open, const render::WorkloadConfig& config, uint32_t frames,
+                                 ReferenceRenderWall& wall) {
   Stopwatch timer;
-  ReferenceOutcome ref;
-  ref.workload = config;
-  ref.images = renderImagesAfter(open, config, frames);
-  // Its noise floor: a second render of the same reference, compared with the first.
-  const RenderedImages again = renderImagesAfter(open, config, frames);
-  if (again.hdr.width != ref.images.hdr.width || again.hdr.height != ref.images.hdr.height) {
-    throw DeviceError("two renders of the reference differ in size");
-  }
-  ref.identical = bitIdentical(ref.images.hdr, again.hdr) && bitIdentical(ref.images.display, again.display);
-  ref.repeatDisplay = compareImages(quantizeToSrgb8(ref.images.display), quantizeToSrgb8(again.display)).metrics;
-  ref.repeatHdr = compareImages(ref.images.hdr, again.hdr).metrics;
-  ref.renderMs = timer.elapsedMs();
-  return ref;
+  ConfigurationRenderer renderer(open, config);
+  wall.openMs = timer.lap();
+  renderer.warmUp(std::max(frames, 1u));
+  wall.framesMs = timer.lap();
+  RenderedImages images = renderer.readImages();
+  wall.readbackMs = timer.lap();
+  return images;
 }
 
 std::size_t referenceIndex(std::vector<render::WorkloadConfig>& references, const render::WorkloadConfig& wanted) {
@@ -54,6 +43,22 @@ std::size_t referenceIndex(std::vector<render::WorkloadConfig>& references, cons
   }
   references.push_back(wanted);
   return references.size() - 1;
+}
+
+// One visit of a configuration: up to `frames` measured frames after plan.rewarmFrames dropped
+// ones. Where checkEvery is set (until-stable on a CPU device, SweepPlan::trimOnCpu), the visit
+// measures that many frames at a time and ends as soon as the configuration is stable. Returns the
+// frames measured.
+uint32_t measureVisit(ConfigurationRenderer& renderer, uint32_t frames, const SweepPlan& plan, uint32_t checkEvery) {
+  const uint32_t step = plan.untilStable && checkEvery > 0 ? checkEvery : frames;
+  uint32_t measured = 0;
+  while (measured < frames) {
+    const uint32_t chunk = std::min(step, frames - measured);
+    renderer.measure(chunk, measured == 0 ? plan.rewarmFrames : 0);
+    measured += chunk;
+    if (plan.untilStable && isStable(renderer.result(), *plan.untilStable)) break;
+  }
+  return measured;
 }
 
 bool finished(const RunResult& run, const SweepPlan& plan) {
@@ -65,7 +70,8 @@ bool finished(const RunResult& run, const SweepPlan& plan) {
 // random order (seeded), `roundFrames` frames each, so slow drift (thermal, other processes)
 // spreads over all configurations alike instead of favouring whichever ran first.
 void measureInRounds(std::vector<std::unique_ptr<ConfigurationRenderer>>& renderers, SweepResult& result,
-                     const SweepPlan& plan, const SweepProgress& progress, const Stopwatch& sweepClock) {
+                     const SweepPlan& plan, uint32_t checkEvery, const SweepProgress& progress,
+                     const Stopwatch& sweepClock) {
   std::mt19937_64 random(plan.seed);
   const uint32_t planned = plan.frames * static_cast<uint32_t>(renderers.size());
   uint32_t done = 0;
@@ -87,15 +93,59 @@ void measureInRounds(std::vector<std::unique_ptr<ConfigurationRenderer>>& render
       if (plan.maxMinutes > 0 && result.rounds > 0 && sweepClock.elapsedMs() > plan.maxMinutes * 60000.0) break;
       const uint32_t have = static_cast<uint32_t>(renderers[i]->result().frameGpuMs.size());
       const uint32_t frames = std::min(plan.roundFrames, plan.frames - have);
-      renderers[i]->measure(frames, plan.rewarmFrames);
-      done += frames;
+      Stopwatch visit;
+      const uint32_t measured = measureVisit(*renderers[i], frames, plan, checkEvery);
+      ConfigurationWall& wall = result.configurations[i].wall;
+      wall.measureMs += visit.elapsedMs();
+      wall.rewarmFrames += plan.rewarmFrames;
+      ++wall.visits;
+      done += measured;
       if (progress.frames) progress.frames(std::min(done, planned), planned);
     }
     ++result.rounds;
   }
 }
 
+// The plan as the opened device wants it (CPU devices: until-stable by default, and with trimOnCpu
+// no frames beyond need), recorded in the result. Returns the frames between stability checks
+// within a visit (0: once per visit).
+uint32_t adaptToDevice(SweepPlan& plan, SweepResult& result) {
+  const bool cpu = result.device.type == "cpu";
+  if (!plan.untilStable && plan.untilStableOnCpu && cpu) plan.untilStable = plan.cpuStabilityRule;
+  uint32_t checkEvery = 0;
+  if (cpu && plan.trimOnCpu) {
+    plan.rewarmFrames = 0;
+    checkEvery = plan.cpuStableCheckFrames;
+    if (plan.trimWarmupOnCpu) plan.warmup = std::max(plan.imageFrame, 1u);
+  }
+  result.warmupFrames = std::max({plan.imageFrame, plan.warmup, 1u});
+  result.rewarmFrames = plan.rewarmFrames;
+  result.stableCheckFrames = plan.untilStable ? (checkEvery ? checkEvery : plan.roundFrames) : 0;
+  if (plan.untilStable) plan.frames = plan.stableFrameCap;  // from here on `frames` is the cap
+  result.untilStable = plan.untilStable;
+  result.frameCap = plan.frames;
+  return checkEvery;
+}
+
 }  // namespace
+
+ReferenceOutcome renderReference(const WorkloadOpener& open, const render::WorkloadConfig& config, uint32_t frames) {
+  Stopwatch timer;
+  ReferenceOutcome ref;
+  ref.workload = config;
+  ref.renders.resize(2);
+  ref.images = renderImagesAfter(open, config, frames, ref.renders[0]);
+  // Its noise floor: a second render of the same reference, compared with the first.
+  const RenderedImages again = renderImagesAfter(open, config, frames, ref.renders[1]);
+  if (again.hdr.width != ref.images.hdr.width || again.hdr.height != ref.images.hdr.height) {
+    throw DeviceError("two renders of the reference differ in size");
+  }
+  ref.identical = bitIdentical(ref.images.hdr, again.hdr) && bitIdentical(ref.images.display, again.display);
+  ref.repeatDisplay = compareImages(quantizeToSrgb8(ref.images.display), quantizeToSrgb8(again.display)).metrics;
+  ref.repeatHdr = compareImages(ref.images.hdr, again.hdr).metrics;
+  ref.renderMs = timer.elapsedMs();
+  return ref;
+}
 
 SweepResult runSweep(const WorkloadOpener& open, const SweepPlan& requested, const SweepProgress& progress) {
   Stopwatch sweepClock, phase;
@@ -116,14 +166,12 @@ SweepResult runSweep(const WorkloadOpener& open, const SweepPlan& requested, con
     renderers.push_back(std::make_unique<ConfigurationRenderer>(open, c.workload));
     ConfigurationOutcome outcome;
     outcome.configuration = c;
+    outcome.wall.openMs = renderers.back()->result().overhead.openMs;
     result.configurations.push_back(std::move(outcome));
   }
   result.overhead.openMs = phase.lap();
   if (!renderers.empty()) result.device = renderers.front()->result().device;
-  if (!plan.untilStable && plan.untilStableOnCpu && result.device.type == "cpu") plan.untilStable = plan.cpuStabilityRule;
-  if (plan.untilStable) plan.frames = plan.stableFrameCap;  // from here on `frames` is the cap
-  result.untilStable = plan.untilStable;
-  result.frameCap = plan.frames;
+  const uint32_t checkEvery = adaptToDevice(plan, result);
 
   std::vector<render::WorkloadConfig> referenceConfigs;
   for (auto& c : result.configurations) {
@@ -138,14 +186,18 @@ SweepResult runSweep(const WorkloadOpener& open, const SweepPlan& requested, con
 
   say("warming up");
   for (std::size_t i = 0; i < renderers.size(); ++i) {
+    Stopwatch warming;
+    ConfigurationOutcome& c = result.configurations[i];
     renderers[i]->warmUp(std::max(plan.imageFrame, 1u));
-    result.configurations[i].images = renderers[i]->readImages();
+    c.images = renderers[i]->readImages();
     if (plan.warmup > plan.imageFrame) renderers[i]->warmUp(plan.warmup - plan.imageFrame);
+    c.wall.warmupFrames = std::max({plan.imageFrame, plan.warmup, 1u});
+    c.wall.warmupMs = warming.elapsedMs();
   }
   result.overhead.warmupMs = phase.lap();
 
   say("measuring");
-  measureInRounds(renderers, result, plan, progress, sweepClock);
+  measureInRounds(renderers, result, plan, checkEvery, progress, sweepClock);
   for (std::size_t i = 0; i < renderers.size(); ++i) {
     renderers[i]->checkValidation();
     ConfigurationOutcome& c = result.configurations[i];
@@ -158,8 +210,9 @@ SweepResult runSweep(const WorkloadOpener& open, const SweepPlan& requested, con
       if (!c.stable) result.stopReason = "frame cap (not every configuration stable)";
     }
   }
-  renderers.clear();  // every device closed before the metrics (memory)
   result.overhead.measureMs = phase.lap();
+  renderers.clear();  // every device closed before the metrics (memory)
+  result.overhead.closeMs = phase.lap();
 
   say("comparing with the reference");
   compareWithReferences(result);
@@ -175,6 +228,7 @@ void compareWithReferences(SweepResult& result) {
     if (ref.repeatDisplay.flip) result.errorFloor = std::max(result.errorFloor, ref.repeatDisplay.flip->mean);
   }
   for (auto& c : result.configurations) {
+    Stopwatch timer;
     const ReferenceOutcome& ref = result.references.at(c.reference);
     if (c.images.display.width != ref.images.display.width || c.images.display.height != ref.images.display.height) {
       throw DeviceError(fmt::format("{}: rendered {} but its reference {}", c.configuration.label,
@@ -185,6 +239,7 @@ void compareWithReferences(SweepResult& result) {
     c.display = display.metrics;
     c.heatMap = heatMap(display.errorMap, display.nonFiniteMask, c.images.display.width, c.images.display.height);
     c.hdr = compareImages(ref.images.hdr, c.images.hdr).metrics;
+    c.wall.metricsMs = timer.elapsedMs();
   }
 }
 

@@ -5,8 +5,10 @@
 #include <cmath>
 #include <fgb/core/atomic_file.hpp>
 #include <fgb/core/error.hpp>
+#include <fgb/core/stopwatch.hpp>
 #include <fgb/harness/json_io.hpp>
 #include <fgb/harness/report.hpp>
+#include <fgb/harness/run_outputs.hpp>
 #include <fgb/harness/sweep_report.hpp>
 
 namespace fgb::harness {
@@ -68,14 +70,27 @@ nlohmann::json configurationJson(const SweepResult& result, const ConfigurationO
           {"error", {{"display", toJson(c.display)}, {"hdr", toJson(c.hdr)}}},
           {"front", c.onFront},
           {"dominated_by", dominatedBy},
+          {"wall_ms",
+           {{"open", c.wall.openMs},
+            {"warmup", c.wall.warmupMs},
+            {"warmup_frames", c.wall.warmupFrames},
+            {"measure", c.wall.measureMs},
+            {"measured_frames", c.run.frameGpuMs.size()},
+            {"rewarm_frames", c.wall.rewarmFrames},
+            {"visits", c.wall.visits},
+            {"metrics", c.wall.metricsMs}}},
           {"samples", {{"frame_gpu_ms", c.run.frameGpuMs}}}};
 }
 
 nlohmann::json referenceJson(const ReferenceOutcome& r) {
+  nlohmann::json renders = nlohmann::json::array();
+  for (const auto& w : r.renders)
+    renders.push_back({{"open", w.openMs}, {"frames", w.framesMs}, {"readback", w.readbackMs}});
   return {{"config", configJson(r.workload, r.images)},
           {"repeat_identical", r.identical},
           {"noise", {{"display", toJson(r.repeatDisplay)}, {"hdr", toJson(r.repeatHdr)}}},
-          {"render_ms", r.renderMs}};
+          {"render_ms", r.renderMs},
+          {"renders_ms", renders}};
 }
 
 nlohmann::json methodJson(const SweepResult& result) {
@@ -83,7 +98,8 @@ nlohmann::json methodJson(const SweepResult& result) {
   if (result.untilStable) {
     stable = {{"relative_half_width", result.untilStable->relativeHalfWidth},
               {"min_frames", result.untilStable->minFrames},
-              {"batch_frames", result.untilStable->batchFrames}};
+              {"batch_frames", result.untilStable->batchFrames},
+              {"check_frames", result.stableCheckFrames}};
   }
   return {{"time", "median GPU frame time; 95% distribution-free order-statistic interval (exact binomial)"},
           {"error", "LDR-FLIP mean of the tone-mapped frame against the reference"},
@@ -95,6 +111,8 @@ nlohmann::json methodJson(const SweepResult& result) {
           {"seed", result.seed},
           {"rounds", result.rounds},
           {"frame_cap", result.frameCap},
+          {"warmup_frames", result.warmupFrames},
+          {"rewarm_frames", result.rewarmFrames},
           {"until_stable", stable},
           {"stop_reason", result.stopReason},
           {"note", sweepMethodNote(result)}};
@@ -146,22 +164,23 @@ std::vector<std::size_t> frontByTime(const SweepResult& result) {
 }
 
 std::string sweepMethodNote(const SweepResult& result) {
-  std::string stop =
-      result.untilStable
-          ? fmt::format(
-                "each configuration was sampled until the 95% interval of its median was within "
-                "±{:.1f}% of it (at least {} frames, at most {})",
-                result.untilStable->relativeHalfWidth * 100.0, result.untilStable->minFrames, result.frameCap)
-          : fmt::format("each configuration was measured for {} frames", result.frameCap);
+  std::string stop = result.untilStable
+                         ? fmt::format(
+                               "each configuration was sampled until the 95% interval of its median was within "
+                               "±{:.1f}% of it (at least {} frames, at most {}, checked every {} frames)",
+                               result.untilStable->relativeHalfWidth * 100.0, result.untilStable->minFrames,
+                               result.frameCap, result.stableCheckFrames)
+                         : fmt::format("each configuration was measured for {} frames", result.frameCap);
   return fmt::format(
       "Times are medians of the GPU frame time with a 95% distribution-free confidence interval (order statistics "
       "x(l), x(n+1-l) from the exact binomial distribution). Configurations were measured in {} interleaved rounds in "
-      "a random order (seed {}); {}{}. Error is the LDR-FLIP mean of the tone-mapped frame against the reference; its "
+      "a random order (seed {}), after {} warm-up frame(s), dropping {} re-warm frame(s) at the start of each visit; "
+      "{}{}. Error is the LDR-FLIP mean of the tone-mapped frame against the reference; its "
       "noise floor ({:.5f}) is the LDR-FLIP mean between two renders of the reference. A configuration is dominated "
       "when another is significantly faster (one-sided Mann–Whitney U, α = {}) or equal in time, lower or equal in "
       "error beyond the floor, and strictly better in one; the front is the configurations no other dominates.",
-      result.rounds, result.seed, stop, result.stopReason == "time limit" ? " (stopped by --max-minutes)" : "",
-      result.errorFloor, result.alpha);
+      result.rounds, result.seed, result.warmupFrames, result.rewarmFrames, stop,
+      result.stopReason == "time limit" ? " (stopped by --max-minutes)" : "", result.errorFloor, result.alpha);
 }
 
 nlohmann::json sweepJson(const SweepResult& result) {
@@ -194,6 +213,7 @@ nlohmann::json sweepJson(const SweepResult& result) {
             {"references", o.referenceMs},
             {"warmup", o.warmupMs},
             {"measure", o.measureMs},
+            {"close", o.closeMs},
             {"metrics", o.metricsMs},
             {"report", o.reportMs},
             {"total", o.totalMs}}}};
@@ -201,13 +221,20 @@ nlohmann::json sweepJson(const SweepResult& result) {
 
 std::string sweepCsv(const SweepResult& result) {
   std::string csv = "label";
-  for (const auto& a : result.axes) csv += "," + csvField(a.key);
+  // (append ',' then the field: GCC 12's -Wrestrict misfires on "," + std::string here)
+  for (const auto& a : result.axes) {
+    csv += ',';
+    csv += csvField(a.key);
+  }
   csv +=
       ",width,height,msaa,frame_gpu_median_ms,ci_low_ms,ci_high_ms,frames,stable,ldr_flip_mean,hdr_flip_mean,"
       "rmse,psnr_db,hdr_rmse,nonfinite,front,dominated_by\n";
   for (const auto& c : result.configurations) {
     csv += csvField(c.configuration.label);
-    for (const auto& [key, value] : c.configuration.point) csv += "," + csvField(value);
+    for (const auto& [key, value] : c.configuration.point) {
+      csv += ',';
+      csv += csvField(value);
+    }
     std::string dominatedBy;
     for (std::size_t d : c.dominatedBy)
       dominatedBy += (dominatedBy.empty() ? "" : ";") + result.configurations[d].configuration.label;
@@ -268,16 +295,50 @@ std::string sweepMarkdown(const SweepResult& result) {
   return md;
 }
 
-void writeSweepOutputs(const std::filesystem::path& dir, const SweepResult& result) {
+void writeSweepOutputs(const std::filesystem::path& dir, SweepResult& result) {
+  Stopwatch timer;
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec || !std::filesystem::is_directory(dir)) {
     throw InputError(dir.string() + ": cannot create the output directory (" + ec.message() + ")");
   }
-  writeFileAtomic(dir / "sweep.json", dumpJson(sweepJson(result)));
   writeFileAtomic(dir / "sweep.csv", sweepCsv(result));
   writeFileAtomic(dir / "sweep.md", sweepMarkdown(result));
   writeFileAtomic(dir / "sweep.html", sweepHtml(result));
+  // Last, so that it holds the report phase (all but its own writing).
+  result.overhead.reportMs = timer.elapsedMs();
+  writeFileAtomic(dir / "sweep.json", dumpJson(sweepJson(result)));
+  result.overhead.reportMs = timer.elapsedMs();
+}
+
+std::string sweepWallSummary(const SweepResult& result) {
+  const SweepOverhead& o = result.overhead;
+  const auto s = [](double ms) { return fmt::format("{:.1f} s", ms / 1000.0); };
+  uint32_t renders = 0;
+  for (const auto& r : result.references) renders += static_cast<uint32_t>(r.renders.size());
+  std::string text = fmt::format(
+      "sweep: wall {}: open {}, references {} ({} render(s)), warm-up {}, measuring {}, closing {}, metrics {}, "
+      "report {}\n",
+      s(o.totalMs + o.reportMs), s(o.openMs), s(o.referenceMs), renders, s(o.warmupMs), s(o.measureMs), s(o.closeMs),
+      s(o.metricsMs), s(o.reportMs));
+  for (std::size_t i = 0; i < result.references.size(); ++i) {
+    const auto& r = result.references[i];
+    text += fmt::format("sweep:   reference {} ({}):", i + 1, describeSize(r.images.display));
+    for (const auto& w : r.renders) {
+      text += fmt::format(" [open {}, frames {}, readback {}]", s(w.openMs), s(w.framesMs), s(w.readbackMs));
+    }
+    text += "\n";
+  }
+  for (const auto& c : result.configurations) {
+    const std::size_t measured = c.run.frameGpuMs.size();
+    const uint32_t rendered = static_cast<uint32_t>(measured) + c.wall.rewarmFrames;
+    text += fmt::format(
+        "sweep:   {}: open {}, warm-up {} ({} frames), measuring {} ({} measured + {} re-warm frames in {} visit(s), "
+        "{:.2f} s a frame), metrics {}\n",
+        c.configuration.label, s(c.wall.openMs), s(c.wall.warmupMs), c.wall.warmupFrames, s(c.wall.measureMs), measured,
+        c.wall.rewarmFrames, c.wall.visits, rendered ? c.wall.measureMs / 1000.0 / rendered : 0.0, s(c.wall.metricsMs));
+  }
+  return text;
 }
 
 }  // namespace fgb::harness

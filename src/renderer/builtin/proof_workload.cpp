@@ -1,16 +1,15 @@
-// ProofWorkload: the proof scene on a Vulkan device — compile once, execute every frame, timings of
-// frame N collected while frame N+1 is recorded, images read back from the last frame.
+// ProofWorkload: the proof scene on a Vulkan device — compile once, execute every frame (timings
+// through GraphFrameTimer, as the scene workload), images read back from the last frame.
 #include "proof_workload.hpp"
 
 #include "pixels.hpp"
 
 #include <fgb/core/error.hpp>
 #include <fgb/renderer/describe_device.hpp>
+#include <fgb/renderer/frame_timer.hpp>
 #include <fgb/graph/dot.hpp>
 #include <fgb/vulkan/backend.hpp>
 
-#include <deque>
-#include <unordered_map>
 
 namespace fgb::render {
 namespace {
@@ -34,23 +33,8 @@ class ProofWorkload final : public Workload {
 
   const DeviceDescription& device() const override { return description_; }
 
-  FrameTiming renderFrame() override {
-    const rhi::RunTicket ticket = device_->execute(*graph_);
-    cpuMs_[ticket.execution] = graph_->lastHostTimes().recordMs;
-    collect();
-    if (ready_.empty()) return {};
-    FrameTiming oldest = std::move(ready_.front());
-    ready_.pop_front();
-    return oldest;
-  }
-
-  std::vector<FrameTiming> finish() override {
-    device_->waitIdle();
-    collect();
-    std::vector<FrameTiming> rest(std::make_move_iterator(ready_.begin()), std::make_move_iterator(ready_.end()));
-    ready_.clear();
-    return rest;
-  }
+  FrameTiming renderFrame() override { return timer_.execute(*device_, *graph_); }
+  std::vector<FrameTiming> finish() override { return timer_.finish(*device_, *graph_); }
 
   ImageRGBA32F readHdr() override {
     device_->waitIdle();
@@ -83,38 +67,12 @@ class ProofWorkload final : public Workload {
   uint64_t validationMessages() const override { return device_->validationMessages(); }
 
  private:
-  void collect() {
-    for (auto& t : graph_->takeTimings()) ready_.push_back(toFrameTiming(t));
-  }
-
-  FrameTiming toFrameTiming(const rhi::GraphTimings& t) {
-    const auto& nodes = graph_->declaration().nodes();
-    const auto& info = graph_->compiled().nodes;
-    FrameTiming frame;
-    for (uint32_t n = 0; n < nodes.size(); ++n) {
-      PassTiming pass;
-      pass.name = nodes[n].name;
-      pass.queue = std::string(graph::toString(nodes[n].queue));
-      pass.culled = info[n].culled;
-      pass.gpuMs = t.nodeMs[n];
-      pass.gpuStartMs = t.nodeStartMs[n];
-      frame.passes.push_back(std::move(pass));
-    }
-    frame.gpuFrameMs = t.gpuMs;
-    if (const auto it = cpuMs_.find(t.execution); it != cpuMs_.end()) {
-      frame.cpuFrameMs = it->second;
-      cpuMs_.erase(it);
-    }
-    return frame;
-  }
-
   std::unique_ptr<rhi::Device> device_;
   DeviceDescription description_;
   ProofSettings settings_;
   ProofResources resources_;
   std::unique_ptr<rhi::ExecutableGraph> graph_;
-  std::deque<FrameTiming> ready_;
-  std::unordered_map<uint64_t, double> cpuMs_;
+  GraphFrameTimer timer_;
 };
 
 }  // namespace

@@ -67,7 +67,9 @@ ImageRGBA32F ImageReadback::read() {
       std::memcpy(&half, bytes.data() + 2 * i, 2);
       image.pixels[i] = halfToFloat(half);
     }
-  } else if (format_ == graph::Format::R8G8B8A8Srgb) {
+  } else if (format_ == graph::Format::R8G8B8A8Srgb || format_ == graph::Format::R8G8B8A8Unorm) {
+    // 8-bit images read back are display images: sRGB-encoded bytes, encoded by the hardware (sRGB
+    // format) or by the compute tone mapping (UNORM, which storage images can be).
     for (size_t i = 0; i < values; ++i) {
       const auto encoded = uint8_t(bytes[i]);
       image.pixels[i] = i % 4 == 3 ? float(encoded) / 255.0f : srgbToLinear(encoded);

@@ -8,6 +8,7 @@
 #include "../features/lighting/clustered_lighting.hpp"
 #include "../features/meshes/mesh_feature.hpp"
 #include "../features/particles/particle_feature.hpp"
+#include "../features/ssaa/msaa_resolve_feature.hpp"
 #include "../features/ssaa/ssaa_resolve_feature.hpp"
 #include "../features/tonemap/tonemap_feature.hpp"
 #include "../features/visbuffer/visbuffer_feature.hpp"
@@ -17,18 +18,25 @@ namespace fgb::render {
 RenderPathPlan planRenderPath(const features::RenderSettings& settings) {
   RenderPathPlan plan;
   auto& list = plan.features;
+  const bool visBuffer = settings.renderPath == features::RenderPath::VisBuffer;
+  // Forward keeps the thesis' full-screen fragment passes; the visibility-buffer path runs them as
+  // compute (same GLSL maths), which reaches every SM where graphics runs on a few.
+  const auto post = visBuffer ? features::PostPassForm::Compute : features::PostPassForm::Fragment;
   list.push_back(std::make_unique<features::ClusteredLighting>());
-  if (settings.renderPath == features::RenderPath::VisBuffer) {
-    list.push_back(std::make_unique<features::VisBufferFeature>());
-    plan.computeWritesHdr = true;
-  }
+  if (visBuffer) list.push_back(std::make_unique<features::VisBufferFeature>());
   // Forward: every mesh; visbuffer: the transparent ones (MeshFeature reads the path).
   list.push_back(std::make_unique<features::MeshFeature>());
   list.push_back(std::make_unique<features::ParticleFeature>());
-  list.push_back(std::make_unique<features::SsaaResolveFeature>());
+  // After the last feature that draws colour: the MSAA target becomes the HDR image here.
+  list.push_back(std::make_unique<features::MsaaResolveFeature>());
+  list.push_back(std::make_unique<features::SsaaResolveFeature>(post));
   list.push_back(std::make_unique<features::BloomFeature>());
   list.push_back(std::make_unique<features::ExposureFeature>());  // after bloom: see there
-  list.push_back(std::make_unique<features::TonemapFeature>());
+  list.push_back(std::make_unique<features::TonemapFeature>(post));
+  // Material Shade writes the HDR target, and so does the compute SSAA Resolve (the output image).
+  plan.computeWritesHdr = visBuffer;
+  plan.computeWritesDisplay = post == features::PostPassForm::Compute;
+  plan.displayFormat = features::TonemapFeature::displayFormat(post);
   return plan;
 }
 

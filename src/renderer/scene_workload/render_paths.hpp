@@ -2,7 +2,9 @@
 // scene data, lights ("Clustered Light Cull"), transparent meshes, particles, SSAA resolve, bloom,
 // tone mapping and the light-complexity debug view; they differ in what draws the opaque scene:
 //   forward:   "Mesh Frustum Cull" + "Mesh Render" (graphics, the thesis' renderer);
-//   visbuffer: the compute nodes of features/visbuffer, then the forward passes for the rest.
+//   visbuffer: the compute nodes of features/visbuffer, then the forward passes for the rest; its
+//              post passes that can be compute are ("SSAA Resolve", "Tone mapping").
+// After the last feature that draws colour, "MSAA Resolve" (features/ssaa) resolves it.
 #pragma once
 
 #include <memory>
@@ -17,6 +19,9 @@ struct RenderPathPlan {
   std::vector<std::unique_ptr<features::IRenderFeature>> features;
   // A compute node writes the HDR target (it needs storage usage).
   bool computeWritesHdr = false;
+  // A compute node writes the display image: storage usage, and a format storage images can have.
+  bool computeWritesDisplay = false;
+  graph::Format displayFormat = features::kDisplayFormat;
 };
 
 RenderPathPlan planRenderPath(const features::RenderSettings& settings);

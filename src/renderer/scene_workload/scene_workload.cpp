@@ -12,6 +12,7 @@
 #include <fgb/core/stopwatch.hpp>
 #include <fgb/graph/dot.hpp>
 #include <fgb/renderer/describe_device.hpp>
+#include <fgb/renderer/frame_timer.hpp>
 #include <fgb/renderer/scene_workload.hpp>
 #include <fgb/scene/cache.hpp>
 #include <fgb/scene/load.hpp>
@@ -20,7 +21,6 @@
 
 #include <algorithm>
 #include <array>
-#include <deque>
 #include <filesystem>
 #include <iostream>
 
@@ -34,6 +34,12 @@ constexpr graph::ImportState kHdrFinal{graph::kStageFragmentShader, graph::kAcce
                                        graph::Layout::ShaderReadOnly, graph::QueueClass::Graphics};
 constexpr graph::ImportState kDisplayFinal{graph::kStageColorAttachmentOutput, graph::kAccessColorAttachmentWrite,
                                            graph::Layout::ColorAttachment, graph::QueueClass::Graphics};
+// With compute post passes (render_paths.hpp): tone mapping samples the HDR image and writes the
+// display image as storage, in compute; leaving them there spares a transition every frame.
+constexpr graph::ImportState kHdrFinalCompute{graph::kStageComputeShader, graph::kAccessShaderSampledRead,
+                                              graph::Layout::ShaderReadOnly, graph::QueueClass::Graphics};
+constexpr graph::ImportState kDisplayFinalCompute{graph::kStageComputeShader, graph::kAccessShaderStorageWrite,
+                                                  graph::Layout::General, graph::QueueClass::Graphics};
 constexpr graph::ImportState kDiscard{graph::kStageNone, graph::kAccessNone, graph::Layout::Undefined,
                                       graph::QueueClass::Graphics};
 
@@ -133,23 +139,8 @@ class SceneWorkload final : public Workload {
 
   const DeviceDescription& device() const override { return description_; }
 
-  FrameTiming renderFrame() override {
-    device_->execute(*graph_);
-    cpuMs_.push_back(graph_->lastHostTimes().recordMs);
-    collectTimings();
-    if (ready_.empty()) return {};
-    FrameTiming timing = std::move(ready_.front());
-    ready_.pop_front();
-    return timing;
-  }
-
-  std::vector<FrameTiming> finish() override {
-    device_->waitIdle();
-    collectTimings();
-    std::vector<FrameTiming> rest(ready_.begin(), ready_.end());
-    ready_.clear();
-    return rest;
-  }
+  FrameTiming renderFrame() override { return timer_.execute(*device_, *graph_); }
+  std::vector<FrameTiming> finish() override { return timer_.finish(*device_, *graph_); }
 
   ImageRGBA32F readHdr() override { return hdrReadback_->read(); }
   ImageRGBA32F readDisplay() override { return displayReadback_->read(); }
@@ -193,6 +184,8 @@ class SceneWorkload final : public Workload {
     RenderPathPlan plan = planRenderPath(settings_);
     features_ = std::move(plan.features);
     hdrStorage_ = plan.computeWritesHdr;
+    displayStorage_ = plan.computeWritesDisplay;
+    displayFormat_ = plan.displayFormat;
     // Last: it inspects every node declared before it (see finite_check_feature.hpp).
     auto finiteCheck = std::make_unique<features::FiniteCheckFeature>();
     finiteCheck_ = finiteCheck.get();
@@ -201,14 +194,19 @@ class SceneWorkload final : public Workload {
     for (auto& feature : features_) feature->initialize(init);
   }
 
+  // Where the frame leaves the imported images (tone mapping is their last user).
+  graph::ImportState hdrFinal() const { return displayStorage_ ? kHdrFinalCompute : kHdrFinal; }
+  graph::ImportState displayFinal() const { return displayStorage_ ? kDisplayFinalCompute : kDisplayFinal; }
+
   FrameTargets makeTargets(graph::FrameGraph& graph) {
     const graph::Extent extent{settings_.width, settings_.height, 1};
     const rhi::TextureUsage storage = hdrStorage_ ? rhi::kTextureStorage : rhi::TextureUsage{0};
     hdrTexture_ = device_->createTexture({"hdr", features::kHdrFormat, extent, 1, 1, 1,
                                           rhi::kTextureColorAttachment | rhi::kTextureSampled |
                                               rhi::kTextureTransferSrc | storage});
-    displayTexture_ = device_->createTexture({"display", features::kDisplayFormat, extent, 1, 1, 1,
-                                              rhi::kTextureColorAttachment | rhi::kTextureTransferSrc});
+    const rhi::TextureUsage displayStorage = displayStorage_ ? rhi::kTextureStorage : rhi::TextureUsage{0};
+    displayTexture_ = device_->createTexture({"display", displayFormat_, extent, 1, 1, 1,
+                                              rhi::kTextureColorAttachment | rhi::kTextureTransferSrc | displayStorage});
     FrameTargets targets;
     targets.outputExtent = extent;
     targets.extent = {settings_.sceneWidth(), settings_.sceneHeight(), 1};
@@ -221,36 +219,26 @@ class SceneWorkload final : public Workload {
                                             kExposureState, kExposureState);
     }
     const graph::TextureHandle hdr = graph.importTexture("hdr", {features::kHdrFormat, extent, 1, 1, 1, {}, 0},
-                                                         rhi::external(hdrTexture_), kDiscard, kHdrFinal);
+                                                         rhi::external(hdrTexture_), kDiscard, hdrFinal());
     if (settings_.ssaa == 1) {
       targets.hdr = hdr;
     } else {
       targets.outputHdr = hdr;
       targets.hdr = graph.createTexture("hdr ssaa", {features::kHdrFormat, targets.extent, 1, 1, 1, {}, 0});
     }
-    targets.display = graph.importTexture("display", {features::kDisplayFormat, extent, 1, 1, 1, {}, 0},
-                                          rhi::external(displayTexture_), kDiscard, kDisplayFinal);
+    targets.display = graph.importTexture("display", {displayFormat_, extent, 1, 1, 1, {}, 0},
+                                          rhi::external(displayTexture_), kDiscard, displayFinal());
     targets.color = settings_.msaa == 1
                         ? targets.hdr
                         : graph.createTexture("hdr msaa", {features::kHdrFormat, {}, 1, 1, settings_.msaa, targets.hdr, 0});
     targets.depth = graph.createTexture("depth", {features::kDepthFormat, {}, 1, 1, settings_.msaa, targets.hdr, 0});
-    for (const auto& feature : features_) {
-      if (!feature->enabled()) continue;
-      targets.colorPasses += feature->colorPasses();
-      hdrWritten_ = hdrWritten_ || feature->writesHdr();
-    }
     return targets;
   }
 
   void buildFrameGraph() {
     graph::FrameGraph graph;
     features::Blackboard board;
-    auto& targets = board.set(makeTargets(graph));
-    // Nothing draws (empty scene): one pass still clears the HDR image for tone mapping.
-    if (targets.colorPasses == 0 && !hdrWritten_) {
-      targets.colorPasses = 1;
-      features::addForwardPass(graph, targets, "Clear", true).setJob([](graph::JobContext&) {});
-    }
+    const auto& targets = board.set(makeTargets(graph));
     for (auto& feature : features_)
       if (feature->enabled()) feature->declare(graph, board);
     rhi::GraphOptions options;
@@ -260,28 +248,9 @@ class SceneWorkload final : public Workload {
     graph_ = device_->compile(std::move(graph), options);
     for (const double us : profile.microseconds) startup_.graphCompileMs += us / 1000.0;
     const graph::Extent extent = targets.outputExtent;
-    hdrReadback_ = std::make_unique<ImageReadback>(*device_, hdrTexture_, features::kHdrFormat, extent, kHdrFinal);
+    hdrReadback_ = std::make_unique<ImageReadback>(*device_, hdrTexture_, features::kHdrFormat, extent, hdrFinal());
     displayReadback_ =
-        std::make_unique<ImageReadback>(*device_, displayTexture_, features::kDisplayFormat, extent, kDisplayFinal);
-  }
-
-  void collectTimings() {
-    const auto& nodes = graph_->declaration().nodes();
-    const auto& compiled = graph_->compiled();
-    for (const auto& timings : graph_->takeTimings()) {
-      FrameTiming frame;
-      for (uint32_t i = 0; i < nodes.size(); ++i) {
-        const bool culled = compiled.nodes[i].culled;
-        // Begin offsets are -1 where the pass's queue family has no timestamps (the report says so).
-        const bool timed = !culled && i < timings.nodeMs.size();
-        frame.passes.push_back({std::string(nodes[i].name), std::string(graph::toString(nodes[i].queue)), culled,
-                                timed ? timings.nodeMs[i] : 0.0, timed ? timings.nodeStartMs[i] : -1.0});
-      }
-      frame.gpuFrameMs = timings.gpuMs;
-      frame.cpuFrameMs = cpuMs_.empty() ? 0.0 : cpuMs_.front();
-      if (!cpuMs_.empty()) cpuMs_.pop_front();
-      ready_.push_back(std::move(frame));
-    }
+        std::make_unique<ImageReadback>(*device_, displayTexture_, displayFormat_, extent, displayFinal());
   }
 
   scene::LoadedScene loaded_;
@@ -293,14 +262,14 @@ class SceneWorkload final : public Workload {
   std::vector<std::unique_ptr<features::IRenderFeature>> features_;
   features::FiniteCheckFeature* finiteCheck_ = nullptr;  // owned by features_
   bool hdrStorage_ = false;  // a compute node writes the HDR target
-  bool hdrWritten_ = false;  // a feature writes the HDR target outside the forward colour passes
+  bool displayStorage_ = false;  // a compute node writes the display image
+  graph::Format displayFormat_ = features::kDisplayFormat;  // holds sRGB-encoded bytes in either format
   rhi::TextureId hdrTexture_;
   rhi::TextureId displayTexture_;
   std::unique_ptr<rhi::ExecutableGraph> graph_;
   std::unique_ptr<ImageReadback> hdrReadback_;
   std::unique_ptr<ImageReadback> displayReadback_;
-  std::deque<FrameTiming> ready_;
-  std::deque<double> cpuMs_;
+  GraphFrameTimer timer_;
 };
 
 }  // namespace

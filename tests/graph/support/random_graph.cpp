@@ -103,7 +103,7 @@ class Generator {
   void declareNode(uint32_t n) {
     const NodeType type = pickType(below(100));
     const QueueClass queueClass = pickClass(type);
-    const std::string name = "n" + std::to_string(n);
+    const std::string name = std::string("n").append(std::to_string(n));
     NodeBuilder builder = graph().addNode(name, type, queueClass);
     result_.model.nodeName.push_back(name);
     result_.model.nodeType.push_back(type);

@@ -72,23 +72,25 @@ struct GpuScene {
 };
 
 // The frame's colour and depth targets. Forward passes draw into `color` (multisampled when
-// samples > 1) at `extent` and the last of them resolves into `hdr`. Without SSAA, `hdr` is the
-// imported HDR image; with render.ssaa = S > 1 it is a supersampled transient (S times the output
-// size) until "SSAA Resolve" filters it into `outputHdr` (the imported image), after which `hdr`
-// and `extent` are the output's, as bloom and tone mapping expect.
+// samples > 1) at `extent`; "MSAA Resolve" (features/ssaa/msaa_resolve_feature.hpp), which the
+// render path composes after the last of them, resolves it into `hdr` (single-sampled, `color` is
+// `hdr`). Without SSAA, `hdr` is the imported HDR image; with render.ssaa = S > 1 it is a
+// supersampled transient (S times the output size) until "SSAA Resolve" filters it into
+// `outputHdr` (the imported image), after which `hdr` and `extent` are the output's, as bloom and
+// tone mapping expect.
 struct FrameTargets {
   graph::Extent extent{};        // size of the latest `hdr`: the scene passes' size, then the output's
   graph::Extent outputExtent{};  // the output (imported HDR and display images)
   uint32_t samples = 1;
   graph::TextureHandle color;  // latest version of the (MSAA) colour target
   graph::TextureHandle depth;  // latest version of the (MSAA) depth target
-  graph::TextureHandle hdr;    // the resolved HDR image; written by the last colour pass
+  graph::TextureHandle hdr;    // the resolved HDR image; final once colorResolved is set
   graph::TextureHandle outputHdr;  // SSAA only: the imported HDR image "SSAA Resolve" writes
   graph::TextureHandle display;  // tone-mapped output (imported)
   graph::BufferHandle exposure;  // the exposure state, when a node writes it (auto exposure);
                                  // invalid with a fixed exposure (then it never changes)
   std::array<float, 4> background{};  // HDR clear colour: background radiance, pre-exposed
-  uint32_t colorPasses = 0;  // forward passes still to declare; the last one resolves
+  bool colorResolved = false;    // "MSAA Resolve" was declared: no more colour passes, `hdr` is final
   bool colorCleared = false;     // the first colour pass clears colour
   bool depthCleared = false;     // the first pass using depth (maybe a depth prepass) clears it
 };

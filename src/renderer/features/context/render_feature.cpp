@@ -15,28 +15,24 @@ std::pair<uint32_t, uint32_t> GpuScene::groupRange(DrawClass drawClass) const {
 
 graph::NodeBuilder addForwardPass(graph::FrameGraph& graph, FrameTargets& targets, std::string_view name,
                                   bool writesDepth) {
-  if (targets.colorPasses == 0) throw std::logic_error("forward pass '" + std::string(name) + "' was not announced");
-  auto node = graph.addNode(name, graph::NodeType::Graphics);
-  const bool first = !targets.colorCleared;
-  const bool last = --targets.colorPasses == 0;
-  const graph::LoadOp load = first ? graph::LoadOp::Clear : graph::LoadOp::Load;
-  const graph::ClearValue clear{targets.background, kDepthClear, 0};
-
-  if (targets.samples == 1) {
-    // Single-sampled: the HDR image is the colour target itself.
-    targets.color = node.addColorTarget(targets.color, load, clear);
-    targets.hdr = targets.color;
-  } else if (last) {
-    graph::TextureHandle newColor;
-    targets.hdr = node.addColorTargetWithResolve(targets.color, targets.hdr, &newColor, load, clear);
-    targets.color = newColor;
-  } else {
-    targets.color = node.addColorTarget(targets.color, load, clear);
+  if (targets.colorResolved) {
+    throw std::logic_error(
+        "colour pass '" + std::string(name) +
+        "' declared after the MSAA resolve: the render path must compose it before MsaaResolveFeature");
   }
+  auto node = graph.addNode(name, graph::NodeType::Graphics);
+  const graph::LoadOp load = targets.colorCleared ? graph::LoadOp::Load : graph::LoadOp::Clear;
+  const graph::ClearValue clear{targets.background, kDepthClear, 0};
+  targets.color = node.addColorTarget(targets.color, load, clear);
+  // Single-sampled, the HDR image is the colour target itself; multisampled, "MSAA Resolve" writes it.
+  if (targets.samples == 1) targets.hdr = targets.color;
 
-  if (!targets.depthCleared) targets.depth = node.setDepthStencil(targets.depth, graph::LoadOp::Clear, clear);
-  else if (writesDepth) targets.depth = node.setDepthStencil(targets.depth, graph::LoadOp::Load);
-  else node.setDepthStencilReadOnly(targets.depth);
+  if (!targets.depthCleared)
+    targets.depth = node.setDepthStencil(targets.depth, graph::LoadOp::Clear, clear);
+  else if (writesDepth)
+    targets.depth = node.setDepthStencil(targets.depth, graph::LoadOp::Load);
+  else
+    node.setDepthStencilReadOnly(targets.depth);
   targets.colorCleared = true;
   targets.depthCleared = true;
   // Every colour pass pre-exposes what it writes (forward: fragment stage; particles: vertex).

@@ -22,15 +22,19 @@ struct FeatureInit {
   const RenderSettings& settings;
 };
 
+// How a full-screen post pass runs: as a fragment pass (the thesis' forward renderer) or as a
+// compute dispatch on the graphics queue (the visibility-buffer path: on GPUs that run graphics on
+// a few SMs only, compute reaches all of them). Both forms share their GLSL maths.
+enum class PostPassForm : uint8_t { Fragment, Compute };
+
 class IRenderFeature {
  public:
   virtual ~IRenderFeature() = default;
   [[nodiscard]] virtual std::string_view name() const = 0;
   // False when the scene needs none of this feature's work: it then declares nothing.
   [[nodiscard]] virtual bool enabled() const { return true; }
-  // Forward passes this feature will declare that draw into FrameTargets::color.
-  [[nodiscard]] virtual uint32_t colorPasses() const { return 0; }
-  // Writes the whole HDR target before the forward colour passes (which then load it).
+  // Writes the whole HDR target before the forward colour passes (which then load it). Informational:
+  // whether anything drew is read from FrameTargets::colorCleared when the resolve is declared.
   [[nodiscard]] virtual bool writesHdr() const { return false; }
   // Once per run, after the scene upload: pipelines and persistent GPU resources.
   virtual void initialize(FeatureInit& init) = 0;
@@ -40,8 +44,10 @@ class IRenderFeature {
   virtual void addStats(std::map<std::string, double>& /*stats*/) const {}
 };
 
-// Convenience: one forward colour pass over FrameTargets, resolving when it is the last one.
-// Returns the builder so the caller can add reads and the job.
+// Convenience: one forward colour pass over FrameTargets::color (the first clears, later ones
+// load); with MSAA nothing is resolved here: MsaaResolveFeature (features/ssaa) does that after the
+// last colour pass, and a colour pass declared after it throws std::logic_error. Returns the builder
+// so the caller can add reads and the job.
 graph::NodeBuilder addForwardPass(graph::FrameGraph& graph, FrameTargets& targets, std::string_view name,
                                   bool writesDepth);
 

@@ -5,6 +5,7 @@
 #include <fgb/rhi/job_context.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cstring>
 
 namespace fgb::features {
@@ -27,6 +28,7 @@ struct CullPush {
 };
 
 constexpr uint32_t kMaxCapacity = 1024;  // MAX_LIGHTS_PER_CLUSTER in light_cull.comp
+constexpr uint32_t kCullBlock = 8;       // BLOCK in light_cull.comp: one workgroup per 8x8 tiles of a slice
 
 // The bounds buffer is written by compute and read by compute, frame after frame: it stays on the
 // compute queue (no ownership transfer in or out of the graph).
@@ -85,13 +87,16 @@ void ClusteredLighting::declare(graph::FrameGraph& graph, Blackboard& board) {
   lists.indices = node.write(lists.indices, Access::StorageWrite);
   CullPush push{device_->storageBufferIndex(scene_->frameConstants), device_->storageBufferIndex(bounds_),
                 device_->storageBufferIndex(scene_->lights), 0, 0};
-  node.setJob([push, pipeline = cullPipeline_, lists, clusters = clusterCount_](graph::JobContext& context) mutable {
+  const auto& grid = scene_->constants.clusterGrid;
+  const std::array<uint32_t, 3> groups{(grid.x + kCullBlock - 1) / kCullBlock, (grid.y + kCullBlock - 1) / kCullBlock,
+                                       grid.z};
+  node.setJob([push, pipeline = cullPipeline_, lists, groups](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
     push.counts = ctx.storageBufferIndex(lists.counts);
     push.indices = ctx.storageBufferIndex(lists.indices);
     ctx.cmd().bindPipeline(pipeline);
     ctx.cmd().push(push);
-    ctx.cmd().dispatch(clusters);  // one workgroup per cluster
+    ctx.cmd().dispatch(groups[0], groups[1], groups[2]);  // one invocation per cluster
   });
   declareReadback(graph, "Light Stats Readback", lists.counts, countsReadback_, "cluster counts readback",
                   uint64_t{4} * clusterCount_);

@@ -1,9 +1,11 @@
 // Clustered light culling (thesis): "Cluster Bounds" rebuilds the clusters' view-space AABBs only
 // when the projection changes (a persistent buffer); "Clustered Light Cull" fills per-cluster light
-// lists that the forward passes read (published as ClusteredLights). A scene without point lights
-// declares none of this, nor does lighting.mode=all (forward shading then evaluates every light
-// for every fragment, with no per-cluster cap: the reference). Stats: average/max lights per
-// cluster (read back every frame).
+// lists that the forward passes read (published as ClusteredLights), culling in two levels: each
+// light against the union box of 8x8 tiles of one slice, then the survivors against each cluster's
+// box (light_cull.comp; the lists are exactly the per-cluster test's, in light order). A scene
+// without point lights declares none of this, nor does lighting.mode=all (forward shading then
+// evaluates every light for every fragment, with no per-cluster cap: the reference). Stats:
+// average/max lights per cluster (read back every frame).
 #pragma once
 
 #include "../context/render_feature.hpp"

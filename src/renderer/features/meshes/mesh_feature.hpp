@@ -37,12 +37,11 @@ class MeshFeature final : public IRenderFeature {
  public:
   [[nodiscard]] std::string_view name() const override { return "meshes"; }
   [[nodiscard]] bool enabled() const override { return instanceCount_ > 0 && (drawsOpaque_ || hasTransparent_); }
-  [[nodiscard]] uint32_t colorPasses() const override { return (drawsOpaque_ ? 1 : 0) + (hasTransparent_ ? 1 : 0); }
   void initialize(FeatureInit& init) override;
   void declare(graph::FrameGraph& graph, Blackboard& board) override;
   void addStats(std::map<std::string, double>& stats) const override;
 
-  // Must be called before initialize() to know enabled()/colorPasses() (from the uploaded scene).
+  // Must be called before initialize() to know enabled() (from the uploaded scene).
   void configure(const GpuScene& scene);
 
  private:

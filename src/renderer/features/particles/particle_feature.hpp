@@ -14,7 +14,6 @@ class ParticleFeature final : public IRenderFeature {
  public:
   [[nodiscard]] std::string_view name() const override { return "particles"; }
   [[nodiscard]] bool enabled() const override { return poolSize_ > 0; }
-  [[nodiscard]] uint32_t colorPasses() const override { return enabled() ? 1 : 0; }
   void configure(const GpuScene& scene);
   void initialize(FeatureInit& init) override;
   void declare(graph::FrameGraph& graph, Blackboard& board) override;

@@ -5,7 +5,6 @@
 
 #include <fgb/graph/compiled_graph.hpp>
 #include <fgb/graph/frame_graph.hpp>
-
 #include <string>
 
 namespace fgb::graph {

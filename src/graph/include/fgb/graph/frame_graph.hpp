@@ -17,6 +17,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace fgb::graph {
@@ -27,17 +28,17 @@ class GraphError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+enum class ResourceKind : uint8_t { Texture, Buffer };
+
 // Handles name one version of one resource. Default-constructed handles are invalid.
-struct TextureHandle {
+template <ResourceKind Kind>
+struct Handle {
   uint32_t version = kInvalidIndex;
   [[nodiscard]] bool valid() const { return version != kInvalidIndex; }
-  friend bool operator==(TextureHandle, TextureHandle) = default;
+  friend bool operator==(Handle, Handle) = default;
 };
-struct BufferHandle {
-  uint32_t version = kInvalidIndex;
-  [[nodiscard]] bool valid() const { return version != kInvalidIndex; }
-  friend bool operator==(BufferHandle, BufferHandle) = default;
-};
+using TextureHandle = Handle<ResourceKind::Texture>;
+using BufferHandle = Handle<ResourceKind::Buffer>;
 
 struct Extent {
   uint32_t width = 1;
@@ -115,8 +116,6 @@ class JobContext {
   virtual ~JobContext() = default;
 };
 using Job = std::function<void(JobContext&)>;
-
-enum class ResourceKind : uint8_t { Texture, Buffer };
 
 struct ResourceDecl {
   std::string name;
@@ -209,16 +208,16 @@ class FrameGraph {
   [[nodiscard]] uint32_t resourceOf(TextureHandle h) const { return resourceOf(h.version, "texture"); }
   [[nodiscard]] uint32_t resourceOf(BufferHandle h) const { return resourceOf(h.version, "buffer"); }
   // No colour target and an invalid depth target for a node that declared none.
-  [[nodiscard]] const NodeAttachments& attachments(uint32_t node) const;
+  [[nodiscard]] const NodeAttachments& attachments(uint32_t node) const { return attachments_[node]; }
   // Moves the jobs out (indexed by node; empty where none was set): the backend keeps them when it
   // builds an executable graph.
-  std::vector<Job> takeJobs();
+  std::vector<Job> takeJobs() { return std::exchange(jobs_, std::vector<Job>(nodes_.size())); }
 
  private:
   friend class NodeBuilder;
   friend struct detail::Declared;
   uint32_t addResource(ResourceDecl decl);  // returns its first version
-  void checkDependentField(std::string_view name, ResourceKind kind, std::string_view field, uint32_t version) const;
+  void checkDependentField(const ResourceDecl& decl) const;
   const ResourceDecl& checkUse(uint32_t node, uint32_t version, ResourceKind kind, Access access) const;
   uint32_t addUse(uint32_t node, uint32_t version, ResourceKind kind, Access access, StageMask stages, bool write);
   uint32_t addAttachmentUse(uint32_t node, uint32_t version, Access access);
@@ -230,8 +229,8 @@ class FrameGraph {
   // Node n's uses are uses_[useStart_[n], useStart_[n + 1]): one array for every node's uses.
   std::vector<detail::Use> uses_;
   std::vector<uint32_t> useStart_;
-  std::vector<NodeAttachments> attachments_;  // by node; nodes past its end declared none
-  std::vector<Job> jobs_;                     // by node; nodes past its end have none
+  std::vector<NodeAttachments> attachments_;  // by node
+  std::vector<Job> jobs_;                     // by node; empty where none was set
 };
 
 }  // namespace fgb::graph

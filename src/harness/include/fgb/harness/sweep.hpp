@@ -87,9 +87,24 @@ struct SweepPlan {
   uint32_t stableFrameCap = 128;
   uint32_t roundFrames = 16;  // frames per configuration per round
   uint32_t rewarmFrames = 1;  // dropped at the start of each round (others ran in between)
+  // CPU devices (lavapipe), where one frame takes 0.1-10 s and nothing needs warming after the first
+  // frame (no clocks ramp up; shaders and pipeline variants are compiled by the first frame): with
+  // trimOnCpu no re-warm frame is dropped per visit, and in until-stable sweeps a visit checks the
+  // stability rule every cpuStableCheckFrames frames and ends once the configuration is stable, so
+  // no frame is rendered that the statistics do not need. With trimWarmupOnCpu as well (the CLI
+  // without --warmup), warm-up ends with the compared frame (imageFrame).
+  bool trimOnCpu = false;
+  bool trimWarmupOnCpu = false;
+  uint32_t cpuStableCheckFrames = 4;
   double maxMinutes = 0.0;    // 0: no limit; else measuring stops after this (after one full round)
   uint64_t seed = 1;          // order of the configurations within each round
   double alpha = 0.05;
+};
+
+// Wall time of one render of a reference (ms): opening its workload, rendering its frames (up to
+// the compared one) and reading the images back.
+struct ReferenceRenderWall {
+  double openMs = 0.0, framesMs = 0.0, readbackMs = 0.0;
 };
 
 struct ReferenceOutcome {
@@ -97,7 +112,17 @@ struct ReferenceOutcome {
   RenderedImages images;                  // first render
   ImageMetrics repeatDisplay, repeatHdr;  // second render against the first
   bool identical = false;                 // the two renders are bit-identical
-  double renderMs = 0.0;                  // wall time of both renders
+  double renderMs = 0.0;                  // wall time of both renders and their comparison
+  std::vector<ReferenceRenderWall> renders;  // each render's wall time, in order
+};
+
+// Wall time one configuration cost the sweep (ms): where a sweep's time goes, per configuration.
+struct ConfigurationWall {
+  double openMs = 0.0;     // opening its workload
+  double warmupMs = 0.0;   // warm-up frames, including the compared frame and its readback
+  double measureMs = 0.0;  // every measuring visit: re-warm frames, measured frames, waiting for the GPU
+  double metricsMs = 0.0;  // its comparison with the reference
+  uint32_t warmupFrames = 0, rewarmFrames = 0, visits = 0;
 };
 
 struct ConfigurationOutcome {
@@ -111,12 +136,16 @@ struct ConfigurationOutcome {
   Image heatMap;              // LDR-FLIP map against the reference
   bool onFront = false;
   std::vector<std::size_t> dominatedBy;
+  ConfigurationWall wall;
 };
 
-// Host time the sweep spent outside measured frames, by phase (ms).
+// Wall time of the sweep by phase (ms), in the order they run: opening every configuration, the
+// references, warming up, the measuring rounds, closing the devices, the metrics and the front,
+// writing the outputs. totalMs is the sum of the phases before the report; the report phase is
+// filled in by writeSweepOutputs.
 struct SweepOverhead {
-  double openMs = 0.0, referenceMs = 0.0, warmupMs = 0.0, measureMs = 0.0, metricsMs = 0.0, reportMs = 0.0,
-         totalMs = 0.0;
+  double openMs = 0.0, referenceMs = 0.0, warmupMs = 0.0, measureMs = 0.0, closeMs = 0.0, metricsMs = 0.0,
+         reportMs = 0.0, totalMs = 0.0;
 };
 
 struct SweepResult {
@@ -134,6 +163,9 @@ struct SweepResult {
   std::string stopReason;  // "frames" | "stable" | "time limit"
   std::optional<StabilityRule> untilStable;
   uint32_t frameCap = 0;
+  uint32_t warmupFrames = 0;       // rendered before measuring, the compared frame among them
+  uint32_t rewarmFrames = 0;       // dropped at the start of each visit
+  uint32_t stableCheckFrames = 0;  // measured frames between stability checks (0: not until stable)
   SweepOverhead overhead;
 };
 
@@ -145,6 +177,11 @@ struct SweepProgress {
 // Runs the plan. InputError from opening a configuration (bad knob) surfaces before any reference
 // is rendered.
 SweepResult runSweep(const WorkloadOpener& open, const SweepPlan& plan, const SweepProgress& progress = {});
+
+// Renders `config` twice, each in a freshly opened workload, up to frame `frames`: the reference
+// images (the first render) and its noise floor (the second against the first). A step of runSweep,
+// exposed for the overhead benchmark.
+ReferenceOutcome renderReference(const WorkloadOpener& open, const render::WorkloadConfig& config, uint32_t frames);
 
 // Compares every configuration with its reference and marks the front (runSweep's last step;
 // exposed for the overhead benchmark and tests).

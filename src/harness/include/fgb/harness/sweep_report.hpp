@@ -28,8 +28,13 @@ double sweepError(const ConfigurationOutcome& c);
 // How the sweep measured and decided, in one paragraph (reports and --help say the same).
 std::string sweepMethodNote(const SweepResult& result);
 
-// Creates DIR if needed (InputError when impossible) and writes sweep.json, sweep.csv, sweep.md and
-// sweep.html, each atomically.
-void writeSweepOutputs(const std::filesystem::path& dir, const SweepResult& result);
+// Creates DIR if needed (InputError when impossible) and writes sweep.csv, sweep.md, sweep.html and
+// sweep.json, each atomically; fills result.overhead.reportMs (sweep.json, written last, holds the
+// time of writing the others).
+void writeSweepOutputs(const std::filesystem::path& dir, SweepResult& result);
+
+// Where the sweep's wall time went, for stderr: the phases, each reference render, and per
+// configuration its opening, warm-up, measuring visits and metrics.
+std::string sweepWallSummary(const SweepResult& result);
 
 }  // namespace fgb::harness

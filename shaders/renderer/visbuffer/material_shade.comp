@@ -3,8 +3,8 @@
 // the triangle from its id (visible cluster -> instance, cluster -> three vertices), computes
 // perspective-correct barycentrics and their screen derivatives analytically (homogeneous form,
 // visbuffer.glsl), interpolates the attributes and shades them with the same code as the forward
-// path (surface_shading.glsl), writing the HDR target. (The pixel depths for "Visibility Depth
-// Resolve" come from the raster node's last dispatch, visibility_depth.comp.)
+// path (surface_shading.glsl), writing the HDR target. It also writes the pixel's depth for
+// "Visibility Depth Resolve" (the far value where nothing was drawn).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_nonuniform_qualifier : require
 #include "../include/visbuffer_material.glsl"
@@ -23,9 +23,11 @@ void main() {
   uint index = pixel.y * size.x + pixel.x;
   uint64_t word = visWordsRead[pc.words].words[index];
   if (word == 0ul) {
+    visFloats[pc.depthOut].values[index] = reversedZ() ? 0.0 : 1.0;
     imageStore(fgbImagesRgba16f[pc.hdr], ivec2(pixel), pc.background);
     return;
   }
+  visFloats[pc.depthOut].values[index] = depthFromKey(uint(word >> 32), reversedZ());
   uint id = uint(word);
   uint drawIndex = fgbUintsRead[pc.visible].values[id >> kClusterTriangleBits];
   VisTriangle tri = visTriangle(drawIndex, id & ((1u << kClusterTriangleBits) - 1u), pc.draws, pc.clusters, pc.indices);

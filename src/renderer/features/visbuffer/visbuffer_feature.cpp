@@ -68,7 +68,7 @@ constexpr uint32_t kFlagLargeTiles = 2;
 constexpr uint32_t kRasterGroupSize = 64;     // visibility_raster.comp's local size
 constexpr uint64_t kLargeTriangleBytes = 64;  // 4 uvec4 (packLargeTriangle in visbuffer_triangle.glsl)
 constexpr uint64_t kTileJobBytes = 8;         // uvec2: large-list slot, job index within the triangle
-constexpr uint32_t kShadeGroupSize = 8;       // material_shade.comp, visibility_depth.comp: 8 x 8
+constexpr uint32_t kShadeGroupSize = 8;       // material_shade.comp: 8 x 8
 
 // Reversed Z: the projection maps nearer points to larger depth.
 bool projectsReversedZ(const FrameConstantsGpu& constants) {
@@ -119,8 +119,6 @@ void VisBufferFeature::initialize(FeatureInit& init) {
   pipelines_.raster =
       init.device.createComputePipeline({"visibility raster", "renderer/visbuffer/visibility_raster.comp"});
   pipelines_.shade = init.device.createComputePipeline({"material shade", "renderer/visbuffer/material_shade.comp"});
-  pipelines_.depth =
-      init.device.createComputePipeline({"visibility depth", "renderer/visbuffer/visibility_depth.comp"});
   statsReadback_ = init.device.createBuffer(
       {"visibility stats readback", sizeof(VisCounters), rhi::kBufferTransferDst, rhi::MemoryUsage::Readback});
   std::memset(init.device.mapped(statsReadback_).data(), 0, sizeof(VisCounters));
@@ -250,7 +248,6 @@ void VisBufferFeature::declareRaster(graph::FrameGraph& graph, Buffers& b) const
   node.read(b.largeList, Access::StorageRead);
   node.read(b.tileJobs, Access::StorageRead);
   b.words = node.write(b.words, Access::StorageReadWrite);
-  b.depth = node.write(b.depth, Access::StorageWrite);
   node.setJob([push = b.push, pipelines = pipelines_, b](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
@@ -260,7 +257,6 @@ void VisBufferFeature::declareRaster(graph::FrameGraph& graph, Buffers& b) const
     push.largeList = ctx.storageBufferIndex(b.largeList);
     push.tileJobs = ctx.storageBufferIndex(b.tileJobs);
     push.words = ctx.storageBufferIndex(b.words);
-    push.depthOut = ctx.storageBufferIndex(b.depth);
     cmd.bindPipeline(pipelines.raster);
     cmd.push(push);
     cmd.dispatchIndirect(ctx.buffer(b.rasterArgs), kSmallArgsOffset);
@@ -269,13 +265,6 @@ void VisBufferFeature::declareRaster(graph::FrameGraph& graph, Buffers& b) const
     tiles.flags |= kFlagLargeTiles;
     cmd.push(tiles);
     cmd.dispatchIndirect(ctx.buffer(b.rasterArgs), kTileArgsOffset);
-    // The finished words' depths, for "Visibility Depth Resolve": it then depends on this node
-    // only, not on "Material Shade", and the GPU can overlap the copy with the shading.
-    cmd.computeBarrier();
-    cmd.bindPipeline(pipelines.depth);
-    cmd.push(push);
-    cmd.dispatch((b.extent.width + kShadeGroupSize - 1) / kShadeGroupSize,
-                 (b.extent.height + kShadeGroupSize - 1) / kShadeGroupSize);
   });
 }
 
@@ -284,6 +273,7 @@ void VisBufferFeature::declareShade(graph::FrameGraph& graph, Blackboard& board,
   auto node = graph.addNode("Material Shade", graph::NodeType::Compute, kQueue);
   node.read(b.words, Access::StorageRead);
   node.read(b.visible, Access::StorageRead);
+  b.depth = node.write(b.depth, Access::StorageWrite);
   targets.hdr = node.write(targets.hdr, Access::StorageWrite);
   ClusteredLights clusters;
   if (const auto* published = board.find<ClusteredLights>()) {
@@ -299,6 +289,7 @@ void VisBufferFeature::declareShade(graph::FrameGraph& graph, Blackboard& board,
         auto& cmd = ctx.cmd();
         push.words = ctx.storageBufferIndex(b.words);
         push.visible = ctx.storageBufferIndex(b.visible);
+        push.depthOut = ctx.storageBufferIndex(b.depth);
         push.hdr = ctx.storageTextureIndex(hdr);
         if (clusters.counts.valid()) {
           push.clusterCounts = ctx.storageBufferIndex(clusters.counts);
@@ -344,10 +335,8 @@ void VisBufferFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
   declareClusterCull(graph, b);
   declareTriangleFilter(graph, b);
   declareRaster(graph, b);
-  // Same level as "Material Shade" (both read only the raster's results): declared first, the copy
-  // is recorded first and the shading's barrier does not wait for it.
-  declareDepthResolve(graph, board.get<FrameTargets>(), b);
   declareShade(graph, board, b);
+  declareDepthResolve(graph, board.get<FrameTargets>(), b);
   board.set(VisibilityOutputs{b.rasterArgs, b.visible, b.words});
 }
 

@@ -5,14 +5,12 @@
 //   "Triangle Filter"           per triangle: degenerate, behind the eye, outside the frustum,
 //                               back-facing, covers no pixel centre; writes the small and large
 //                               triangle lists and the raster's indirect arguments;
-//   "Visibility Raster"         64-bit atomic max of (depth, id) per pixel (storage buffer), then
-//                               each pixel's depth from its finished word;
+//   "Visibility Raster"         64-bit atomic max of (depth, id) per pixel (storage buffer);
+//   "Material Shade"            rebuilds each pixel's triangle, shades it like forward.frag (shared
+//                               include) into the HDR target, and writes the pixel depths;
 //   "Visibility Depth Resolve"  copies those depths into the depth target, so the forward passes
 //                               that follow (transparent meshes, particles) depth-test against them,
-//                               and the culling counters to the host (statistics); it needs only
-//                               the raster, so the GPU can run it alongside "Material Shade";
-//   "Material Shade"            rebuilds each pixel's triangle, shades it like forward.frag (shared
-//                               include) into the HDR target.
+//                               and the culling counters to the host (statistics).
 // Culling outputs are published on the blackboard (VisibilityOutputs).
 #pragma once
 
@@ -43,7 +41,6 @@ class VisBufferFeature final : public IRenderFeature {
     rhi::PipelineId filter;
     rhi::PipelineId raster;
     rhi::PipelineId shade;
-    rhi::PipelineId depth;
   };
   struct Buffers;
 

@@ -103,32 +103,27 @@ ivec4 clippedPixelRange(vec4 c[3]) {
   return pixelRange(lo, hi);
 }
 
+// Straight-line code (no early exit per vertex): SIMD devices evaluate all three vertices anyway.
+// A vertex at or behind w = kMinW makes its screen position meaningless, but then the triangle is
+// not `projected` and only its clip positions are used.
 ScreenTriangle setupTriangle(mat4 mvp, uvec3 vertices) {
   ScreenTriangle t;
   t.clip[0] = clipPosition(mvp, vertices.x);
   t.clip[1] = clipPosition(mvp, vertices.y);
   t.clip[2] = clipPosition(mvp, vertices.z);
-  t.projected = true;
-  vec2 lo = vec2(1e30), hi = vec2(-1e30);
-  for (int i = 0; i < 3; ++i) {
-    if (!(t.clip[i].w > kMinW)) {
-      t.projected = false;
-      break;
-    }
-    vec2 s = toScreen(t.clip[i]);
-    if (any(greaterThan(abs(s), vec2(kGuardBand)))) {
-      t.projected = false;
-      break;
-    }
-    t.fixedPos[i] = ivec2(round(s * float(kSubPixel)));
-    lo = min(lo, vec2(t.fixedPos[i]) / float(kSubPixel));
-    hi = max(hi, vec2(t.fixedPos[i]) / float(kSubPixel));
-  }
+  vec2 s0 = toScreen(t.clip[0]), s1 = toScreen(t.clip[1]), s2 = toScreen(t.clip[2]);
+  t.projected = t.clip[0].w > kMinW && t.clip[1].w > kMinW && t.clip[2].w > kMinW &&
+                !any(greaterThan(max(abs(s0), max(abs(s1), abs(s2))), vec2(kGuardBand)));
   if (!t.projected) {
     t.area = 0;
     t.pixels = clippedPixelRange(t.clip);
     return t;
   }
+  t.fixedPos[0] = ivec2(round(s0 * float(kSubPixel)));
+  t.fixedPos[1] = ivec2(round(s1 * float(kSubPixel)));
+  t.fixedPos[2] = ivec2(round(s2 * float(kSubPixel)));
+  vec2 lo = vec2(min(t.fixedPos[0], min(t.fixedPos[1], t.fixedPos[2]))) / float(kSubPixel);
+  vec2 hi = vec2(max(t.fixedPos[0], max(t.fixedPos[1], t.fixedPos[2]))) / float(kSubPixel);
   ivec2 e1 = t.fixedPos[1] - t.fixedPos[0], e2 = t.fixedPos[2] - t.fixedPos[0];
   t.area = int64_t(e1.x) * int64_t(e2.y) - int64_t(e1.y) * int64_t(e2.x);
   t.pixels = pixelRange(lo, hi);
@@ -202,9 +197,8 @@ ivec2 unpackOffset(uint packed) { return ivec2(int(packed << 16) >> 16, int(pack
 // pixels yet reach far beyond them: it takes the tile path).
 bool packable(ScreenTriangle t) {
   ivec2 origin = t.pixels.xy * kSubPixel;
-  for (int i = 0; i < 3; ++i)
-    if (any(greaterThan(abs(t.fixedPos[i] - origin), ivec2(16 * kSubPixel)))) return false;
-  return true;
+  ivec2 reach = max(abs(t.fixedPos[0] - origin), max(abs(t.fixedPos[1] - origin), abs(t.fixedPos[2] - origin)));
+  return !any(greaterThan(reach, ivec2(16 * kSubPixel)));
 }
 
 const uint kSmallMasked = 0x80000000u;  // in a.y: alpha-masked (the raster loads its material)

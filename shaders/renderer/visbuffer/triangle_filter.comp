@@ -18,12 +18,14 @@ const int kSmallPixels = 8;
 
 bool outsideFrustum(vec4 c[3]) {
   // Each plane test holds for every w sign: the triangle's points are convex combinations.
-  for (int axis = 0; axis < 2; ++axis) {
-    if (c[0][axis] > c[0].w && c[1][axis] > c[1].w && c[2][axis] > c[2].w) return true;
-    if (c[0][axis] < -c[0].w && c[1][axis] < -c[1].w && c[2][axis] < -c[2].w) return true;
-  }
-  if (c[0].z < 0.0 && c[1].z < 0.0 && c[2].z < 0.0) return true;
-  return c[0].z > c[0].w && c[1].z > c[1].w && c[2].z > c[2].w;
+  // (Straight-line: SIMD devices evaluate every plane anyway.)
+  bvec4 beyond0 = bvec4(c[0].x > c[0].w, c[0].x < -c[0].w, c[0].y > c[0].w, c[0].y < -c[0].w);
+  bvec4 beyond1 = bvec4(c[1].x > c[1].w, c[1].x < -c[1].w, c[1].y > c[1].w, c[1].y < -c[1].w);
+  bvec4 beyond2 = bvec4(c[2].x > c[2].w, c[2].x < -c[2].w, c[2].y > c[2].w, c[2].y < -c[2].w);
+  bool sides = any(bvec4(uvec4(beyond0) & uvec4(beyond1) & uvec4(beyond2)));
+  bool belowDepthRange = c[0].z < 0.0 && c[1].z < 0.0 && c[2].z < 0.0;
+  bool aboveDepthRange = c[0].z > c[0].w && c[1].z > c[1].w && c[2].z > c[2].w;
+  return sides || belowDepthRange || aboveDepthRange;
 }
 
 // The workgroup's cluster (one cluster of one instance). Every invocation loads it itself rather

@@ -9,7 +9,8 @@
 //   "Material Shade"            rebuilds each pixel's triangle, shades it like forward.frag (shared
 //                               include) into the HDR target, and writes the pixel depths;
 //   "Visibility Depth Resolve"  copies those depths into the depth target, so the forward passes
-//                               that follow (transparent meshes, particles) depth-test against them.
+//                               that follow (transparent meshes, particles) depth-test against them,
+//                               and the culling counters to the host (statistics).
 // Culling outputs are published on the blackboard (VisibilityOutputs).
 #pragma once
 
@@ -49,7 +50,6 @@ class VisBufferFeature final : public IRenderFeature {
   void declareRaster(graph::FrameGraph& graph, Buffers& buffers) const;
   void declareShade(graph::FrameGraph& graph, Blackboard& board, Buffers& buffers) const;
   void declareDepthResolve(graph::FrameGraph& graph, FrameTargets& targets, Buffers& buffers) const;
-  void declareStatsReadback(graph::FrameGraph& graph, graph::BufferHandle counters) const;
 
   rhi::Device* device_ = nullptr;
   const GpuScene* scene_ = nullptr;

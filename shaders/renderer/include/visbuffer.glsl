@@ -45,10 +45,10 @@ struct VisCounters {
   uint filterGroups[3];   // "Triangle Filter": one workgroup per visible cluster
   uint smallTriangles;
   uint smallGroups[3];    // "Visibility Raster", small triangles: one thread each
-  uint64_t largeTotals;   // high 24 bits: large triangles, low 40 bits: their tiles
+  uint64_t largeTotals;   // high 24 bits: large triangles, low 40 bits: their tile jobs
   uint largeTriangles;
-  uint tileJobs;
-  uint tileGroups[3];     // "Visibility Raster", large triangles: one workgroup per 8x8 tile
+  uint tileJobs;          // jobs of at most 16 8x8 tiles of one large triangle (capped by the list)
+  uint tileGroups[3];     // "Visibility Raster", large triangles: one workgroup per tile job
   uint overflow;          // large triangles dropped for lack of list space (should stay 0)
 };
 

@@ -15,6 +15,29 @@ rhi::PipelineId createPostPassPipeline(rhi::Device& device, PostPassForm form, c
   desc.colorFormats = {colorFormat};
   return device.createGraphicsPipeline(desc);
 }
+
+graph::NodeBuilder addPostPassNode(graph::FrameGraph& graph, PostPassForm form, std::string_view name) {
+  return form == PostPassForm::Compute ? graph.addNode(name, graph::NodeType::Compute, graph::QueueClass::Graphics)
+                                       : graph.addNode(name, graph::NodeType::Graphics);
+}
+
+graph::StageMask postPassStage(PostPassForm form) {
+  return form == PostPassForm::Compute ? graph::kStageComputeShader : graph::kStageFragmentShader;
+}
+
+graph::TextureHandle writePostPassOutput(graph::NodeBuilder& node, PostPassForm form, graph::TextureHandle target) {
+  return form == PostPassForm::Compute ? node.write(target, graph::Access::StorageWrite)
+                                       : node.addColorTarget(target, graph::LoadOp::DontCare);
+}
+
+void recordPostPass(rhi::CommandBuffer& cmd, PostPassForm form, const graph::Extent& extent) {
+  constexpr uint32_t kGroupSize = 8;  // tonemap.comp's and ssaa_resolve.comp's local size (8 x 8)
+  if (form == PostPassForm::Compute) {
+    cmd.dispatch((extent.width + kGroupSize - 1) / kGroupSize, (extent.height + kGroupSize - 1) / kGroupSize);
+  } else {
+    cmd.draw(3);
+  }
+}
 std::pair<uint32_t, uint32_t> GpuScene::groupRange(DrawClass drawClass) const {
   uint32_t first = 0;
   while (first < groups.size() && groups[first].drawClass < drawClass) ++first;

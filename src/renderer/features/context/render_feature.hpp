@@ -8,6 +8,7 @@
 #include "render_settings.hpp"
 
 #include <fgb/graph/frame_graph.hpp>
+#include <fgb/rhi/command_buffer.hpp>
 #include <fgb/rhi/device.hpp>
 
 #include <map>
@@ -31,6 +32,15 @@ enum class PostPassForm : uint8_t { Fragment, Compute };
 // full-screen triangle with "renderer/<shader>.frag" drawing into one `colorFormat` target.
 rhi::PipelineId createPostPassPipeline(rhi::Device& device, PostPassForm form, const std::string& name,
                                        const std::string& shader, graph::Format colorFormat);
+// The node of a post pass in the given form: compute nodes run on the graphics queue.
+graph::NodeBuilder addPostPassNode(graph::FrameGraph& graph, PostPassForm form, std::string_view name);
+// The shader stage a post pass reads its inputs in.
+graph::StageMask postPassStage(PostPassForm form);
+// Declares the pass's one output; every pixel is written, so the previous contents are not loaded.
+graph::TextureHandle writePostPassOutput(graph::NodeBuilder& node, PostPassForm form, graph::TextureHandle target);
+// Records the pass's work after its pipeline and push constants: one invocation per pixel of
+// `extent` (the .comp shaders' 8 x 8 local size) or the full-screen triangle.
+void recordPostPass(rhi::CommandBuffer& cmd, PostPassForm form, const graph::Extent& extent);
 
 class IRenderFeature {
  public:

@@ -12,8 +12,6 @@ struct ResolvePush {
   uint32_t target;  // compute form only
 };
 
-constexpr uint32_t kGroupSize = 8;  // ssaa_resolve.comp's local size (8 x 8)
-
 }  // namespace
 
 void SsaaResolveFeature::initialize(FeatureInit& init) {
@@ -27,27 +25,19 @@ void SsaaResolveFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
   auto& targets = board.get<FrameTargets>();
   if (!targets.colorResolved) throw std::logic_error("SSAA Resolve declared before the MSAA resolve");
   const bool compute = form_ == PostPassForm::Compute;
-  auto node = compute ? graph.addNode("SSAA Resolve", graph::NodeType::Compute, graph::QueueClass::Graphics)
-                      : graph.addNode("SSAA Resolve", graph::NodeType::Graphics);
-  const graph::TextureHandle source = node.read(targets.hdr, graph::Access::Sampled,
-                                                compute ? graph::kStageComputeShader : graph::kStageFragmentShader);
-  // Every output pixel is written, so the previous contents are not loaded.
-  targets.hdr = compute ? node.write(targets.outputHdr, graph::Access::StorageWrite)
-                        : node.addColorTarget(targets.outputHdr, graph::LoadOp::DontCare);
+  auto node = addPostPassNode(graph, form_, "SSAA Resolve");
+  const graph::TextureHandle source = node.read(targets.hdr, graph::Access::Sampled, postPassStage(form_));
+  targets.hdr = writePostPassOutput(node, form_, targets.outputHdr);
   targets.outputHdr = {};
   targets.extent = targets.outputExtent;
-  node.setJob([pipeline = pipeline_, source, target = targets.hdr, factor = factor_, compute,
+  node.setJob([pipeline = pipeline_, source, target = targets.hdr, factor = factor_, form = form_, compute,
                extent = targets.extent](graph::JobContext& context) {
     auto& ctx = rhi::rhiContext(context);
     const ResolvePush push{ctx.sampledTextureIndex(source), factor,
                            compute ? ctx.storageTextureIndex(target) : rhi::kInvalidId};
     ctx.cmd().bindPipeline(pipeline);
     ctx.cmd().push(push);
-    if (compute) {
-      ctx.cmd().dispatch((extent.width + kGroupSize - 1) / kGroupSize, (extent.height + kGroupSize - 1) / kGroupSize);
-    } else {
-      ctx.cmd().draw(3);
-    }
+    recordPostPass(ctx.cmd(), form, extent);
   });
 }
 

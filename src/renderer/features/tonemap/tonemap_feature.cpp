@@ -1,8 +1,8 @@
 #include "tonemap_feature.hpp"
 
-#include "../context/handles.hpp"
-
 #include <fgb/rhi/job_context.hpp>
+
+#include "../context/handles.hpp"
 
 namespace fgb::features {
 namespace {
@@ -16,8 +16,6 @@ struct TonemapPush {
   float bloomIntensity;
   uint32_t display;  // compute form only
 };
-
-constexpr uint32_t kGroupSize = 8;  // tonemap.comp's local size (8 x 8)
 
 }  // namespace
 
@@ -35,9 +33,8 @@ void TonemapFeature::initialize(FeatureInit& init) {
 void TonemapFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
   auto& targets = board.get<FrameTargets>();
   const bool compute = form_ == PostPassForm::Compute;
-  const graph::StageMask stage = compute ? graph::kStageComputeShader : graph::kStageFragmentShader;
-  auto node = compute ? graph.addNode("Tone mapping", graph::NodeType::Compute, graph::QueueClass::Graphics)
-                      : graph.addNode("Tone mapping", graph::NodeType::Graphics);
+  const graph::StageMask stage = postPassStage(form_);
+  auto node = addPostPassNode(graph, form_, "Tone mapping");
   const graph::TextureHandle hdr = node.read(targets.hdr, graph::Access::Sampled, stage);
   graph::TextureHandle bloom;
   if (const auto* published = board.find<BloomOutput>()) {
@@ -45,12 +42,10 @@ void TonemapFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
     node.read(bloom, graph::Access::Sampled, stage);
   }
   if (targets.exposure.valid()) node.read(targets.exposure, graph::Access::StorageRead, stage);
-  // Every display pixel is written, so the previous contents are not loaded.
-  targets.display = compute ? node.write(targets.display, graph::Access::StorageWrite)
-                            : node.addColorTarget(targets.display, graph::LoadOp::DontCare);
+  targets.display = writePostPassOutput(node, form_, targets.display);
   TonemapPush push{0, rhi::kInvalidId, samplerIndex_, exposureBuffer_, bloomIntensity_, rhi::kInvalidId};
   const graph::Extent extent = targets.outputExtent;
-  node.setJob([push, pipeline = pipeline_, hdr, bloom, display = targets.display, compute,
+  node.setJob([push, pipeline = pipeline_, hdr, bloom, display = targets.display, form = form_, compute,
                extent](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
     push.hdrTexture = ctx.sampledTextureIndex(hdr);
@@ -58,11 +53,7 @@ void TonemapFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
     if (compute) push.display = ctx.storageTextureIndex(display);
     ctx.cmd().bindPipeline(pipeline);
     ctx.cmd().push(push);
-    if (compute) {
-      ctx.cmd().dispatch((extent.width + kGroupSize - 1) / kGroupSize, (extent.height + kGroupSize - 1) / kGroupSize);
-    } else {
-      ctx.cmd().draw(3);
-    }
+    recordPostPass(ctx.cmd(), form, extent);
   });
 }
 

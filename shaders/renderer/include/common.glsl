@@ -60,7 +60,7 @@ struct Material {
 
 struct PointLight {
   vec4 positionRadius;
-  vec4 color;
+  vec4 color;  // rgb * intensity, w: 1 / radius
 };
 
 struct DrawCommand {
@@ -104,11 +104,13 @@ const float kHalfMax = 65504.0;
 // The factor radiance is multiplied by before it is written to the HDR target.
 float preExposure(FrameConstants frame) { return fgbExposures[frame.buffers.x].state.preExposure; }
 
-// Thesis attenuation max(1 - d/R, 0) / d^2, with d clamped to avoid the singularity at the light
-// (and a zero or negative radius giving no light rather than a NaN).
-float pointLightAttenuation(float distance, float radius) {
-  float d = max(distance, 0.05);
-  return radius > 0.0 ? max(1.0 - distance / radius, 0.0) / (d * d) : 0.0;
+// Thesis attenuation max(1 - d/R, 0) / d^2, with d clamped to 5 cm against the singularity at
+// the light, written without a division: it takes 1/d (unclamped) and 1/R, which the CPU writes into
+// PointLight.color.w (gpu_upload.cpp; a light's radius is positive and finite there), since shading
+// runs this for every light of every pixel.
+float pointLightAttenuation(float distance, float inverseDistance, float inverseRadius) {
+  float inverseClamped = min(inverseDistance, 20.0);  // 1 / max(d, 0.05)
+  return max(1.0 - distance * inverseRadius, 0.0) * (inverseClamped * inverseClamped);
 }
 
 // Cluster of a fragment: 16x16-pixel tile and exponential depth slice.

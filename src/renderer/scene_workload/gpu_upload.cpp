@@ -197,8 +197,12 @@ std::vector<features::DrawIndexedCommand> commandTemplate(const scene::Scene& sc
 std::vector<features::PointLightGpu> gpuLights(const scene::Scene& scene) {
   std::vector<features::PointLightGpu> result;
   for (const auto& light : scene.lights) {
+    // Shading divides by neither the radius nor the distance: 1/R travels in color.w. A radius that
+    // is not a positive finite number (scene files refuse it) uploads a light that adds nothing.
+    const bool reaches = light.radius > 0.0f && std::isfinite(light.radius);
     const glm::vec3 renderSpace(light.position - scene.camera.position);
-    result.push_back({glm::vec4(renderSpace, light.radius), glm::vec4(light.color * light.intensity, 0.0f)});
+    const glm::vec3 radiance = reaches ? light.color * light.intensity : glm::vec3(0.0f);
+    result.push_back({glm::vec4(renderSpace, light.radius), glm::vec4(radiance, reaches ? 1.0f / light.radius : 0.0f)});
   }
   if (result.empty()) result.emplace_back();  // a valid (unused) buffer keeps descriptors simple
   return result;

@@ -72,7 +72,7 @@ static_assert(sizeof(MaterialGpu) == 64);
 
 struct PointLightGpu {
   glm::vec4 positionRadius{0.0f};  // render-space position
-  glm::vec4 color{0.0f};  // rgb * intensity
+  glm::vec4 color{0.0f};  // rgb * intensity, w: 1 / radius (shading multiplies, see common.glsl)
 };
 static_assert(sizeof(PointLightGpu) == 32);
 

@@ -178,8 +178,12 @@ void ParticleFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
   auto& targets = board.get<FrameTargets>();
   auto render = addForwardPass(graph, targets, "Particle Render", false, depthTest_);
   render.read(args, Access::Indirect);
-  render.read(alive, Access::StorageRead, graph::kStageVertexShader);
-  render.read(pool, Access::StorageRead, graph::kStageVertexShader);
+  // Storage buffers are visible per descriptor binding, not per stage: particle.vert reads these
+  // through the read-only binding that particle.frag reads the opaque depth through, so both
+  // stages are declared (synchronization validation checks each read against the barriers' stages).
+  constexpr graph::StageMask kRenderStages = graph::kStageVertexShader | graph::kStageFragmentShader;
+  render.read(alive, Access::StorageRead, kRenderStages);
+  render.read(pool, Access::StorageRead, kRenderStages);
   RenderPush renderPush{device_->storageBufferIndex(scene_->frameConstants),
                         device_->storageBufferIndex(pool_),
                         device_->storageBufferIndex(emitters_),

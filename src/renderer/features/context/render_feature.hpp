@@ -88,9 +88,9 @@ struct OpaqueDepthSource {
 // Convenience: one forward colour pass over FrameTargets::color (the first clears, later ones
 // load); with MSAA nothing is resolved here: MsaaResolveFeature (features/ssaa) does that after the
 // last colour pass, and a colour pass declared after it throws std::logic_error. With
-// DepthTest::OpaqueDepthBuffer the pass has no depth attachment and reads FrameTargets::opaqueDepth
-// (if any) in its fragment stage instead; it cannot write depth (std::logic_error). Returns the
-// builder so the caller can add reads and the job.
+// DepthTest::OpaqueDepthBuffer the pass has no depth attachment and declares a storage read of
+// FrameTargets::opaqueDepth (if any) instead, for its fragment shader's test; it cannot write
+// depth (std::logic_error). Returns the builder so the caller can add reads and the job.
 graph::NodeBuilder addForwardPass(graph::FrameGraph& graph, FrameTargets& targets, std::string_view name,
                                   bool writesDepth, DepthTest depthTest = DepthTest::Attachment);
 // The opaque depth a pass declared by addForwardPass with `depthTest` tests against.

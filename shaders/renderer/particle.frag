@@ -1,10 +1,25 @@
 #version 460
-// Soft round particle, alpha blended over the opaque scene.
+// Soft round particle, alpha blended over the opaque scene. On the visibility-buffer path there is
+// no depth attachment: the opaque depth is tested here first (include/opaque_depth.glsl).
+#extension GL_GOOGLE_include_directive : require
+#include "include/common.glsl"
+#include "include/opaque_depth.glsl"
+
+// Mirrors RenderPush in particles/particle_feature.cpp (and particle.vert's block).
+layout(push_constant) uniform Push {
+  uint frame;
+  uint particles;
+  uint emitters;
+  uint aliveList;
+  OpaqueDepthTest opaqueDepth;
+} pc;
+
 layout(location = 0) in vec4 inColor;
 layout(location = 1) in vec2 inCorner;
 layout(location = 0) out vec4 outColor;
 
 void main() {
+  if (!passesOpaqueDepth(pc.opaqueDepth, gl_FragCoord)) discard;
   float falloff = clamp(1.0 - dot(inCorner, inCorner), 0.0, 1.0);
   outColor = vec4(inColor.rgb, inColor.a * falloff * falloff);
 }

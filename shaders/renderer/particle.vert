@@ -2,13 +2,16 @@
 // "Particle Render": camera-facing quads, one instance per alive particle (indexed quad 0-1-2 2-1-3).
 #extension GL_GOOGLE_include_directive : require
 #include "include/common.glsl"
+#include "include/opaque_depth.glsl"
 #include "include/particles.glsl"
 
+// Mirrors RenderPush in particles/particle_feature.cpp (and particle.frag's block).
 layout(push_constant) uniform Push {
   uint frame;
   uint particles;
   uint emitters;
   uint aliveList;
+  OpaqueDepthTest opaqueDepth;  // read by particle.frag
 } pc;
 
 layout(location = 0) out vec4 outColor;

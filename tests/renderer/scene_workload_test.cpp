@@ -479,6 +479,56 @@ TEST(VisBuffer, PostPassesAreComputeAndMatchTheFragmentPasses) {
   EXPECT_LE(largestCodeDifference(vis.images.display, forward.images.display), 1);
 }
 
+// Whether the graph's node `name` declares a depth attachment, and whether it reads the buffer
+// "visibility depth" (the opaque depth of the visibility-buffer path).
+struct DepthUse {
+  bool attachment = false;
+  bool readsOpaqueDepthBuffer = false;
+};
+DepthUse depthUseOf(const Workload& workload, const std::string& name) {
+  const graph::FrameGraph& graph = *frameGraphOf(workload);
+  const auto& nodes = graph.nodes();
+  const auto node = std::find_if(nodes.begin(), nodes.end(), [&](const auto& n) { return n.name == name; });
+  if (node == nodes.end()) throw std::runtime_error("no node " + name);
+  const auto index = uint32_t(node - nodes.begin());
+  DepthUse use{graph.attachments(index).depth.target.valid(), false};
+  for (const auto& access : graph.accesses(index))
+    use.readsOpaqueDepthBuffer |=
+        graph.resources()[access.resource].name == "visibility depth" && access.access == graph::Access::StorageRead;
+  return use;
+}
+
+// On the visibility-buffer path no depth image is written ("Visibility Depth Resolve" is gone):
+// "Mesh Render Transparent" and "Particle Render" have no depth attachment and read the opaque
+// depth buffer, which their fragment shaders test against; at render.ssaa=2 too (the buffer is at
+// the scene passes' size), under validation, with the culling counters still read back. Forward
+// keeps its depth attachment.
+TEST(VisBuffer, LaterColourPassesTestTheOpaqueDepthBufferInsteadOfADepthImage) {
+  const std::vector<std::string> laterPasses = {"Mesh Render Transparent", "Particle Render"};
+  {  // one device at a time: each rendering is read and closed before the next opens
+    const auto vis =
+        render(sized(lavapipeConfig("atrium-small.json", {{"render.path", "visbuffer"}, {"render.ssaa", "2"}}, true),
+                     160, 90, 1),
+               2);
+    EXPECT_EQ(vis.workload->validationMessages(), 0u);
+    const auto names = aliveNames(vis.passes);
+    EXPECT_FALSE(names.count("Visibility Depth Resolve"));
+    for (const auto& pass : laterPasses) {
+      EXPECT_TRUE(names.count(pass)) << pass;
+      const DepthUse use = depthUseOf(*vis.workload, pass);
+      EXPECT_FALSE(use.attachment) << pass;
+      EXPECT_TRUE(use.readsOpaqueDepthBuffer) << pass;
+    }
+    EXPECT_GT(vis.workload->stats().at("vis_clusters_visible"), 0.0);  // copied beside "Material Shade"
+  }
+  const auto forward = render(sized(lavapipeConfig("atrium-small.json", {}), 160, 90, 1), 1);
+  for (const auto& pass : laterPasses) {
+    const DepthUse use = depthUseOf(*forward.workload, pass);
+    EXPECT_TRUE(use.attachment) << pass;
+    EXPECT_FALSE(use.readsOpaqueDepthBuffer) << pass;
+  }
+}
+
 // With MSAA the resolve is its own node, declared after the last colour pass; single-sampled
 // there is none (the colour passes wrote the HDR image).
 TEST(MsaaResolve, IsItsOwnNodeAfterTheLastColourPass) {

@@ -56,6 +56,27 @@ INSTANTIATE_TEST_SUITE_P(Scenes, SceneValidation,
                            return name;
                          });
 
+// The particle and transparent passes' fragment shaders read storage buffers (the opaque depth on
+// the visibility-buffer path) through the read-only binding their vertex shaders use, so every
+// buffer those passes read is declared for both stages. At this size with auto exposure the
+// transient "luminance partials" reuses memory that "Particle Render" read: with its reads
+// declared for the vertex stage only, the WAR barrier before the reuse missed the fragment stage.
+TEST(SceneValidation, AutoExposureAtriumRunsCleanOnBothRenderPaths) {
+  for (const char* path : {"forward", "visbuffer"}) {
+    WorkloadConfig config;
+    config.scenePath = kRepo + "/atrium.json";
+    config.device = "lavapipe";
+    config.validation = true;
+    config.width = 320;
+    config.height = 180;
+    config.knobs = {{"post.exposure", "auto"}, {"render.path", path}};
+    auto workload = openSceneWorkload(config);
+    for (uint32_t i = 0; i < 3; ++i) workload->renderFrame();
+    workload->finish();
+    EXPECT_EQ(workload->validationMessages(), 0u) << path;
+  }
+}
+
 // lavapipe supports 1 and 4 samples: 2 is clamped down to 1, 8 down to 4, and both run clean.
 uint32_t msaaSamplesOf(const Workload& workload) {
   const graph::FrameGraph* graph = frameGraphOf(workload);

@@ -25,7 +25,7 @@ layout(push_constant) uniform Push {
   uint largeList;       // 4 uvec4 per large triangle, set up by "Triangle Filter" (packLargeTriangle)
   uint largeCapacity;
   uint words;           // the visibility buffer (uint64 per pixel)
-  uint depthOut;        // float per pixel, copied into the depth image ("Visibility Depth Resolve")
+  uint depthOut;        // float per pixel, the later colour passes' depth test (opaque_depth.glsl)
   uint hdr;             // storage image index of the HDR target
   uint materialSampler;
   uint lights;

@@ -3,8 +3,9 @@
 // the triangle from its id (visible cluster -> instance, cluster -> three vertices), computes
 // perspective-correct barycentrics and their screen derivatives analytically (homogeneous form,
 // visbuffer.glsl), interpolates the attributes and shades them with the same code as the forward
-// path (surface_shading.glsl), writing the HDR target. It also writes the pixel's depth for
-// "Visibility Depth Resolve" (the far value where nothing was drawn).
+// path (surface_shading.glsl), writing the HDR target. It also writes the pixel's depth (the far
+// value where nothing was drawn), which the transparent and particle passes test their fragments
+// against (include/opaque_depth.glsl).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_nonuniform_qualifier : require
 #include "../include/visbuffer_material.glsl"

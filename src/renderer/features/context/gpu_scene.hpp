@@ -84,6 +84,10 @@ struct FrameTargets {
   uint32_t samples = 1;
   graph::TextureHandle color;  // latest version of the (MSAA) colour target
   graph::TextureHandle depth;  // latest version of the (MSAA) depth target
+  // Visibility-buffer path: the opaque scene's depth, one float per pixel of `extent` in rows of
+  // extent.width, written by "Material Shade"; the colour passes after it test against it in their
+  // fragment shaders (DepthTest::OpaqueDepthBuffer) and `depth` is not used. Invalid on forward.
+  graph::BufferHandle opaqueDepth;
   graph::TextureHandle hdr;    // the resolved HDR image; final once colorResolved is set
   graph::TextureHandle outputHdr;  // SSAA only: the imported HDR image "SSAA Resolve" writes
   graph::TextureHandle display;  // tone-mapped output (imported)

@@ -46,32 +46,82 @@ std::pair<uint32_t, uint32_t> GpuScene::groupRange(DrawClass drawClass) const {
   return {first, last - first};
 }
 
-graph::NodeBuilder addForwardPass(graph::FrameGraph& graph, FrameTargets& targets, std::string_view name,
-                                  bool writesDepth) {
-  if (targets.colorResolved) {
-    throw std::logic_error(
-        "colour pass '" + std::string(name) +
-        "' declared after the MSAA resolve: the render path must compose it before MsaaResolveFeature");
-  }
-  auto node = graph.addNode(name, graph::NodeType::Graphics);
-  const graph::LoadOp load = targets.colorCleared ? graph::LoadOp::Load : graph::LoadOp::Clear;
-  const graph::ClearValue clear{targets.background, kDepthClear, 0};
-  targets.color = node.addColorTarget(targets.color, load, clear);
-  // Single-sampled, the HDR image is the colour target itself; multisampled, "MSAA Resolve" writes it.
-  if (targets.samples == 1) targets.hdr = targets.color;
+DepthTest depthTestFor(const RenderSettings& settings) {
+  return settings.renderPath == RenderPath::VisBuffer ? DepthTest::OpaqueDepthBuffer : DepthTest::Attachment;
+}
 
+void setDepthState(rhi::GraphicsPipelineDesc& desc, DepthTest form, bool writesDepth) {
+  if (form == DepthTest::OpaqueDepthBuffer) {
+    if (writesDepth) throw std::logic_error("pipeline '" + desc.name + "' writes depth: it needs a depth attachment");
+    desc.depthFormat = graph::Format::Undefined;
+    desc.depthTest = desc.depthWrite = false;
+    return;
+  }
+  desc.depthFormat = kDepthFormat;
+  desc.depthTest = true;
+  desc.depthWrite = writesDepth;
+  desc.depthCompare = kDepthCompare;
+}
+
+OpaqueDepthTestGpu OpaqueDepthSource::push(rhi::JobContext& ctx) const {
+  OpaqueDepthTestGpu test;
+  if (!buffer.valid()) return test;
+  test.depths = ctx.storageBufferIndex(buffer);
+  test.rowStride = rowStride;
+  // The attachment's comparison, done by the shader: VkCompareOp's values are its pass bits.
+  test.compareOp = static_cast<uint32_t>(kDepthCompare);
+  return test;
+}
+
+namespace {
+
+// The depth attachment of a forward pass: the first pass using depth clears it.
+void attachDepth(graph::NodeBuilder& node, FrameTargets& targets, const graph::ClearValue& clear, bool writesDepth) {
   if (!targets.depthCleared)
     targets.depth = node.setDepthStencil(targets.depth, graph::LoadOp::Clear, clear);
   else if (writesDepth)
     targets.depth = node.setDepthStencil(targets.depth, graph::LoadOp::Load);
   else
     node.setDepthStencilReadOnly(targets.depth);
-  targets.colorCleared = true;
   targets.depthCleared = true;
+}
+
+}  // namespace
+
+graph::NodeBuilder addForwardPass(graph::FrameGraph& graph, FrameTargets& targets, std::string_view name,
+                                  bool writesDepth, DepthTest depthTest) {
+  if (targets.colorResolved) {
+    throw std::logic_error(
+        "colour pass '" + std::string(name) +
+        "' declared after the MSAA resolve: the render path must compose it before MsaaResolveFeature");
+  }
+  if (depthTest == DepthTest::OpaqueDepthBuffer && writesDepth)
+    throw std::logic_error("colour pass '" + std::string(name) + "' writes depth: it needs DepthTest::Attachment");
+  auto node = graph.addNode(name, graph::NodeType::Graphics);
+  const graph::LoadOp load = targets.colorCleared ? graph::LoadOp::Load : graph::LoadOp::Clear;
+  const graph::ClearValue clear{targets.background, kDepthClear, 0};
+  targets.color = node.addColorTarget(targets.color, load, clear);
+  // Single-sampled, the HDR image is the colour target itself; multisampled, "MSAA Resolve" writes it.
+  if (targets.samples == 1) targets.hdr = targets.color;
+  targets.colorCleared = true;
+
+  if (depthTest == DepthTest::Attachment) {
+    attachDepth(node, targets, clear, writesDepth);
+  } else if (targets.opaqueDepth.valid()) {
+    // The fragment shader reads it; the vertex shaders read other buffers through the same
+    // read-only binding, which the node's descriptor set exposes this buffer in, so (as for
+    // every buffer a forward pass reads) synchronization validation counts a vertex read too.
+    node.read(targets.opaqueDepth, graph::Access::StorageRead, graph::kStageVertexShader | graph::kStageFragmentShader);
+  }
   // Every colour pass pre-exposes what it writes (forward: fragment stage; particles: vertex).
   if (targets.exposure.valid())
     node.read(targets.exposure, graph::Access::StorageRead, graph::kStageVertexShader | graph::kStageFragmentShader);
   return node;
+}
+
+OpaqueDepthSource opaqueDepthSource(const FrameTargets& targets, DepthTest depthTest) {
+  if (depthTest == DepthTest::Attachment) return {};
+  return {targets.opaqueDepth, targets.extent.width};
 }
 
 rhi::BufferId createReadbackBuffer(rhi::Device& device, const std::string& name, uint64_t bytes) {

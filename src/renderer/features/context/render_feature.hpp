@@ -10,6 +10,7 @@
 #include <fgb/graph/frame_graph.hpp>
 #include <fgb/rhi/command_buffer.hpp>
 #include <fgb/rhi/device.hpp>
+#include <fgb/rhi/job_context.hpp>
 
 #include <map>
 #include <string>
@@ -56,12 +57,44 @@ class IRenderFeature {
   virtual void addStats(std::map<std::string, double>& /*stats*/) const {}
 };
 
+// How the colour passes drawn after the opaque scene ("Mesh Render Transparent", "Particle
+// Render") depth-test against it. Forward: the depth attachment, kDepthCompare in the pipeline.
+// Visibility buffer: no depth attachment (the opaque depth is a buffer "Material Shade" writes,
+// FrameTargets::opaqueDepth); the fragment shaders read it and discard what the attachment's test
+// would reject (include/opaque_depth.glsl). The pipelines differ (a depth format or none), so a
+// feature picks the form from the settings once, at initialisation.
+enum class DepthTest : uint8_t { Attachment, OpaqueDepthBuffer };
+[[nodiscard]] DepthTest depthTestFor(const RenderSettings& settings);
+// The pipeline's depth state for `form`: the depth format and kDepthCompare, writing when asked;
+// none for OpaqueDepthBuffer (which cannot write depth: std::logic_error).
+void setDepthState(rhi::GraphicsPipelineDesc& desc, DepthTest form, bool writesDepth);
+
+// Mirrors OpaqueDepthTest in shaders/renderer/include/opaque_depth.glsl (push constants).
+struct OpaqueDepthTestGpu {
+  uint32_t depths = rhi::kInvalidId;  // float per pixel; kInvalidId: nothing to test against
+  uint32_t rowStride = 0;             // pixels per row of the buffer (the scene passes' width)
+  uint32_t compareOp = 0;             // rhi::CompareOp = VkCompareOp: bit 0 less, 1 equal, 2 greater
+};
+
+// What a colour pass's job needs to fill OpaqueDepthTestGpu: the opaque depth buffer of the
+// visibility-buffer path (invalid with the Attachment form, or when nothing opaque was drawn: every
+// fragment then passes, as against a cleared attachment) and its row stride.
+struct OpaqueDepthSource {
+  graph::BufferHandle buffer;
+  uint32_t rowStride = 0;
+  [[nodiscard]] OpaqueDepthTestGpu push(rhi::JobContext& ctx) const;
+};
+
 // Convenience: one forward colour pass over FrameTargets::color (the first clears, later ones
 // load); with MSAA nothing is resolved here: MsaaResolveFeature (features/ssaa) does that after the
-// last colour pass, and a colour pass declared after it throws std::logic_error. Returns the builder
-// so the caller can add reads and the job.
+// last colour pass, and a colour pass declared after it throws std::logic_error. With
+// DepthTest::OpaqueDepthBuffer the pass has no depth attachment and declares a storage read of
+// FrameTargets::opaqueDepth (if any) instead, for its fragment shader's test; it cannot write
+// depth (std::logic_error). Returns the builder so the caller can add reads and the job.
 graph::NodeBuilder addForwardPass(graph::FrameGraph& graph, FrameTargets& targets, std::string_view name,
-                                  bool writesDepth);
+                                  bool writesDepth, DepthTest depthTest = DepthTest::Attachment);
+// The opaque depth a pass declared by addForwardPass with `depthTest` tests against.
+[[nodiscard]] OpaqueDepthSource opaqueDepthSource(const FrameTargets& targets, DepthTest depthTest);
 
 // How features read statistics back: a zero-filled host-readable buffer of `bytes` (created once),
 // into which a side-effect transfer node `nodeName` copies `source` every frame. The graph imports

@@ -47,11 +47,14 @@ struct ForwardPush {
   uint32_t clusterIndices;
   uint32_t materialSampler;
   uint32_t flags;
+  OpaqueDepthTestGpu opaqueDepth;
 };
 
 constexpr uint32_t kStatsBytes = 16;
 constexpr uint32_t kCommandStride = sizeof(DrawIndexedCommand);
 
+// Opaque and masked instances write depth; transparent ones only test it (forward: against the
+// depth attachment; visibility buffer: against the opaque depth buffer, in forward.frag).
 rhi::GraphicsPipelineDesc forwardPipeline(const RenderSettings& settings, bool transparent) {
   rhi::GraphicsPipelineDesc desc;
   desc.name = transparent ? "mesh forward (blend)" : "mesh forward";
@@ -66,10 +69,7 @@ rhi::GraphicsPipelineDesc forwardPipeline(const RenderSettings& settings, bool t
   desc.cullMode = rhi::CullMode::None;
   desc.colorFormats = {kHdrFormat};
   desc.blend = {transparent ? rhi::BlendMode::Alpha : rhi::BlendMode::Opaque};
-  desc.depthFormat = kDepthFormat;
-  desc.depthTest = true;
-  desc.depthWrite = !transparent;
-  desc.depthCompare = kDepthCompare;
+  setDepthState(desc, transparent ? depthTestFor(settings) : DepthTest::Attachment, !transparent);
   desc.samples = settings.msaa;
   return desc;
 }
@@ -143,6 +143,7 @@ void MeshFeature::initialize(FeatureInit& init) {
   configure(init.scene);
   device_ = &init.device;
   drawsOpaque_ = init.settings.renderPath == RenderPath::Forward;
+  transparentDepthTest_ = depthTestFor(init.settings);
   if (!enabled()) return;
   pipelines_.cull = init.device.createComputePipeline({"mesh frustum cull", "renderer/mesh_cull.comp"});
   drawCount_ = init.device.drawIndirectCount();
@@ -219,8 +220,9 @@ void MeshFeature::declareDraw(graph::FrameGraph& graph, Blackboard& board, std::
                               std::string_view nodeName, const MeshCullOutputs& cull) {
   const GpuScene& scene = *scene_;
   const bool transparent = classes.front() == DrawClass::Transparent;
-
-  auto node = addForwardPass(graph, board.get<FrameTargets>(), nodeName, !transparent);
+  const DepthTest depthTest = transparent ? transparentDepthTest_ : DepthTest::Attachment;
+  auto& targets = board.get<FrameTargets>();
+  auto node = addForwardPass(graph, targets, nodeName, !transparent, depthTest);
   readDrawCommands(node, cull, drawCount_);
   // Storage buffers are visible per descriptor binding, not per stage: both forward shaders read
   // through the read-only binding, so every buffer this node reads is declared for both stages
@@ -244,10 +246,11 @@ void MeshFeature::declareDraw(graph::FrameGraph& graph, Blackboard& board, std::
   }
   const rhi::PipelineId pipeline = transparent ? pipelines_.transparent : pipelines_.opaque;
   node.setJob([push, pipeline, clusters, cull, batches = batchesOf(scene, classes), drawCount = drawCount_,
-               &scene](graph::JobContext& context) mutable {
+               opaqueDepth = opaqueDepthSource(targets, depthTest), &scene](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
     push.visible = ctx.storageBufferIndex(cull.visible);
+    push.opaqueDepth = opaqueDepth.push(ctx);
     if (clusters.counts.valid()) {
       push.clusterCounts = ctx.storageBufferIndex(clusters.counts);
       push.clusterIndices = ctx.storageBufferIndex(clusters.indices);

@@ -8,7 +8,9 @@
 // instances first (alpha-masked ones write depth in "Mesh Render"). Command instance counts are
 // reset by their own transfer node ("Mesh Cull Reset") so no shader relies on cross-workgroup
 // ordering. On the visibility-buffer path only "Mesh Render Transparent" is declared (with the
-// cull it needs); the opaque scene is the visbuffer feature's.
+// cull it needs), which depth-tests in its fragment shader against the opaque depth buffer "Material
+// Shade" wrote (no depth attachment: DepthTest::OpaqueDepthBuffer); the opaque scene is the
+// visbuffer feature's.
 #pragma once
 
 #include "../context/render_feature.hpp"
@@ -69,6 +71,8 @@ class MeshFeature final : public IRenderFeature {
   // Forward path: "Mesh Render" draws opaque and masked instances. The visibility-buffer path
   // draws those in compute and leaves this feature only the transparent ones.
   bool drawsOpaque_ = true;
+  // How "Mesh Render Transparent" tests the opaque depth (visibility buffer: in forward.frag).
+  DepthTest transparentDepthTest_ = DepthTest::Attachment;
   bool drawCount_ = false;  // the device has vkCmdDrawIndexedIndirectCount
 };
 

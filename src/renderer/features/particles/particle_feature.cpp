@@ -43,8 +43,10 @@ struct EmitPush {
 struct UpdatePush {
   uint32_t particles, freeList, drawArgs, aliveList, poolSize;
 };
+// Mirrors the push block of shaders/renderer/particle.vert and particle.frag.
 struct RenderPush {
   uint32_t frame, particles, emitters, aliveList;
+  OpaqueDepthTestGpu opaqueDepth;
 };
 
 constexpr uint64_t kArgsBytes = sizeof(DrawIndexedCommand);
@@ -123,10 +125,8 @@ void ParticleFeature::initialize(FeatureInit& init) {
   desc.fragmentShader = "renderer/particle.frag";
   desc.colorFormats = {kHdrFormat};
   desc.blend = {rhi::BlendMode::Alpha};
-  desc.depthFormat = kDepthFormat;
-  desc.depthTest = true;
-  desc.depthWrite = false;
-  desc.depthCompare = kDepthCompare;
+  depthTest_ = depthTestFor(init.settings);
+  setDepthState(desc, depthTest_, false);
   desc.samples = init.settings.msaa;
   renderPipeline_ = init.device.createGraphicsPipeline(desc);
 }
@@ -175,15 +175,25 @@ void ParticleFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
     ctx.cmd().dispatch((push.poolSize + 63) / 64);
   });
 
-  auto render = addForwardPass(graph, board.get<FrameTargets>(), "Particle Render", false);
+  auto& targets = board.get<FrameTargets>();
+  auto render = addForwardPass(graph, targets, "Particle Render", false, depthTest_);
   render.read(args, Access::Indirect);
-  render.read(alive, Access::StorageRead, graph::kStageVertexShader);
-  render.read(pool, Access::StorageRead, graph::kStageVertexShader);
-  RenderPush renderPush{device_->storageBufferIndex(scene_->frameConstants), device_->storageBufferIndex(pool_),
-                        device_->storageBufferIndex(emitters_), 0};
-  render.setJob([push = renderPush, pipeline = renderPipeline_, quad = quadIndices_, args, alive](graph::JobContext& context) mutable {
+  // Storage buffers are visible per descriptor binding, not per stage: particle.vert reads these
+  // through the read-only binding that particle.frag reads the opaque depth through, so both
+  // stages are declared (synchronization validation checks each read against the barriers' stages).
+  constexpr graph::StageMask kRenderStages = graph::kStageVertexShader | graph::kStageFragmentShader;
+  render.read(alive, Access::StorageRead, kRenderStages);
+  render.read(pool, Access::StorageRead, kRenderStages);
+  RenderPush renderPush{device_->storageBufferIndex(scene_->frameConstants),
+                        device_->storageBufferIndex(pool_),
+                        device_->storageBufferIndex(emitters_),
+                        0,
+                        {}};
+  render.setJob([push = renderPush, pipeline = renderPipeline_, quad = quadIndices_, args, alive,
+                 opaqueDepth = opaqueDepthSource(targets, depthTest_)](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
     push.aliveList = ctx.storageBufferIndex(alive);
+    push.opaqueDepth = opaqueDepth.push(ctx);
     ctx.cmd().bindPipeline(pipeline);
     ctx.cmd().push(push);
     ctx.cmd().bindIndexBuffer(quad, 0, rhi::IndexType::Uint32);

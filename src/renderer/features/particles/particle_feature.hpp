@@ -1,6 +1,8 @@
 // GPU particles (thesis): "Particle Emit" pops slots from a free list of a fixed-size pool,
 // "Particle Update" ages/moves particles, pushes dead ones back and writes the indirect draw's
-// instance count, "Particle Render" draws camera-facing quads alpha blended after opaque.
+// instance count, "Particle Render" draws camera-facing quads alpha blended after opaque (depth-
+// tested against the depth attachment, or on the visibility-buffer path by particle.frag against
+// the opaque depth buffer: DepthTest).
 // "Particle Reset" zeroes the draw's instance count in its own node (the thesis reset it inside the
 // update shader behind a workgroup barrier, which does not order other workgroups).
 // Deterministic by emitter seed and frame index (fixed 1/60 s step).
@@ -32,6 +34,7 @@ class ParticleFeature final : public IRenderFeature {
   rhi::BufferId emitters_;    // Emitter[] (static)
   rhi::BufferId quadIndices_; // 0 1 2 2 1 3
   rhi::BufferId argsTemplate_;  // DrawIndexedCommand{6, 0, 0, 0, 0}
+  DepthTest depthTest_ = DepthTest::Attachment;  // visibility buffer: particle.frag tests the opaque depth
   uint32_t poolSize_ = 0;
   uint32_t emitterCount_ = 0;
 };

@@ -268,11 +268,23 @@ void VisBufferFeature::declareRaster(graph::FrameGraph& graph, Buffers& b) const
   });
 }
 
+// Material Shade also copies the culling counters to the host (statistics). A node of its own
+// reading them after "Triangle Filter" ran between "Visibility Raster" and "Material Shade", on
+// the critical path (H100: 5 us plus a ~20 us bubble); here the 64-byte copy is recorded before the
+// dispatch with no barrier between them, so it runs beside the shading, and its source's barrier
+// (filter's compute write -> transfer read) joins the one shading waits at anyway.
 void VisBufferFeature::declareShade(graph::FrameGraph& graph, Blackboard& board, Buffers& b) const {
   auto& targets = board.get<FrameTargets>();
+  const graph::ImportState hostState{graph::kStageHost | graph::kStageTransfer,
+                                     graph::kAccessHostRead | graph::kAccessTransferWrite, graph::Layout::Undefined,
+                                     graph::QueueClass::Graphics};
+  auto stats = graph.importBuffer("visibility stats readback", {sizeof(VisCounters), {}}, rhi::external(statsReadback_),
+                                  hostState, hostState);
   auto node = graph.addNode("Material Shade", graph::NodeType::Compute, kQueue);
   node.read(b.words, Access::StorageRead);
   node.read(b.visible, Access::StorageRead);
+  node.read(b.rasterArgs, Access::TransferSrc);
+  stats = node.write(stats, Access::TransferDst);
   b.depth = node.write(b.depth, Access::StorageWrite);
   targets.hdr = node.write(targets.hdr, Access::StorageWrite);
   ClusteredLights clusters;
@@ -283,47 +295,29 @@ void VisBufferFeature::declareShade(graph::FrameGraph& graph, Blackboard& board,
   }
   // Shading pre-exposes what it writes, like every colour pass (auto exposure: this frame's state).
   if (targets.exposure.valid()) node.read(targets.exposure, Access::StorageRead);
-  node.setJob(
-      [push = b.push, pipelines = pipelines_, b, hdr = targets.hdr, clusters](graph::JobContext& context) mutable {
-        auto& ctx = rhi::rhiContext(context);
-        auto& cmd = ctx.cmd();
-        push.words = ctx.storageBufferIndex(b.words);
-        push.visible = ctx.storageBufferIndex(b.visible);
-        push.depthOut = ctx.storageBufferIndex(b.depth);
-        push.hdr = ctx.storageTextureIndex(hdr);
-        if (clusters.counts.valid()) {
-          push.clusterCounts = ctx.storageBufferIndex(clusters.counts);
-          push.clusterIndices = ctx.storageBufferIndex(clusters.indices);
-        }
-        cmd.bindPipeline(pipelines.shade);
-        cmd.push(push);
-        cmd.dispatch((b.extent.width + kShadeGroupSize - 1) / kShadeGroupSize,
-                     (b.extent.height + kShadeGroupSize - 1) / kShadeGroupSize);
-      });
+  node.setJob([push = b.push, pipelines = pipelines_, b, hdr = targets.hdr, clusters,
+               stats](graph::JobContext& context) mutable {
+    auto& ctx = rhi::rhiContext(context);
+    auto& cmd = ctx.cmd();
+    cmd.copyBuffer(ctx.buffer(b.rasterArgs), ctx.buffer(stats), sizeof(VisCounters));
+    push.words = ctx.storageBufferIndex(b.words);
+    push.visible = ctx.storageBufferIndex(b.visible);
+    push.depthOut = ctx.storageBufferIndex(b.depth);
+    push.hdr = ctx.storageTextureIndex(hdr);
+    if (clusters.counts.valid()) {
+      push.clusterCounts = ctx.storageBufferIndex(clusters.counts);
+      push.clusterIndices = ctx.storageBufferIndex(clusters.indices);
+    }
+    cmd.bindPipeline(pipelines.shade);
+    cmd.push(push);
+    cmd.dispatch((b.extent.width + kShadeGroupSize - 1) / kShadeGroupSize,
+                 (b.extent.height + kShadeGroupSize - 1) / kShadeGroupSize);
+  });
   targets.color = targets.hdr;  // single-sampled: later forward passes load the shaded image
   targets.colorCleared = true;
-}
-
-// The depth copy also copies the culling counters to the host (statistics): a node of its own
-// reading them after "Triangle Filter" ran between "Visibility Raster" and "Material Shade", on the
-// critical path (H100: 5 us plus a ~20 us bubble); here it is one more copy in a transfer node.
-void VisBufferFeature::declareDepthResolve(graph::FrameGraph& graph, FrameTargets& targets, Buffers& b) const {
-  const graph::ImportState hostState{graph::kStageHost | graph::kStageTransfer,
-                                     graph::kAccessHostRead | graph::kAccessTransferWrite, graph::Layout::Undefined,
-                                     graph::QueueClass::Graphics};
-  auto stats = graph.importBuffer("visibility stats readback", {sizeof(VisCounters), {}}, rhi::external(statsReadback_),
-                                  hostState, hostState);
-  auto node = graph.addNode("Visibility Depth Resolve", graph::NodeType::Transfer, kQueue);
-  node.read(b.depth, Access::TransferSrc);
-  node.read(b.rasterArgs, Access::TransferSrc);
-  targets.depth = node.write(targets.depth, Access::TransferDst);
-  stats = node.write(stats, Access::TransferDst);
-  node.setJob([depth = b.depth, target = targets.depth, counters = b.rasterArgs, stats](graph::JobContext& context) {
-    auto& ctx = rhi::rhiContext(context);
-    ctx.cmd().copyBufferToTexture(ctx.buffer(depth), ctx.texture(target));
-    ctx.cmd().copyBuffer(ctx.buffer(counters), ctx.buffer(stats), sizeof(VisCounters));
-  });
-  targets.depthCleared = true;
+  // No depth attachment is written: the later colour passes test against this buffer in their
+  // fragment shaders (DepthTest::OpaqueDepthBuffer), with no copy into a depth image.
+  targets.opaqueDepth = b.depth;
 }
 
 void VisBufferFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
@@ -336,7 +330,6 @@ void VisBufferFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
   declareTriangleFilter(graph, b);
   declareRaster(graph, b);
   declareShade(graph, board, b);
-  declareDepthResolve(graph, board.get<FrameTargets>(), b);
   board.set(VisibilityOutputs{b.rasterArgs, b.visible, b.words});
 }
 

@@ -7,10 +7,11 @@
 //                               triangle lists and the raster's indirect arguments;
 //   "Visibility Raster"         64-bit atomic max of (depth, id) per pixel (storage buffer);
 //   "Material Shade"            rebuilds each pixel's triangle, shades it like forward.frag (shared
-//                               include) into the HDR target, and writes the pixel depths;
-//   "Visibility Depth Resolve"  copies those depths into the depth target, so the forward passes
-//                               that follow (transparent meshes, particles) depth-test against them,
-//                               and the culling counters to the host (statistics).
+//                               include) into the HDR target, writes the pixel depths into
+//                               "visibility depth" (FrameTargets::opaqueDepth), against which the
+//                               colour passes that follow (transparent meshes, particles) depth-test
+//                               in their fragment shaders (no depth attachment on this path), and
+//                               copies the culling counters to the host (statistics).
 // Culling outputs are published on the blackboard (VisibilityOutputs).
 #pragma once
 
@@ -49,7 +50,6 @@ class VisBufferFeature final : public IRenderFeature {
   void declareTriangleFilter(graph::FrameGraph& graph, Buffers& buffers) const;
   void declareRaster(graph::FrameGraph& graph, Buffers& buffers) const;
   void declareShade(graph::FrameGraph& graph, Blackboard& board, Buffers& buffers) const;
-  void declareDepthResolve(graph::FrameGraph& graph, FrameTargets& targets, Buffers& buffers) const;
 
   rhi::Device* device_ = nullptr;
   const GpuScene* scene_ = nullptr;

@@ -23,6 +23,10 @@ std::span<const uint32_t> spirv(std::string_view path) {
                    " at build time)");
 }
 
+std::string variantPath(std::string_view path, std::string_view variant) {
+  return std::string(path).append(":").append(variant);
+}
+
 bool contains(std::string_view path) { return find(path) != nullptr; }
 
 std::vector<std::string_view> names() {

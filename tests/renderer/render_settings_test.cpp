@@ -52,6 +52,23 @@ TEST(RenderSettings, RenderPathDefaultsToForwardAndRejectsOthers) {
   }
 }
 
+TEST(RenderSettings, VisBackingDefaultsToAutoAndRejectsOthers) {
+  RenderSettings settings;
+  EXPECT_EQ(settings.visBacking, VisBacking::Auto);
+  applyRendererKnobs(settings, {{"render.vis_backing", "image"}});
+  EXPECT_EQ(settings.visBacking, VisBacking::Image);
+  applyRendererKnobs(settings, {{"render.vis_backing", "buffer"}});
+  EXPECT_EQ(settings.visBacking, VisBacking::Buffer);
+  applyRendererKnobs(settings, {{"render.vis_backing", "auto"}});
+  EXPECT_EQ(settings.visBacking, VisBacking::Auto);
+  try {
+    applyRendererKnobs(settings, {{"render.vis_backing", "texture"}});
+    FAIL() << "expected InputError";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("auto|buffer|image"), std::string::npos) << error.what();
+  }
+}
+
 TEST(RenderSettings, KnowsItsKeys) {
   EXPECT_TRUE(isRendererKnob("debug.view"));
   EXPECT_TRUE(isRendererKnob("render.ssaa"));

@@ -383,6 +383,7 @@ TEST(VisBuffer, ComputeNodesReplaceMeshRenderAndTheImageMatchesForward) {
       renderImages(sized(lavapipeConfig("atrium-small.json", {{"render.path", "visbuffer"}}, true), 160, 90, 1), 2);
   const auto forward = renderImages(sized(lavapipeConfig("atrium-small.json", {}), 160, 90, 1), 2);
   EXPECT_EQ(vis.validationMessages, 0u);
+  EXPECT_EQ(vis.stats.at("vis_backing_image"), 0.0);  // render.vis_backing=auto: lavapipe has no image atomics
   for (const char* node :
        {"Visibility Clear", "Cluster Cull", "Triangle Filter", "Visibility Raster", "Material Shade"})
     EXPECT_TRUE(vis.passes.count(node)) << node;
@@ -407,6 +408,23 @@ TEST(VisBuffer, RefusesMsaaNamingSupersampling) {
   } catch (const InputError& error) {
     EXPECT_NE(std::string(error.what()).find("render.ssaa"), std::string::npos) << error.what();
   }
+}
+
+// render.vis_backing=image needs 64-bit atomics on R64 storage images: lavapipe has none, so it is
+// bad input naming the knob and the device (before any upload); forward ignores the knob.
+TEST(VisBuffer, RefusesTheImageBackingWithoutImageAtomics) {
+  try {
+    (void)openSceneWorkload(
+        sized(lavapipeConfig("atrium-small.json", {{"render.path", "visbuffer"}, {"render.vis_backing", "image"}}), 64,
+              36, 1));
+    FAIL() << "expected InputError";
+  } catch (const InputError& error) {
+    const std::string what = error.what();
+    EXPECT_NE(what.find("render.vis_backing=image"), std::string::npos) << what;
+    EXPECT_NE(what.find("llvmpipe"), std::string::npos) << what;
+  }
+  EXPECT_NO_THROW((void)openSceneWorkload(sized(
+      lavapipeConfig("atrium-small.json", {{"render.path", "forward"}, {"render.vis_backing", "image"}}), 64, 36, 1)));
 }
 
 // The light cull's lists hold every light that reaches a cluster, over several 64-light chunks

@@ -2,7 +2,10 @@
 // src/renderer/features/visbuffer/visbuffer_types.hpp (std430); keep them in sync.
 //
 // The visibility buffer holds one 64-bit word per pixel: a depth key in the high 32 bits and the
-// pixel's id in the low 32 bits, written with a 64-bit atomic max. The depth key grows towards the
+// pixel's id in the low 32 bits, written with a 64-bit atomic max. Its backing
+// (render.vis_backing) is a storage buffer of row-major words, or, in the shader variants compiled
+// with FGB_VIS_BACKING_IMAGE (shaders/CMakeLists.txt), an R64_UINT storage image with 64-bit image
+// atomics; shaders reach it only through visWordMax and visWordAt. The depth key grows towards the
 // camera (standard Z: ~bits(z); reversed Z: bits(z)), so max keeps the nearest triangle and the
 // cleared value 0 means "nothing". The id is (visible cluster << 7) | triangle in the cluster.
 #ifndef FGB_RENDERER_VISBUFFER_GLSL
@@ -58,10 +61,32 @@ FGB_STORAGE_BUFFER(VisCounterBlock, visCounters, ) { VisCounters c; } visCounter
 FGB_READONLY_STORAGE_BUFFER(VisCounterReadBlock, visCountersRead) { VisCounters c; } visCountersRead[FGB_MAX_STORAGE_BUFFERS];
 FGB_STORAGE_BUFFER(VisWordBlock, visWords, ) { uint64_t words[]; } visWords[FGB_MAX_STORAGE_BUFFERS];
 FGB_READONLY_STORAGE_BUFFER(VisWordReadBlock, visWordsRead) { uint64_t words[]; } visWordsRead[FGB_MAX_STORAGE_BUFFERS];
+#ifdef FGB_VIS_BACKING_IMAGE
+#extension GL_EXT_shader_image_int64 : require
+// Aliases the storage-image binding (other shaders see it as rgba16f etc.).
+layout(set = 0, binding = FGB_BINDING_STORAGE_TEXTURES, r64ui) uniform u64image2D visImages[FGB_MAX_STORAGE_TEXTURES];
+#endif
 FGB_READONLY_STORAGE_BUFFER(FloatReadBlock, visFloatsRead) { float values[]; } visFloatsRead[FGB_MAX_STORAGE_BUFFERS];
 FGB_STORAGE_BUFFER(FloatBlock, visFloats, ) { float values[]; } visFloats[FGB_MAX_STORAGE_BUFFERS];
 FGB_STORAGE_BUFFER(Uvec4Block, visUvec4s, ) { uvec4 values[]; } visUvec4s[FGB_MAX_STORAGE_BUFFERS];
 FGB_READONLY_STORAGE_BUFFER(Uvec4ReadBlock, visUvec4sRead) { uvec4 values[]; } visUvec4sRead[FGB_MAX_STORAGE_BUFFERS];
+
+// The visibility buffer `words` (a storage-buffer index, or with the image backing a storage-texture
+// index) at a pixel of a viewport `width` pixels wide: atomic max, and plain read.
+void visWordMax(uint words, ivec2 pixel, uint width, uint64_t word) {
+#ifdef FGB_VIS_BACKING_IMAGE
+  imageAtomicMax(visImages[words], pixel, word);
+#else
+  atomicMax(visWords[words].words[uint(pixel.y) * width + uint(pixel.x)], word);
+#endif
+}
+uint64_t visWordAt(uint words, ivec2 pixel, uint width) {
+#ifdef FGB_VIS_BACKING_IMAGE
+  return imageLoad(visImages[words], pixel).x;
+#else
+  return visWordsRead[words].words[uint(pixel.y) * width + uint(pixel.x)];
+#endif
+}
 
 // Groups for n items of `perGroup` each, laid out as (x, y, 1) within the dispatch limits.
 uvec3 dispatchFor(uint items, uint perGroup) {

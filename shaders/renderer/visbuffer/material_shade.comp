@@ -22,7 +22,7 @@ void main() {
   uvec2 size = uvec2(viewportSize());
   if (any(greaterThanEqual(pixel, size))) return;
   uint index = pixel.y * size.x + pixel.x;
-  uint64_t word = visWordsRead[pc.words].words[index];
+  uint64_t word = visWordAt(pc.words, ivec2(pixel), size.x);
   if (word == 0ul) {
     visFloats[pc.depthOut].values[index] = reversedZ() ? 0.0 : 1.0;
     imageStore(fgbImagesRgba16f[pc.hdr], ivec2(pixel), pc.background);

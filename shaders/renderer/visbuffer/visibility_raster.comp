@@ -1,6 +1,6 @@
 #version 460
 // "Visibility Raster": writes (depth key << 32 | id) into the visibility buffer with a 64-bit
-// atomic max per covered pixel centre. Two dispatches of this shader in one node: small triangles
+// atomic max per covered pixel centre (storage buffer, or R64 image in the "image" variant). Two dispatches of this shader in one node: small triangles
 // (one invocation each walks its at most 8x8 pixel centres) and the tiles of large triangles (one
 // workgroup per 8x8-pixel tile, one invocation per pixel; the tile's triangle is found by binary
 // search over the large list's first-job offsets). Projected triangles use 8-bit sub-pixel
@@ -61,8 +61,7 @@ void rasterPixel(RasterTriangle r, ivec2 pixel) {
   }
   if (!(z >= 0.0 && z <= 1.0)) return;  // depth clipping (also drops NaN)
   if (r.masked && !alphaPasses(r, pixel)) return;
-  uint index = uint(pixel.y) * uint(viewportSize().x) + uint(pixel.x);
-  atomicMax(visWords[pc.words].words[index], (uint64_t(depthKey(z, reversedZ())) << 32) | uint64_t(r.id));
+  visWordMax(pc.words, pixel, uint(viewportSize().x), (uint64_t(depthKey(z, reversedZ())) << 32) | uint64_t(r.id));
 }
 
 int edge32(ivec2 a, ivec2 b, ivec2 p) { return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x); }
@@ -106,7 +105,7 @@ void rasterSmall() {
       if (any(lessThan(w + bias, ivec3(0)))) continue;
       float z = dot(vec3(w) * invArea, ndcZ);
       if (!(z >= 0.0 && z <= 1.0)) continue;
-      atomicMax(visWords[pc.words].words[uint(y) * width + uint(x)], (uint64_t(depthKey(z, reversedZ())) << 32) | id);
+      visWordMax(pc.words, ivec2(x, y), width, (uint64_t(depthKey(z, reversedZ())) << 32) | id);
     }
   }
 }
@@ -145,8 +144,7 @@ void rasterTileJob() {
     if (w.x < 0.0) continue;
     float z = dot(w, l.ndcZ);
     if (!(z >= 0.0 && z <= 1.0)) continue;  // depth clipping (also drops NaN)
-    atomicMax(visWords[pc.words].words[uint(pixel.y) * width + uint(pixel.x)],
-              (uint64_t(depthKey(z, reversedZ())) << 32) | id);
+    visWordMax(pc.words, pixel, width, (uint64_t(depthKey(z, reversedZ())) << 32) | id);
   }
 }
 

@@ -48,4 +48,16 @@ void checkRenderPathSettings(const features::RenderSettings& settings, uint32_t 
   }
 }
 
+void resolveDeviceSettings(features::RenderSettings& settings, const rhi::Device& device) {
+  using features::VisBacking;
+  const bool imageAtomics = device.shaderCapabilities().imageInt64Atomics;
+  if (settings.visBacking == VisBacking::Image && !imageAtomics &&
+      settings.renderPath == features::RenderPath::VisBuffer) {
+    throw InputError("--set render.vis_backing=image: " + device.adapter().name +
+                     " has no 64-bit atomics on R64 storage images; use render.vis_backing=buffer or auto");
+  }
+  if (settings.visBacking == VisBacking::Auto)
+    settings.visBacking = imageAtomics ? VisBacking::Image : VisBacking::Buffer;
+}
+
 }  // namespace fgb::render

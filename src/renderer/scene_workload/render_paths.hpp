@@ -29,4 +29,9 @@ RenderPathPlan planRenderPath(const features::RenderSettings& settings);
 // The path's constraints on the run's settings; throws InputError naming the option.
 void checkRenderPathSettings(const features::RenderSettings& settings, uint32_t requestedMsaa);
 
+// Settings that depend on the device, once it is open: render.vis_backing=auto becomes image where
+// the device has 64-bit atomics on R64 storage images, else buffer. On the visbuffer path,
+// render.vis_backing=image on a device without them throws InputError naming the knob and device.
+void resolveDeviceSettings(features::RenderSettings& settings, const rhi::Device& device);
+
 }  // namespace fgb::render

@@ -124,6 +124,7 @@ class SceneWorkload final : public Workload {
     settings_ = makeSettings(config, loaded_.description, device_->sampleCounts());
     rhi::checkRenderSize(device_->adapter(), settings_.width, settings_.height);
     checkSupersampledSize(device_->adapter(), settings_);
+    resolveDeviceSettings(settings_, *device_);
     startup_.deviceMs = timer.lap();
 
     gpu_ = uploadScene(*device_, loaded_.scene, settings_);

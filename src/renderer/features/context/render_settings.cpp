@@ -37,12 +37,17 @@ uint32_t count(const std::string& value) {
   return parsed;
 }
 bool flag(const std::string& value) { return value == "1" || value == "true" || value == "on"; }
+VisBacking visBackingNamed(const std::string& value) {
+  if (value == "buffer") return VisBacking::Buffer;
+  return value == "image" ? VisBacking::Image : VisBacking::Auto;
+}
 
 void applyOne(RenderSettings& settings, const std::string& key, const std::string& value) {
   if (key == "debug.view") settings.debugView = value == "light-complexity" ? DebugView::LightComplexity : DebugView::None;
   else if (key == "render.depth_prepass") settings.depthPrepass = flag(value);
   else if (key == "render.ssaa") settings.ssaa = count(value);
   else if (key == "render.path") settings.renderPath = value == "visbuffer" ? RenderPath::VisBuffer : RenderPath::Forward;
+  else if (key == "render.vis_backing") settings.visBacking = visBackingNamed(value);
   else if (key == "lighting.mode") settings.lightingMode = value == "all" ? LightingMode::All : LightingMode::Clustered;
   else if (key == "lighting.slices") settings.clusterSlices = count(value);
   else if (key == "lighting.max_per_cluster") settings.maxLightsPerCluster = count(value);
@@ -59,6 +64,8 @@ const std::vector<KnobSpec>& rendererKnobSpecs() {
       {"render.depth_prepass", KnobType::Flag, 0, 0, false, false, {}, "renderer", "depth-only pass before shading"},
       integer("render.ssaa", 1, 4, "supersampling: scene passes at S*W x S*H, box-filtered to W x H"),
       word("render.path", {"forward", "visbuffer"}, "what draws the opaque scene: forward raster or compute visibility buffer"),
+      word("render.vis_backing", {"auto", "buffer", "image"},
+           "visbuffer words: R64 image atomics or a storage buffer (auto: image where the device has them)"),
       word("lighting.mode", {"clustered", "all"}, "clustered light lists, or every light for every pixel"),
       integer("lighting.slices", 1, 64, "cluster depth slices"),
       integer("lighting.max_per_cluster", 1, 1024, "lights kept per cluster (overflow guard)"),

@@ -18,6 +18,11 @@ enum class DebugView : uint8_t { None, LightComplexity };
 // from the visibility buffer (features/visbuffer).
 enum class RenderPath : uint8_t { Forward, VisBuffer };
 
+// render.vis_backing: what holds the visibility buffer's 64-bit words on the visbuffer path. Auto
+// becomes Image where the device has 64-bit atomics on R64 storage images, else Buffer; the scene
+// workload resolves it once the device is open (features::resolveVisBacking).
+enum class VisBacking : uint8_t { Auto, Buffer, Image };
+
 // Clustered: each fragment shades the lights of its cluster (at most lighting.max_per_cluster).
 // All: each fragment shades every light, with no cap (the reference; no cluster passes at all).
 enum class LightingMode : uint8_t { Clustered, All };
@@ -27,6 +32,7 @@ struct RenderSettings {
   uint32_t height = 360;
   uint32_t msaa = 1;
   RenderPath renderPath = RenderPath::Forward;  // render.path = forward | visbuffer
+  VisBacking visBacking = VisBacking::Auto;     // render.vis_backing = auto | buffer | image
   uint32_t ssaa = 1;                  // render.ssaa: scene passes at ssaa*width x ssaa*height
   bool depthPrepass = false;          // render.depth_prepass
   DebugView debugView = DebugView::None;  // debug.view = none | light-complexity

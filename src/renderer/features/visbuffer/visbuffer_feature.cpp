@@ -5,6 +5,7 @@
 #include <cstring>
 #include <fgb/rhi/job_context.hpp>
 #include <fgb/scene/frustum.hpp>
+#include <fgb/shaders/registry.hpp>
 
 #include "../context/handles.hpp"
 
@@ -69,6 +70,14 @@ constexpr uint32_t kRasterGroupSize = 64;     // visibility_raster.comp's local 
 constexpr uint64_t kLargeTriangleBytes = 64;  // 4 uvec4 (packLargeTriangle in visbuffer_triangle.glsl)
 constexpr uint64_t kTileJobBytes = 8;         // uvec2: large-list slot, job index within the triangle
 constexpr uint32_t kShadeGroupSize = 8;       // material_shade.comp: 8 x 8
+constexpr uint32_t kClearGroupSize = 8;       // vis_clear.comp: 8 x 8
+
+// Mirrors the push block of shaders/renderer/visbuffer/vis_clear.comp.
+struct ClearPush {
+  uint32_t words;
+  uint32_t width;
+  uint32_t height;
+};
 
 // Reversed Z: the projection maps nearer points to larger depth.
 bool projectsReversedZ(const FrameConstantsGpu& constants) {
@@ -90,7 +99,8 @@ struct VisBufferFeature::Buffers {
   graph::BufferHandle smallList;
   graph::BufferHandle largeList;
   graph::BufferHandle tileJobs;
-  graph::BufferHandle words;
+  graph::BufferHandle words;       // the buffer backing, or
+  graph::TextureHandle wordImage;  // the image backing (render.vis_backing)
   graph::BufferHandle depth;
   graph::Extent extent;
   VisPush push{};  // the scene's persistent indices; per-node handles are filled in by the jobs
@@ -113,12 +123,24 @@ void VisBufferFeature::initialize(FeatureInit& init) {
   // per triangle plus pixels / 16 more (boxes adding up to 64 screens' worth of tiles).
   tileJobCapacity_ = uint32_t(std::min<uint64_t>(uint64_t{largeCapacity_} + pixels / 16, UINT32_MAX));
   reversedZ_ = projectsReversedZ(init.scene.constants);
+  if (init.settings.visBacking == VisBacking::Auto)
+    throw std::logic_error("render.vis_backing=auto reached the visibility buffer unresolved (resolveDeviceSettings)");
+  imageBacking_ = init.settings.visBacking == VisBacking::Image;
+  // The word accesses are compiled per backing: the image variants declare 64-bit image
+  // capabilities, which a device without them refuses even where unused.
+  const auto backed = [&](const char* shader) {
+    return imageBacking_ ? shaders::variantPath(shader, "image") : std::string(shader);
+  };
   pipelines_.cull = init.device.createComputePipeline({"cluster cull", "renderer/visbuffer/cluster_cull.comp"});
   pipelines_.args = init.device.createComputePipeline({"visibility arguments", "renderer/visbuffer/vis_args.comp"});
   pipelines_.filter = init.device.createComputePipeline({"triangle filter", "renderer/visbuffer/triangle_filter.comp"});
   pipelines_.raster =
-      init.device.createComputePipeline({"visibility raster", "renderer/visbuffer/visibility_raster.comp"});
-  pipelines_.shade = init.device.createComputePipeline({"material shade", "renderer/visbuffer/material_shade.comp"});
+      init.device.createComputePipeline({"visibility raster", backed("renderer/visbuffer/visibility_raster.comp")});
+  pipelines_.shade =
+      init.device.createComputePipeline({"material shade", backed("renderer/visbuffer/material_shade.comp")});
+  if (imageBacking_)
+    pipelines_.clearImage =
+        init.device.createComputePipeline({"visibility clear", "renderer/visbuffer/vis_clear.comp"});
   statsReadback_ = init.device.createBuffer(
       {"visibility stats readback", sizeof(VisCounters), rhi::kBufferTransferDst, rhi::MemoryUsage::Readback});
   std::memset(init.device.mapped(statsReadback_).data(), 0, sizeof(VisCounters));
@@ -138,7 +160,10 @@ VisBufferFeature::Buffers VisBufferFeature::declareBuffers(graph::FrameGraph& gr
   b.smallList = graph.createBuffer("small triangles", {uint64_t{32} * geometry.triangles, {}});  // 2 uvec4 each
   b.largeList = graph.createBuffer("large triangles", {kLargeTriangleBytes * largeCapacity_, {}});
   b.tileJobs = graph.createBuffer("large triangle tile jobs", {kTileJobBytes * tileJobCapacity_, {}});
-  b.words = graph.createBuffer("visibility buffer", {uint64_t{8} * pixels, {}});
+  if (imageBacking_)
+    b.wordImage = graph.createTexture("visibility buffer", {graph::Format::R64Uint, targets.extent});
+  else
+    b.words = graph.createBuffer("visibility buffer", {uint64_t{8} * pixels, {}});
   b.depth = graph.createBuffer("visibility depth", {uint64_t{4} * pixels, {}});
 
   VisPush& p = b.push;
@@ -164,16 +189,28 @@ VisBufferFeature::Buffers VisBufferFeature::declareBuffers(graph::FrameGraph& gr
 }
 
 void VisBufferFeature::declareClear(graph::FrameGraph& graph, Buffers& b) const {
-  auto node = graph.addNode("Visibility Clear", graph::NodeType::Transfer, kQueue);
-  b.words = node.write(b.words, Access::TransferDst);
+  // The image backing is zeroed by a dispatch (vis_clear.comp), so the node is compute there.
+  auto node =
+      graph.addNode("Visibility Clear", imageBacking_ ? graph::NodeType::Compute : graph::NodeType::Transfer, kQueue);
+  if (imageBacking_)
+    b.wordImage = node.write(b.wordImage, Access::StorageWrite);
+  else
+    b.words = node.write(b.words, Access::TransferDst);
   b.counters = node.write(b.counters, Access::TransferDst);
   // The argument snapshots are zeroed too: the culling nodes then update them (read-write).
   b.cullArgs = node.write(b.cullArgs, Access::TransferDst);
   b.rasterArgs = node.write(b.rasterArgs, Access::TransferDst);
   const uint64_t wordBytes = uint64_t{8} * b.extent.width * b.extent.height;
-  node.setJob([b, wordBytes](graph::JobContext& context) {
+  node.setJob([b, wordBytes, clearImage = pipelines_.clearImage](graph::JobContext& context) {
     auto& ctx = rhi::rhiContext(context);
-    ctx.cmd().fillBuffer(ctx.buffer(b.words), 0, wordBytes, 0);  // 0: no triangle (see visbuffer.glsl)
+    if (b.wordImage.valid()) {
+      ctx.cmd().bindPipeline(clearImage);
+      ctx.cmd().push(ClearPush{ctx.storageTextureIndex(b.wordImage), b.extent.width, b.extent.height});
+      ctx.cmd().dispatch((b.extent.width + kClearGroupSize - 1) / kClearGroupSize,
+                         (b.extent.height + kClearGroupSize - 1) / kClearGroupSize);
+    } else {
+      ctx.cmd().fillBuffer(ctx.buffer(b.words), 0, wordBytes, 0);  // 0: no triangle (see visbuffer.glsl)
+    }
     for (const auto counters : {b.counters, b.cullArgs, b.rasterArgs})
       ctx.cmd().fillBuffer(ctx.buffer(counters), 0, sizeof(VisCounters), 0);
   });
@@ -247,7 +284,10 @@ void VisBufferFeature::declareRaster(graph::FrameGraph& graph, Buffers& b) const
   node.read(b.smallList, Access::StorageRead);
   node.read(b.largeList, Access::StorageRead);
   node.read(b.tileJobs, Access::StorageRead);
-  b.words = node.write(b.words, Access::StorageReadWrite);
+  if (b.wordImage.valid())
+    b.wordImage = node.write(b.wordImage, Access::StorageReadWrite);
+  else
+    b.words = node.write(b.words, Access::StorageReadWrite);
   node.setJob([push = b.push, pipelines = pipelines_, b](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
@@ -256,7 +296,7 @@ void VisBufferFeature::declareRaster(graph::FrameGraph& graph, Buffers& b) const
     push.smallList = ctx.storageBufferIndex(b.smallList);
     push.largeList = ctx.storageBufferIndex(b.largeList);
     push.tileJobs = ctx.storageBufferIndex(b.tileJobs);
-    push.words = ctx.storageBufferIndex(b.words);
+    push.words = b.wordImage.valid() ? ctx.storageTextureIndex(b.wordImage) : ctx.storageBufferIndex(b.words);
     cmd.bindPipeline(pipelines.raster);
     cmd.push(push);
     cmd.dispatchIndirect(ctx.buffer(b.rasterArgs), kSmallArgsOffset);
@@ -281,12 +321,20 @@ void VisBufferFeature::declareShade(graph::FrameGraph& graph, Blackboard& board,
   auto stats = graph.importBuffer("visibility stats readback", {sizeof(VisCounters), {}}, rhi::external(statsReadback_),
                                   hostState, hostState);
   auto node = graph.addNode("Material Shade", graph::NodeType::Compute, kQueue);
-  node.read(b.words, Access::StorageRead);
+  if (b.wordImage.valid()) {
+    // Two storage-image variables (r64ui words, rgba16f HDR) alias one binding, and synchronization
+    // validation counts every descriptor of a statically used binding as accessed by each: the HDR
+    // variable "writes" the words, the words variable "reads" the HDR. Read-write on both makes the
+    // planned barriers cover what it sees.
+    b.wordImage = node.write(b.wordImage, Access::StorageReadWrite);
+  } else {
+    node.read(b.words, Access::StorageRead);
+  }
   node.read(b.visible, Access::StorageRead);
   node.read(b.rasterArgs, Access::TransferSrc);
   stats = node.write(stats, Access::TransferDst);
   b.depth = node.write(b.depth, Access::StorageWrite);
-  targets.hdr = node.write(targets.hdr, Access::StorageWrite);
+  targets.hdr = node.write(targets.hdr, b.wordImage.valid() ? Access::StorageReadWrite : Access::StorageWrite);
   ClusteredLights clusters;
   if (const auto* published = board.find<ClusteredLights>()) {
     clusters = *published;
@@ -300,7 +348,7 @@ void VisBufferFeature::declareShade(graph::FrameGraph& graph, Blackboard& board,
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
     cmd.copyBuffer(ctx.buffer(b.rasterArgs), ctx.buffer(stats), sizeof(VisCounters));
-    push.words = ctx.storageBufferIndex(b.words);
+    push.words = b.wordImage.valid() ? ctx.storageTextureIndex(b.wordImage) : ctx.storageBufferIndex(b.words);
     push.visible = ctx.storageBufferIndex(b.visible);
     push.depthOut = ctx.storageBufferIndex(b.depth);
     push.hdr = ctx.storageTextureIndex(hdr);
@@ -330,13 +378,14 @@ void VisBufferFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
   declareTriangleFilter(graph, b);
   declareRaster(graph, b);
   declareShade(graph, board, b);
-  board.set(VisibilityOutputs{b.rasterArgs, b.visible, b.words});
+  board.set(VisibilityOutputs{b.rasterArgs, b.visible, b.words, b.wordImage});
 }
 
 void VisBufferFeature::addStats(std::map<std::string, double>& stats) const {
   if (!enabled()) return;
   VisCounters read{};
   std::memcpy(&read, device_->mapped(statsReadback_).data(), sizeof(read));
+  stats["vis_backing_image"] = imageBacking_ ? 1.0 : 0.0;  // render.vis_backing as run: 1 image, 0 buffer
   stats["vis_clusters"] = drawCount_;
   stats["vis_clusters_visible"] = read.visibleClusters;
   stats["vis_triangles_small"] = read.smallTriangles;

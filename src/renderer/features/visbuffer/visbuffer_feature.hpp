@@ -5,7 +5,8 @@
 //   "Triangle Filter"           per triangle: degenerate, behind the eye, outside the frustum,
 //                               back-facing, covers no pixel centre; writes the small and large
 //                               triangle lists and the raster's indirect arguments;
-//   "Visibility Raster"         64-bit atomic max of (depth, id) per pixel (storage buffer);
+//   "Visibility Raster"         64-bit atomic max of (depth, id) per pixel (storage buffer, or R64
+//                               image with 64-bit image atomics: render.vis_backing);
 //   "Material Shade"            rebuilds each pixel's triangle, shades it like forward.frag (shared
 //                               include) into the HDR target, writes the pixel depths into
 //                               "visibility depth" (FrameTargets::opaqueDepth), against which the
@@ -23,7 +24,10 @@ namespace fgb::features {
 struct VisibilityOutputs {
   graph::BufferHandle counters;         // VisCounters after "Triangle Filter"
   graph::BufferHandle visibleClusters;  // ClusterDraw indices that passed "Cluster Cull"
-  graph::BufferHandle visibility;       // uint64 per pixel: depth key << 32 | id
+  // uint64 per pixel, depth key << 32 | id (render.vis_backing): a row-major storage buffer, or an
+  // R64Uint storage texture. Exactly one of the two is valid.
+  graph::BufferHandle visibility;
+  graph::TextureHandle visibilityImage;
 };
 
 class VisBufferFeature final : public IRenderFeature {
@@ -41,6 +45,7 @@ class VisBufferFeature final : public IRenderFeature {
     rhi::PipelineId filter;
     rhi::PipelineId raster;
     rhi::PipelineId shade;
+    rhi::PipelineId clearImage;  // image backing only
   };
   struct Buffers;
 
@@ -59,6 +64,7 @@ class VisBufferFeature final : public IRenderFeature {
   uint32_t largeCapacity_ = 0;
   uint32_t tileJobCapacity_ = 0;
   bool reversedZ_ = false;
+  bool imageBacking_ = false;  // render.vis_backing resolved to image
 };
 
 }  // namespace fgb::features

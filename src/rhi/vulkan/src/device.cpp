@@ -43,7 +43,8 @@ FamilyChoice chooseFamilies(VkPhysicalDevice physical) {
   return choice;
 }
 
-// R64 storage images with 64-bit atomics: the extension and its image feature.
+// R64 storage images with 64-bit atomics: the extension, its image feature, and R64_UINT optimal
+// images with storage and storage atomics (the extension promises them; checked all the same).
 bool supportsImageInt64Atomics(VkPhysicalDevice physical) {
   uint32_t count = 0;
   vkEnumerateDeviceExtensionProperties(physical, nullptr, &count, nullptr);
@@ -58,7 +59,12 @@ bool supportsImageInt64Atomics(VkPhysicalDevice physical) {
   auto features = vkStruct<VkPhysicalDeviceFeatures2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2);
   features.pNext = &image;
   vkGetPhysicalDeviceFeatures2(physical, &features);
-  return image.shaderImageInt64Atomics == VK_TRUE;
+  if (image.shaderImageInt64Atomics != VK_TRUE) return false;
+  VkFormatProperties format{};
+  vkGetPhysicalDeviceFormatProperties(physical, VK_FORMAT_R64_UINT, &format);
+  constexpr VkFormatFeatureFlags kNeeded =
+      VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT | VK_FORMAT_FEATURE_STORAGE_IMAGE_ATOMIC_BIT;
+  return (format.optimalTilingFeatures & kNeeded) == kNeeded;
 }
 
 }  // namespace
@@ -168,10 +174,21 @@ void VulkanDevice::createLogicalDevice() {
   shaderCapabilities_.int64 = core.shaderInt64 == VK_TRUE;
   shaderCapabilities_.bufferInt64Atomics =
       shaderCapabilities_.int64 && has12.shaderBufferInt64Atomics == VK_TRUE && has12.shaderSharedInt64Atomics == VK_TRUE;
-  shaderCapabilities_.imageInt64Atomics = supportsImageInt64Atomics(physical_);
+  shaderCapabilities_.imageInt64Atomics = shaderCapabilities_.int64 && supportsImageInt64Atomics(physical_);
+  // The only device extension: everything else the backend uses is Vulkan 1.3 core.
+  std::vector<const char*> extensions;
+  auto imageAtomics = vkStruct<VkPhysicalDeviceShaderImageAtomicInt64FeaturesEXT>(
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_IMAGE_ATOMIC_INT64_FEATURES_EXT);
+  if (shaderCapabilities_.imageInt64Atomics) {
+    extensions.push_back(VK_EXT_SHADER_IMAGE_ATOMIC_INT64_EXTENSION_NAME);
+    imageAtomics.shaderImageInt64Atomics = VK_TRUE;
+    v13.pNext = &imageAtomics;
+  }
 
   auto info = vkStruct<VkDeviceCreateInfo>(VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO);
   info.pNext = &features;
+  info.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
+  info.ppEnabledExtensionNames = extensions.data();
   info.queueCreateInfoCount = static_cast<uint32_t>(queueInfos.size());
   info.pQueueCreateInfos = queueInfos.data();
   check(vkCreateDevice(physical_, &info, nullptr, &device_), "vkCreateDevice on " + adapter_.name);

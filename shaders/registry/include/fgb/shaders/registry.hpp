@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -14,6 +15,10 @@ std::span<const uint32_t> spirv(std::string_view path);
 
 // True when a shader with this path was embedded.
 bool contains(std::string_view path);
+
+// The embedded name of a shader's variant: the source compiled once more with a preprocessor
+// definition (the shader_variants list in shaders/CMakeLists.txt), e.g. "a/b.comp:image".
+std::string variantPath(std::string_view path, std::string_view variant);
 
 // Every embedded shader path, sorted.
 std::vector<std::string_view> names();

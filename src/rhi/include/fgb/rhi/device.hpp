@@ -127,8 +127,9 @@ constexpr uint32_t clampSampleCount(uint32_t requested, uint32_t supported) {
 struct ShaderCapabilities {
   bool int64 = false;               // 64-bit integers in shaders (shaderInt64)
   bool bufferInt64Atomics = false;  // 64-bit atomics on storage buffers and shared memory
-  // 64-bit atomics on R64 storage images (VK_EXT_shader_image_atomic_int64): the H100 has them,
-  // lavapipe does not. Queried and reported; the visibility raster uses the buffer backing today.
+  // Format::R64Uint storage textures with 64-bit atomics, load and store (Vulkan:
+  // VK_EXT_shader_image_atomic_int64, enabled where present): the H100 has them, lavapipe does
+  // not. The visibility buffer's image backing (render.vis_backing) needs them.
   bool imageInt64Atomics = false;
 };
 

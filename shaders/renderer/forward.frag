@@ -1,8 +1,9 @@
 #version 460
 // "Mesh Render" fragment stage: the shared surface shading (include/surface_shading.glsl) with
 // implicit-derivative texture sampling; alpha-masked materials discard below their cutoff. On the
-// visibility-buffer path the transparent pass has no depth attachment and tests the opaque depth
-// here first (include/opaque_depth.glsl), so hidden fragments cost one load.
+// visibility-buffer path the transparent pass has no depth attachment and its variant of this shader
+// (FGB_OPAQUE_DEPTH_TEST, shaders/CMakeLists.txt) tests the opaque depth first
+// (include/opaque_depth.glsl), so hidden fragments cost one load.
 #extension GL_GOOGLE_include_directive : require
 #include "include/common.glsl"
 #include "include/forward_push.glsl"
@@ -21,7 +22,9 @@ vec4 sampleSurfaceTexture(int textureIndex, vec2 uv) {
 }
 
 void main() {
+#ifdef FGB_OPAQUE_DEPTH_TEST
   if (!passesOpaqueDepth(pc.opaqueDepth, gl_FragCoord)) discard;
+#endif
   FrameConstants frame = fgbFrames[pc.frame].frame;
   Material m = fgbMaterials[pc.materials].materials[inMaterial];
   vec2 uv = safeUv(inUv);

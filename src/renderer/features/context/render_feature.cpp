@@ -2,6 +2,7 @@
 
 #include <cstring>
 #include <fgb/rhi/job_context.hpp>
+#include <fgb/shaders/registry.hpp>
 
 namespace fgb::features {
 
@@ -55,6 +56,8 @@ void setDepthState(rhi::GraphicsPipelineDesc& desc, DepthTest form, bool writesD
     if (writesDepth) throw std::logic_error("pipeline '" + desc.name + "' writes depth: it needs a depth attachment");
     desc.depthFormat = graph::Format::Undefined;
     desc.depthTest = desc.depthWrite = false;
+    // The fragment shader's variant that tests the opaque depth (shaders/CMakeLists.txt).
+    desc.fragmentShader = shaders::variantPath(desc.fragmentShader, "opaque_depth");
     return;
   }
   desc.depthFormat = kDepthFormat;

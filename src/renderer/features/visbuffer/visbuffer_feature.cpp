@@ -311,18 +311,13 @@ void VisBufferFeature::declareRaster(graph::FrameGraph& graph, Buffers& b) const
 void VisBufferFeature::declareShade(graph::FrameGraph& graph, Blackboard& board, Buffers& b) const {
   auto& targets = board.get<FrameTargets>();
   auto node = graph.addNode("Material Shade", graph::NodeType::Compute, kQueue);
-  if (b.wordImage.valid()) {
-    // Two storage-image variables (r64ui words, rgba16f HDR) alias one binding, and synchronization
-    // validation counts every descriptor of a statically used binding as accessed by each: the HDR
-    // variable "writes" the words, the words variable "reads" the HDR. Read-write on both makes the
-    // planned barriers cover what it sees.
-    b.wordImage = node.write(b.wordImage, Access::StorageReadWrite);
-  } else {
+  if (b.wordImage.valid())
+    node.read(b.wordImage, Access::StorageRead);
+  else
     node.read(b.words, Access::StorageRead);
-  }
   node.read(b.visible, Access::StorageRead);
   b.depth = node.write(b.depth, Access::StorageWrite);
-  targets.hdr = node.write(targets.hdr, b.wordImage.valid() ? Access::StorageReadWrite : Access::StorageWrite);
+  targets.hdr = node.write(targets.hdr, Access::StorageWrite);
   ClusteredLights clusters;
   if (const auto* published = board.find<ClusteredLights>()) {
     clusters = *published;

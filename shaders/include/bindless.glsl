@@ -14,12 +14,17 @@
 #define FGB_MAX_SAMPLED_TEXTURES 4096
 #define FGB_MAX_STORAGE_TEXTURES 1024
 #define FGB_MAX_SAMPLERS 64
+#define FGB_MAX_INT64_STORAGE_TEXTURES 64
 
 #define FGB_BINDING_STORAGE_BUFFERS 0
 #define FGB_BINDING_SAMPLED_TEXTURES 1
 #define FGB_BINDING_STORAGE_TEXTURES 2
 #define FGB_BINDING_SAMPLERS 3
 #define FGB_BINDING_WRITABLE_STORAGE_BUFFERS 4
+// R64Uint storage textures (u64image2D, 64-bit image atomics) have a binding of their own, so no
+// shader aliases them with another format on binding 2 (validation would count each variable as
+// accessing every descriptor of the binding).
+#define FGB_BINDING_INT64_STORAGE_TEXTURES 5
 
 // FGB_STORAGE_BUFFER(Name, array, access) { members } array[...] -> writable blocks Name.
 #define FGB_STORAGE_BUFFER(BlockName, arrayName, qualifiers) \

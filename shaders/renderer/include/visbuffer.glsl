@@ -63,8 +63,7 @@ FGB_STORAGE_BUFFER(VisWordBlock, visWords, ) { uint64_t words[]; } visWords[FGB_
 FGB_READONLY_STORAGE_BUFFER(VisWordReadBlock, visWordsRead) { uint64_t words[]; } visWordsRead[FGB_MAX_STORAGE_BUFFERS];
 #ifdef FGB_VIS_BACKING_IMAGE
 #extension GL_EXT_shader_image_int64 : require
-// Aliases the storage-image binding (other shaders see it as rgba16f etc.).
-layout(set = 0, binding = FGB_BINDING_STORAGE_TEXTURES, r64ui) uniform u64image2D visImages[FGB_MAX_STORAGE_TEXTURES];
+layout(set = 0, binding = FGB_BINDING_INT64_STORAGE_TEXTURES, r64ui) uniform u64image2D visImages[FGB_MAX_INT64_STORAGE_TEXTURES];
 #endif
 FGB_READONLY_STORAGE_BUFFER(FloatReadBlock, visFloatsRead) { float values[]; } visFloatsRead[FGB_MAX_STORAGE_BUFFERS];
 FGB_STORAGE_BUFFER(FloatBlock, visFloats, ) { float values[]; } visFloats[FGB_MAX_STORAGE_BUFFERS];

@@ -321,20 +321,15 @@ void VisBufferFeature::declareShade(graph::FrameGraph& graph, Blackboard& board,
   auto stats = graph.importBuffer("visibility stats readback", {sizeof(VisCounters), {}}, rhi::external(statsReadback_),
                                   hostState, hostState);
   auto node = graph.addNode("Material Shade", graph::NodeType::Compute, kQueue);
-  if (b.wordImage.valid()) {
-    // Two storage-image variables (r64ui words, rgba16f HDR) alias one binding, and synchronization
-    // validation counts every descriptor of a statically used binding as accessed by each: the HDR
-    // variable "writes" the words, the words variable "reads" the HDR. Read-write on both makes the
-    // planned barriers cover what it sees.
-    b.wordImage = node.write(b.wordImage, Access::StorageReadWrite);
-  } else {
+  if (b.wordImage.valid())
+    node.read(b.wordImage, Access::StorageRead);
+  else
     node.read(b.words, Access::StorageRead);
-  }
   node.read(b.visible, Access::StorageRead);
   node.read(b.rasterArgs, Access::TransferSrc);
   stats = node.write(stats, Access::TransferDst);
   b.depth = node.write(b.depth, Access::StorageWrite);
-  targets.hdr = node.write(targets.hdr, b.wordImage.valid() ? Access::StorageReadWrite : Access::StorageWrite);
+  targets.hdr = node.write(targets.hdr, Access::StorageWrite);
   ClusteredLights clusters;
   if (const auto* published = board.find<ClusteredLights>()) {
     clusters = *published;

@@ -3,6 +3,7 @@
 #include <fgb/core/error.hpp>
 #include <fgb/rhi/types.hpp>
 
+#include <algorithm>
 #include <array>
 #include <string>
 
@@ -10,15 +11,22 @@ namespace fgb::vulkan {
 namespace {
 
 constexpr std::array<VkDescriptorType, kBindingCount> kTypes = {
-    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-    VK_DESCRIPTOR_TYPE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
-constexpr std::array<uint32_t, kBindingCount> kCapacities = {kMaxStorageBuffers, kMaxSampledTextures, kMaxStorageTextures,
-                                                             kMaxSamplers, kMaxStorageBuffers};
-constexpr std::array<const char*, 4> kNames = {"storage buffers", "sampled textures", "storage textures", "samplers"};
+    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE,  VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+    VK_DESCRIPTOR_TYPE_SAMPLER,        VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
+constexpr std::array<uint32_t, kBindingCount> kCapacities = {kMaxStorageBuffers,  kMaxSampledTextures,
+                                                             kMaxStorageTextures, kMaxSamplers,
+                                                             kMaxStorageBuffers,  kMaxInt64StorageTextures};
+constexpr std::array<const char*, kBindingCount> kNames = {"storage buffers",          "sampled textures",
+                                                           "storage textures",         "samplers",
+                                                           "writable storage buffers", "R64 storage textures"};
 
 uint32_t index(Binding binding) { return static_cast<uint32_t>(binding); }
 
 }  // namespace
+
+Binding storageTextureBinding(graph::Format format) {
+  return format == graph::Format::R64Uint ? Binding::Int64StorageTextures : Binding::StorageTextures;
+}
 
 bool supportsBindless(VkPhysicalDevice physical) {
   auto v12 = vkStruct<VkPhysicalDeviceVulkan12Features>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES);
@@ -32,10 +40,14 @@ bool supportsBindless(VkPhysicalDevice physical) {
 
 Descriptors::Descriptors(VkDevice device, bool bindless, std::function<void()> beforeWrite)
     : device_(device), bindless_(bindless), beforeWrite_(std::move(beforeWrite)) {
-  for (uint32_t i = 0; i < 4; ++i) slots_[i].capacity = kCapacities[i];
   bufferEntries_.assign(kMaxStorageBuffers, VkDescriptorBufferInfo{});
-  for (uint32_t i = 1; i < 4; ++i) imageEntries_[i].assign(kCapacities[i], VkDescriptorImageInfo{});
-  for (uint32_t i = 0; i < 4; ++i) private_[i].assign(kCapacities[i], false);
+  for (const Binding binding : kSlotBindings) {
+    const uint32_t i = index(binding);
+    slots_[i].capacity = kCapacities[i];
+    private_[i].assign(kCapacities[i], false);
+    if (kTypes[i] != VK_DESCRIPTOR_TYPE_STORAGE_BUFFER)
+      imageEntries_[i].assign(kCapacities[i], VkDescriptorImageInfo{});
+  }
   createLayout();
   createPool();
 }
@@ -138,11 +150,11 @@ uint32_t Descriptors::addSampledTexture(VkImageView view) {
   return slot;
 }
 
-uint32_t Descriptors::addStorageTexture(VkImageView view) {
-  const uint32_t slot = take(Binding::StorageTextures);
+uint32_t Descriptors::addStorageTexture(VkImageView view, Binding binding) {
+  const uint32_t slot = take(binding);
   const VkDescriptorImageInfo info{VK_NULL_HANDLE, view, VK_IMAGE_LAYOUT_GENERAL};
-  write(Binding::StorageTextures, slot, nullptr, &info);
-  added(Binding::StorageTextures, slot, nullptr, &info);
+  write(binding, slot, nullptr, &info);
+  added(binding, slot, nullptr, &info);
   return slot;
 }
 
@@ -181,7 +193,9 @@ void Descriptors::fillWithDummies(VkBuffer buffer, VkImageView sampledView, VkIm
   const VkDescriptorImageInfo samplerInfo{sampler, VK_NULL_HANDLE, VK_IMAGE_LAYOUT_UNDEFINED};
   std::vector<VkDescriptorBufferInfo> buffers(kMaxStorageBuffers, bufferInfo);
   std::vector<VkDescriptorImageInfo> sampled(kMaxSampledTextures, sampledInfo);
-  std::vector<VkDescriptorImageInfo> storage(kMaxStorageTextures, storageInfo);
+  // Binding 5 (R64 storage textures) gets the same dummy: only its slots of real R64 textures are
+  // ever accessed.
+  std::vector<VkDescriptorImageInfo> storage(std::max(kMaxStorageTextures, kMaxInt64StorageTextures), storageInfo);
   std::vector<VkDescriptorImageInfo> samplers(kMaxSamplers, samplerInfo);
   std::array<VkWriteDescriptorSet, kBindingCount> writes{};
   for (uint32_t i = 0; i < kBindingCount; ++i) {
@@ -196,6 +210,7 @@ void Descriptors::fillWithDummies(VkBuffer buffer, VkImageView sampledView, VkIm
   writes[2].pImageInfo = storage.data();
   writes[3].pImageInfo = samplers.data();
   writes[4].pBufferInfo = buffers.data();
+  writes[5].pImageInfo = storage.data();
   vkUpdateDescriptorSets(device_, kBindingCount, writes.data(), 0, nullptr);
 }
 

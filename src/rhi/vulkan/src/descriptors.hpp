@@ -3,6 +3,11 @@
 // (update-after-bind, partially bound): slots are written whenever a resource is created. Fallback
 // otherwise: every slot is pre-filled with a dummy resource and writes wait until the GPU is idle.
 //
+// R64Uint storage textures have a binding of their own (5): shaders declare them as u64image2D,
+// and a second image variable on binding 2 would make validation count every storage texture a
+// node uses as read by one variable and written by the other (both variables see every
+// descriptor of the binding they alias).
+//
 // Storage buffers appear twice, at the same slot: binding 0 for blocks the shader only reads
 // (`readonly`), binding 4 for blocks it may write. Bindless devices also get *scoped* sets
 // (ScopedSets, one per graph node): same layout and slot numbers, but exposing only the resources
@@ -13,6 +18,8 @@
 #pragma once
 
 #include "vk.hpp"
+
+#include <fgb/graph/format.hpp>
 
 #include <cstdint>
 #include <functional>
@@ -25,6 +32,7 @@ inline constexpr uint32_t kMaxStorageBuffers = 16384;  // per storage-buffer bin
 inline constexpr uint32_t kMaxSampledTextures = 4096;
 inline constexpr uint32_t kMaxStorageTextures = 1024;
 inline constexpr uint32_t kMaxSamplers = 64;
+inline constexpr uint32_t kMaxInt64StorageTextures = 64;
 
 enum class Binding : uint32_t {
   StorageBuffers = 0,  // read-only blocks
@@ -32,8 +40,11 @@ enum class Binding : uint32_t {
   StorageTextures = 2,
   Samplers = 3,
   WritableStorageBuffers = 4,  // blocks the shader may write; same slots as StorageBuffers
+  Int64StorageTextures = 5,    // R64Uint storage textures (64-bit image atomics)
 };
-inline constexpr uint32_t kBindingCount = 5;
+inline constexpr uint32_t kBindingCount = 6;
+// The storage-texture binding of a format.
+Binding storageTextureBinding(graph::Format format);
 
 class ScopedSets;
 
@@ -48,6 +59,7 @@ struct DescriptorScope {
   std::vector<uint32_t> writtenBuffers;
   std::vector<uint32_t> sampled;
   std::vector<uint32_t> storageTextures;
+  std::vector<uint32_t> int64StorageTextures;
 };
 
 // Can this device run the bindless path?
@@ -64,7 +76,7 @@ class Descriptors {
 
   uint32_t addStorageBuffer(VkBuffer buffer);
   uint32_t addSampledTexture(VkImageView view);
-  uint32_t addStorageTexture(VkImageView view);
+  uint32_t addStorageTexture(VkImageView view, Binding binding);  // StorageTextures or Int64StorageTextures
   uint32_t addSampler(VkSampler sampler);
   void remove(Binding binding, uint32_t index);
 
@@ -74,6 +86,10 @@ class Descriptors {
 
   // Fallback mode: points every slot at the dummies (views in GENERAL layout).
   void fillWithDummies(VkBuffer buffer, VkImageView sampledView, VkImageView storageView, VkSampler sampler);
+  // Bindings with slots of their own (WritableStorageBuffers shares StorageBuffers' slots).
+  static constexpr Binding kSlotBindings[] = {Binding::StorageBuffers, Binding::SampledTextures,
+                                              Binding::StorageTextures, Binding::Samplers,
+                                              Binding::Int64StorageTextures};
 
  private:
   friend class ScopedSets;
@@ -95,11 +111,12 @@ class Descriptors {
   Owned<VkDescriptorPool> pool_;
   Owned<VkPipelineLayout> pipelineLayout_;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
-  Slots slots_[4];
+  Slots slots_[kBindingCount];  // by Binding (WritableStorageBuffers unused)
   // Bindless: what each slot holds (null handle: free), to fill scoped sets.
   std::vector<VkDescriptorBufferInfo> bufferEntries_;
-  std::vector<VkDescriptorImageInfo> imageEntries_[4];  // by Binding (1..3 used)
-  std::vector<bool> private_[4];     // by Binding (0..3): slot holds a graph's transient
+  std::vector<VkDescriptorImageInfo> imageEntries_[kBindingCount];  // by Binding (the image ones)
+  // By Binding: the slot holds a graph's transient.
+  std::vector<bool> private_[kBindingCount];
   bool creatingPrivate_ = false;
   std::vector<ScopedSets*> scoped_;  // live scoped sets: new resources are added to them too
 };

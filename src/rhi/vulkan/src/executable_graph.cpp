@@ -528,7 +528,10 @@ void VulkanGraph::createScopedSets() {
       } else if (textures_[use.resource].valid()) {
         const TextureRecord& record = device_.texture(textures_[use.resource]);
         if (use.access == graph::Access::Sampled) add(scope.sampled, record.sampledIndex);
-        if (storage) add(scope.storageTextures, record.storageIndex);
+        if (storage)
+          add(storageTextureBinding(record.desc.format) == Binding::Int64StorageTextures ? scope.int64StorageTextures
+                                                                                         : scope.storageTextures,
+              record.storageIndex);
       }
     }
     scopedSets_->fill(s, scope);

@@ -113,7 +113,8 @@ rhi::TextureId VulkanDevice::createTextureIn(const rhi::TextureDesc& desc, const
       rhi::kTextureSampled | rhi::kTextureStorage | rhi::kTextureColorAttachment | rhi::kTextureDepthAttachment;
   if ((desc.usage & kViewUsages) != 0) createView(record);
   if (desc.usage & rhi::kTextureSampled) record.sampledIndex = descriptors_->addSampledTexture(record.view.get());
-  if (desc.usage & rhi::kTextureStorage) record.storageIndex = descriptors_->addStorageTexture(record.view.get());
+  if (desc.usage & rhi::kTextureStorage)
+    record.storageIndex = descriptors_->addStorageTexture(record.view.get(), storageTextureBinding(desc.format));
 
   const uint32_t slot = takeSlot(freeTextures_, textures_.size());
   if (slot == textures_.size()) textures_.emplace_back();
@@ -151,7 +152,7 @@ void VulkanDevice::destroyBuffer(rhi::BufferId id) {
 void VulkanDevice::destroyTexture(rhi::TextureId id) {
   TextureRecord& record = textures_.at(id.index);
   descriptors_->remove(Binding::SampledTextures, record.sampledIndex);
-  descriptors_->remove(Binding::StorageTextures, record.storageIndex);
+  descriptors_->remove(storageTextureBinding(record.desc.format), record.storageIndex);
   if (record.ownsMemory) memory_->free(record.allocation);
   record = TextureRecord{};
   freeTextures_.push_back(id.index);

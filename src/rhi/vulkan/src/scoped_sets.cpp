@@ -10,8 +10,8 @@ namespace {
 constexpr uint32_t at(Binding binding) { return static_cast<uint32_t>(binding); }
 
 constexpr std::array<VkDescriptorType, kBindingCount> kTypes = {
-    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-    VK_DESCRIPTOR_TYPE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE,  VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+    VK_DESCRIPTOR_TYPE_SAMPLER,        VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
 constexpr VkDescriptorType typeOf(Binding binding) { return kTypes[at(binding)]; }
 
 bool inGraph(const std::vector<bool>* graphSlots, uint32_t slot) {
@@ -22,8 +22,9 @@ bool inGraph(const std::vector<bool>* graphSlots, uint32_t slot) {
 
 ScopedSets::ScopedSets(Descriptors& owner, uint32_t count) : owner_(owner) {
   if (count == 0) return;
-  const std::array<uint32_t, kBindingCount> capacities = {kMaxStorageBuffers, kMaxSampledTextures, kMaxStorageTextures,
-                                                          kMaxSamplers, kMaxStorageBuffers};
+  const std::array<uint32_t, kBindingCount> capacities = {kMaxStorageBuffers,  kMaxSampledTextures,
+                                                          kMaxStorageTextures, kMaxSamplers,
+                                                          kMaxStorageBuffers,  kMaxInt64StorageTextures};
   std::array<VkDescriptorPoolSize, kBindingCount> sizes{};
   for (uint32_t i = 0; i < kBindingCount; ++i) sizes[i] = {kTypes[i], capacities[i] * count};
   auto info = vkStruct<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
@@ -86,12 +87,13 @@ void ScopedSets::fill(uint32_t index, const DescriptorScope& scope) {
   }
   for (const uint32_t slot : scope.sampled) add(Binding::SampledTextures, slot);
   for (const uint32_t slot : scope.storageTextures) add(Binding::StorageTextures, slot);
+  for (const uint32_t slot : scope.int64StorageTextures) add(Binding::Int64StorageTextures, slot);
   if (!writes.empty()) vkUpdateDescriptorSets(owner_.device_, static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
 }
 
 void ScopedSets::added(Binding binding, uint32_t slot) {
   // A resource created after the graph: outside it, so visible to every node (read-only).
-  if (binding == Binding::StorageTextures) return;
+  if (binding == Binding::StorageTextures || binding == Binding::Int64StorageTextures) return;
   for (const VkDescriptorSet set : sets_) {
     auto write = vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
     write.dstSet = set;

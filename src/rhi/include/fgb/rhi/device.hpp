@@ -163,6 +163,8 @@ class Device {
 
   [[nodiscard]] virtual uint32_t storageBufferIndex(BufferId buffer) const = 0;
   [[nodiscard]] virtual uint32_t sampledTextureIndex(TextureId texture) const = 0;
+  // R64Uint textures index a storage-texture table of their own (bindless.glsl's
+  // FGB_BINDING_INT64_STORAGE_TEXTURES); other formats share one.
   [[nodiscard]] virtual uint32_t storageTextureIndex(TextureId texture) const = 0;
   [[nodiscard]] virtual uint32_t samplerIndex(SamplerId sampler) const = 0;
 

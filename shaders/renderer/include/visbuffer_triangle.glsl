@@ -12,9 +12,9 @@ layout(push_constant) uniform Push {
   uint materials;
   uint draws;
   uint clusters;
-  uint indices;         // cluster triangle indices (mesh-local)
+  uint indices;         // cluster triangles (packed 8-bit cluster-local indices, ClusterData)
   uint vertices;        // the scene's vertex buffer (streams at the float offsets below)
-  uint positions;
+  uint positions;       // cluster vertex positions (vec3 per cluster vertex)
   uint normals;
   uint tangents;
   uint uvs;
@@ -34,7 +34,7 @@ layout(push_constant) uniform Push {
   uint flags;           // bit 0: reversed Z; bit 1: raster the large-triangle tiles (else small)
   uint tileJobs;        // uvec2 per tile job: large-list slot, job index within the triangle
   uint tileJobCapacity;
-  uint pad;
+  uint vertexMap;       // per cluster vertex: its vertex in the streams of `vertices`
   vec4 background;      // (at byte 112) HDR clear of pixels no triangle covers (pre-exposed, alpha 0)
 } pc;
 
@@ -69,7 +69,15 @@ vec2 viewportSize() { return gViewport; }
 // only in rounding).
 mat4 modelViewProj(mat4 model) { return gViewProj * model; }
 
-vec4 clipPosition(mat4 mvp, uint vertex) { return mvp * vec4(fetchVec3(pc.vertices, pc.positions, vertex), 1.0); }
+// Positions come from the cluster vertex stream (`vertex` is a cluster vertex).
+vec3 clusterPosition(uint vertex) { return fetchVec3(pc.positions, 0u, vertex); }
+vec4 clipPosition(mat4 mvp, uint vertex) { return mvp * vec4(clusterPosition(vertex), 1.0); }
+
+// A cluster vertex's vertex in the scene's attribute streams (normals, tangents, UVs).
+uint streamVertex(uint clusterVertex) { return fgbUintsRead[pc.vertexMap].values[clusterVertex]; }
+uvec3 streamVertices(uvec3 clusterVertices) {
+  return uvec3(streamVertex(clusterVertices.x), streamVertex(clusterVertices.y), streamVertex(clusterVertices.z));
+}
 
 // Screen position (pixels, y down as the viewport transform makes it) of a clip-space point.
 vec2 toScreen(vec4 c) { return (c.xy / c.w * 0.5 + 0.5) * viewportSize(); }

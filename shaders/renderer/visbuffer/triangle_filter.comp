@@ -33,18 +33,21 @@ bool outsideFrustum(vec4 c[3]) {
 // shader without barriers runs as straight SIMD code on CPU devices (lavapipe runs the invocations
 // of a shader with barriers as coroutines, which cost more than the loads).
 struct ClusterSetup {
-  ClusterDraw draw;
+  uint flags;  // ClusterDraw::flags
   mat4 modelViewProj;
-  uint firstIndex;
+  uint firstTriangle;
+  uint firstVertex;
   uint triangles;
 };
 
 ClusterSetup loadCluster(uint clusterSlot) {
   ClusterSetup c;
-  c.draw = visDraws[pc.draws].draws[fgbUintsRead[pc.visible].values[clusterSlot]];
-  c.modelViewProj = modelViewProj(fgbInstances[pc.instances].instances[c.draw.instance].model);
-  c.firstIndex = visClusters[pc.clusters].clusters[c.draw.cluster].firstIndex;
-  c.triangles = visClusters[pc.clusters].clusters[c.draw.cluster].triangleCount;
+  ClusterDraw draw = visDraws[pc.draws].draws[fgbUintsRead[pc.visible].values[clusterSlot]];
+  c.flags = draw.flags;
+  c.modelViewProj = modelViewProj(fgbInstances[pc.instances].instances[draw.instance].model);
+  c.firstTriangle = visClusters[pc.clusters].clusters[draw.cluster].firstTriangle;
+  c.firstVertex = visClusters[pc.clusters].clusters[draw.cluster].firstVertex;
+  c.triangles = visClusters[pc.clusters].clusters[draw.cluster].triangleCount;
   return c;
 }
 
@@ -70,10 +73,8 @@ void appendLarge(ScreenTriangle t, uint id, bool masked) {
 // Filters one triangle of the workgroup's cluster: drops it, or appends it to the small list or
 // (appendLarge) the large one.
 void filterTriangle(ClusterSetup c, uint clusterSlot, uint triangle) {
-  uint flags = c.draw.flags;
-  uint first = c.firstIndex + 3u * triangle;
-  uvec3 vertices = uvec3(fgbUintsRead[pc.indices].values[first], fgbUintsRead[pc.indices].values[first + 1u],
-                         fgbUintsRead[pc.indices].values[first + 2u]) + c.draw.firstVertex;
+  uint flags = c.flags;
+  uvec3 vertices = clusterTriangleVertices(fgbUintsRead[pc.indices].values[c.firstTriangle + triangle], c.firstVertex);
   if (vertices.x == vertices.y || vertices.y == vertices.z || vertices.x == vertices.z) return;
   ScreenTriangle t = setupTriangle(c.modelViewProj, vertices);
   if (t.clip[0].w <= 0.0 && t.clip[1].w <= 0.0 && t.clip[2].w <= 0.0) return;

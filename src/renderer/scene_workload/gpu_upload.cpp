@@ -234,12 +234,38 @@ std::vector<features::ClusterDrawGpu> clusterDraws(const scene::Scene& scene, co
   return draws;
 }
 
+// Per cluster vertex (scene::Scene::clusterVertices' order): its vertex in the scene-wide streams,
+// and its position copied out of them.
+struct ClusterVertexStreams {
+  std::vector<uint32_t> vertexMap;
+  std::vector<glm::vec3> positions;
+};
+
+ClusterVertexStreams clusterVertexStreams(const scene::Scene& scene) {
+  ClusterVertexStreams streams{std::vector<uint32_t>(scene.clusterVertices.size(), 0u),
+                               std::vector<glm::vec3>(scene.clusterVertices.size(), glm::vec3(0.0f))};
+  for (const scene::Mesh& mesh : scene.meshes) {
+    for (uint32_t c = mesh.firstCluster; c < mesh.firstCluster + mesh.clusterCount; ++c) {
+      const scene::Cluster& cluster = scene.clusters[c];
+      for (uint32_t v = cluster.firstVertex; v < cluster.firstVertex + cluster.vertexCount; ++v) {
+        streams.vertexMap[v] = mesh.firstVertex + scene.clusterVertices[v];
+        streams.positions[v] = scene.positions[streams.vertexMap[v]];
+      }
+    }
+  }
+  return streams;
+}
+
 void uploadClusters(SceneUploader& uploader, const scene::Scene& scene, GpuScene& gpu) {
   auto& geometry = gpu.clusterGeometry;
   const auto draws = clusterDraws(scene, gpu, geometry.triangles);
   geometry.drawCount = uint32_t(draws.size());
   geometry.clusters = uploader.buffer("scene clusters", bytesOf(scene.clusters), rhi::kBufferStorage);
-  geometry.indices = uploader.buffer("scene cluster indices", bytesOf(scene.clusterIndices), rhi::kBufferStorage);
+  geometry.packedTriangles =
+      uploader.buffer("scene cluster triangles", bytesOf(scene.clusterTriangles), rhi::kBufferStorage);
+  const ClusterVertexStreams streams = clusterVertexStreams(scene);
+  geometry.positions = uploader.buffer("scene cluster positions", bytesOf(streams.positions), rhi::kBufferStorage);
+  geometry.vertexMap = uploader.buffer("scene cluster vertex map", bytesOf(streams.vertexMap), rhi::kBufferStorage);
   geometry.draws = uploader.buffer("cluster draws", bytesOf(draws), rhi::kBufferStorage);
 }
 

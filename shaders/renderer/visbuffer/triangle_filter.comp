@@ -1,17 +1,17 @@
 #version 460
-// "Triangle Filter" (The Forge's triangle filtering): one workgroup per visible cluster, one
-// invocation per two of its (at most 128) triangles. A triangle is dropped when it is degenerate, behind the eye or beyond
-// a frustum plane, back-facing (single-sided materials), or too small to cover a pixel centre.
+// "Triangle Filter" (The Forge's triangle filtering): one workgroup per visible cluster, its (at
+// most 128) triangles shared among the invocations (see main). A triangle is dropped when it is
+// degenerate, behind the eye or beyond a frustum plane, back-facing (single-sided materials), or
+// too small to cover a pixel centre.
 // Survivors covering at most 8x8 pixel centres go to the small list (one raster thread each);
 // larger ones go to the large list set up (packLargeTriangle), and their 8x8-pixel tiles, in
 // jobs of at most kTilesPerJob, to the tile-job list: "Visibility Raster" runs one workgroup per
 // job, so no workgroup walks a big triangle and none searches for its triangle.
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_vote : require
 #include "../include/visbuffer_triangle.glsl"
 
-// Two triangles per invocation: the cluster's draw, instance and transform are loaded per
-// invocation (see loadCluster), so fewer invocations per cluster load them fewer times.
-const uint kTrianglesPerInvocation = 2u;
 layout(local_size_x = 64) in;
 
 const int kSmallPixels = 8;
@@ -71,41 +71,57 @@ void appendLarge(ScreenTriangle t, uint id, bool masked) {
 }
 
 // Filters one triangle of the workgroup's cluster: drops it, or appends it to the small list or
-// (appendLarge) the large one.
-void filterTriangle(ClusterSetup c, uint clusterSlot, uint triangle) {
+// (appendLarge) the large one. The tests are folded into one `keep` flag, and each piece of work
+// after them is skipped when no invocation of the subgroup needs it (subgroupAny: a branch uniform
+// in the subgroup). SIMD CPU devices (lavapipe) run a divergent branch's code for every
+// invocation under a mask, so without the votes every triangle paid for the rare large-list path;
+// GPUs skip a branch no invocation takes anyway, so the votes cost them a few instructions.
+void filterTriangle(ClusterSetup c, uint clusterSlot, uint triangle, bool valid) {
   uint flags = c.flags;
   uvec3 vertices = clusterTriangleVertices(fgbUintsRead[pc.indices].values[c.firstTriangle + triangle], c.firstVertex);
-  if (vertices.x == vertices.y || vertices.y == vertices.z || vertices.x == vertices.z) return;
   ScreenTriangle t = setupTriangle(c.modelViewProj, vertices);
-  if (t.clip[0].w <= 0.0 && t.clip[1].w <= 0.0 && t.clip[2].w <= 0.0) return;
-  if (outsideFrustum(t.clip)) return;
-  if (t.pixels.x > t.pixels.z || t.pixels.y > t.pixels.w) return;  // covers no pixel centre
-  if (t.projected && t.area == 0) return;
-  if ((flags & kDrawSingleSided) != 0u) {
-    bool front = framebufferFront(t) != ((flags & kDrawMirrored) != 0u);
-    if (!front) return;
-  }
+  bool keep = valid && vertices.x != vertices.y && vertices.y != vertices.z && vertices.x != vertices.z;
+  keep = keep && !(t.clip[0].w <= 0.0 && t.clip[1].w <= 0.0 && t.clip[2].w <= 0.0) && !outsideFrustum(t.clip);
+  keep = keep && t.pixels.x <= t.pixels.z && t.pixels.y <= t.pixels.w;  // covers a pixel centre
+  keep = keep && !(t.projected && t.area == 0);
+  if ((flags & kDrawSingleSided) != 0u) keep = keep && framebufferFront(t) != ((flags & kDrawMirrored) != 0u);
+  if (!subgroupAny(keep)) return;
   uint id = (clusterSlot << kClusterTriangleBits) | triangle;
   bool masked = (flags & kDrawAlphaMasked) != 0u;
   ivec2 span = t.pixels.zw - t.pixels.xy + 1;
-  if (t.projected && span.x <= kSmallPixels && span.y <= kSmallPixels && packable(t)) {
+  bool small = keep && t.projected && span.x <= kSmallPixels && span.y <= kSmallPixels && packable(t);
+  if (subgroupAny(small) && small) {
     uint slot = atomicAdd(visCounters[pc.counters].c.smallTriangles, 1u);
     uvec4 a, b;
     packSmallTriangle(t, id, masked, a, b);
     visUvec4s[pc.smallList].values[2u * slot] = a;
     visUvec4s[pc.smallList].values[2u * slot + 1u] = b;
-  } else {
-    appendLarge(t, id, masked);
   }
+  bool large = keep && !small;
+  if (subgroupAny(large) && large) appendLarge(t, id, masked);
 }
+
+// Which invocations share the cluster's triangles. GPUs run a workgroup's subgroups (32 or 64
+// wide) side by side: all 64 invocations take two triangles each. SIMD CPU devices (lavapipe: 8
+// lanes of AVX2) run its subgroups one after another on one thread, so more subgroups buy no
+// parallelism and each repeats the cluster setup (loadCluster: draw, instance, transform product):
+// there the first subgroup takes all the triangles and the others leave at once (atrium
+// 640x360 on lavapipe: about 11 of the filter's 46 ms were that setup, seven times over).
+const uint kParallelSubgroupSize = 32u;
 
 void main() {
   uint clusterSlot = linearGroup();
   if (clusterSlot >= visCountersRead[pc.args].c.visibleClusters) return;  // uniform in the workgroup
+  bool wholeGroup = gl_SubgroupSize >= kParallelSubgroupSize;
+  if (!wholeGroup && gl_SubgroupID != 0u) return;  // uniform in the subgroup
+  uint sharing = wholeGroup ? gl_WorkGroupSize.x : gl_SubgroupSize;
+  uint lane = wholeGroup ? gl_LocalInvocationIndex : gl_SubgroupInvocationID;
   loadFrameGlobals();
   ClusterSetup c = loadCluster(clusterSlot);
-  for (uint i = 0u; i < kTrianglesPerInvocation; ++i) {
-    uint triangle = gl_LocalInvocationIndex + i * gl_WorkGroupSize.x;
-    if (triangle < c.triangles) filterTriangle(c, clusterSlot, triangle);
+  for (uint first = 0u; first < c.triangles; first += sharing) {  // uniform trip count
+    uint triangle = first + lane;
+    // Past the cluster's end: no return, so every invocation reaches the subgroup votes (its
+    // triangle index still lies within the cluster's storage: the loads are in bounds).
+    filterTriangle(c, clusterSlot, min(triangle, c.triangles - 1u), triangle < c.triangles);
   }
 }

@@ -9,7 +9,6 @@
 // job, so no workgroup walks a big triangle and none searches for its triangle.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_basic : require
-#extension GL_KHR_shader_subgroup_vote : require
 #include "../include/visbuffer_triangle.glsl"
 
 layout(local_size_x = 64) in;
@@ -71,34 +70,32 @@ void appendLarge(ScreenTriangle t, uint id, bool masked) {
 }
 
 // Filters one triangle of the workgroup's cluster: drops it, or appends it to the small list or
-// (appendLarge) the large one. The tests are folded into one `keep` flag, and each piece of work
-// after them is skipped when no invocation of the subgroup needs it (subgroupAny: a branch uniform
-// in the subgroup). SIMD CPU devices (lavapipe) run a divergent branch's code for every
-// invocation under a mask, so without the votes every triangle paid for the rare large-list path;
-// GPUs skip a branch no invocation takes anyway, so the votes cost them a few instructions.
-void filterTriangle(ClusterSetup c, uint clusterSlot, uint triangle, bool valid) {
+// (appendLarge) the large one.
+void filterTriangle(ClusterSetup c, uint clusterSlot, uint triangle) {
   uint flags = c.flags;
   uvec3 vertices = clusterTriangleVertices(fgbUintsRead[pc.indices].values[c.firstTriangle + triangle], c.firstVertex);
+  if (vertices.x == vertices.y || vertices.y == vertices.z || vertices.x == vertices.z) return;
   ScreenTriangle t = setupTriangle(c.modelViewProj, vertices);
-  bool keep = valid && vertices.x != vertices.y && vertices.y != vertices.z && vertices.x != vertices.z;
-  keep = keep && !(t.clip[0].w <= 0.0 && t.clip[1].w <= 0.0 && t.clip[2].w <= 0.0) && !outsideFrustum(t.clip);
-  keep = keep && t.pixels.x <= t.pixels.z && t.pixels.y <= t.pixels.w;  // covers a pixel centre
-  keep = keep && !(t.projected && t.area == 0);
-  if ((flags & kDrawSingleSided) != 0u) keep = keep && framebufferFront(t) != ((flags & kDrawMirrored) != 0u);
-  if (!subgroupAny(keep)) return;
+  if (t.clip[0].w <= 0.0 && t.clip[1].w <= 0.0 && t.clip[2].w <= 0.0) return;
+  if (outsideFrustum(t.clip)) return;
+  if (t.pixels.x > t.pixels.z || t.pixels.y > t.pixels.w) return;  // covers no pixel centre
+  if (t.projected && t.area == 0) return;
+  if ((flags & kDrawSingleSided) != 0u) {
+    bool front = framebufferFront(t) != ((flags & kDrawMirrored) != 0u);
+    if (!front) return;
+  }
   uint id = (clusterSlot << kClusterTriangleBits) | triangle;
   bool masked = (flags & kDrawAlphaMasked) != 0u;
   ivec2 span = t.pixels.zw - t.pixels.xy + 1;
-  bool small = keep && t.projected && span.x <= kSmallPixels && span.y <= kSmallPixels && packable(t);
-  if (subgroupAny(small) && small) {
+  if (t.projected && span.x <= kSmallPixels && span.y <= kSmallPixels && packable(t)) {
     uint slot = atomicAdd(visCounters[pc.counters].c.smallTriangles, 1u);
     uvec4 a, b;
     packSmallTriangle(t, id, masked, a, b);
     visUvec4s[pc.smallList].values[2u * slot] = a;
     visUvec4s[pc.smallList].values[2u * slot + 1u] = b;
+  } else {
+    appendLarge(t, id, masked);
   }
-  bool large = keep && !small;
-  if (subgroupAny(large) && large) appendLarge(t, id, masked);
 }
 
 // Which invocations share the cluster's triangles. GPUs run a workgroup's subgroups (32 or 64
@@ -118,10 +115,8 @@ void main() {
   uint lane = wholeGroup ? gl_LocalInvocationIndex : gl_SubgroupInvocationID;
   loadFrameGlobals();
   ClusterSetup c = loadCluster(clusterSlot);
-  for (uint first = 0u; first < c.triangles; first += sharing) {  // uniform trip count
+  for (uint first = 0u; first < c.triangles; first += sharing) {
     uint triangle = first + lane;
-    // Past the cluster's end: no return, so every invocation reaches the subgroup votes (its
-    // triangle index still lies within the cluster's storage: the loads are in bounds).
-    filterTriangle(c, clusterSlot, min(triangle, c.triangles - 1u), triangle < c.triangles);
+    if (triangle < c.triangles) filterTriangle(c, clusterSlot, triangle);
   }
 }

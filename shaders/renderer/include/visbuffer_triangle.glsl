@@ -4,6 +4,7 @@
 #ifndef FGB_RENDERER_VISBUFFER_TRIANGLE_GLSL
 #define FGB_RENDERER_VISBUFFER_TRIANGLE_GLSL
 
+#extension GL_KHR_shader_subgroup_vote : require
 #include "visbuffer.glsl"
 
 layout(push_constant) uniform Push {
@@ -113,7 +114,9 @@ ivec4 clippedPixelRange(vec4 c[3]) {
 
 // Straight-line code (no early exit per vertex): SIMD devices evaluate all three vertices anyway.
 // A vertex at or behind w = kMinW makes its screen position meaningless, but then the triangle is
-// not `projected` and only its clip positions are used.
+// not `projected` and only its clip positions are used. The rare unprojected triangles' clipped
+// box sits behind a subgroup vote: SIMD CPU devices (lavapipe) run a divergent branch under a
+// mask, a branch uniform in the subgroup only when taken.
 ScreenTriangle setupTriangle(mat4 mvp, uvec3 vertices) {
   ScreenTriangle t;
   t.clip[0] = clipPosition(mvp, vertices.x);
@@ -122,11 +125,11 @@ ScreenTriangle setupTriangle(mat4 mvp, uvec3 vertices) {
   vec2 s0 = toScreen(t.clip[0]), s1 = toScreen(t.clip[1]), s2 = toScreen(t.clip[2]);
   t.projected = t.clip[0].w > kMinW && t.clip[1].w > kMinW && t.clip[2].w > kMinW &&
                 !any(greaterThan(max(abs(s0), max(abs(s1), abs(s2))), vec2(kGuardBand)));
-  if (!t.projected) {
+  if (subgroupAny(!t.projected) && !t.projected) {  // see above
     t.area = 0;
     t.pixels = clippedPixelRange(t.clip);
-    return t;
   }
+  if (!t.projected) return t;
   t.fixedPos[0] = ivec2(round(s0 * float(kSubPixel)));
   t.fixedPos[1] = ivec2(round(s1 * float(kSubPixel)));
   t.fixedPos[2] = ivec2(round(s2 * float(kSubPixel)));

@@ -15,7 +15,7 @@ layout(push_constant) uniform Push {
   uint clusters;
   uint indices;         // cluster triangles (packed 8-bit cluster-local indices, ClusterData)
   uint vertices;        // the scene's vertex buffer (streams at the float offsets below)
-  uint positions;       // cluster vertex positions (vec3 per cluster vertex)
+  uint positions;       // cluster vertices (uvec4: position as float bits, w: its vertex in `vertices`)
   uint normals;
   uint tangents;
   uint uvs;
@@ -35,7 +35,7 @@ layout(push_constant) uniform Push {
   uint flags;           // bit 0: reversed Z; bit 1: raster the large-triangle tiles (else small)
   uint tileJobs;        // uvec2 per tile job: large-list slot, job index within the triangle
   uint tileJobCapacity;
-  uint vertexMap;       // per cluster vertex: its vertex in the streams of `vertices`
+  uint pad;
   vec4 background;      // (at byte 112) HDR clear of pixels no triangle covers (pre-exposed, alpha 0)
 } pc;
 
@@ -70,12 +70,13 @@ vec2 viewportSize() { return gViewport; }
 // only in rounding).
 mat4 modelViewProj(mat4 model) { return gViewProj * model; }
 
-// Positions come from the cluster vertex stream (`vertex` is a cluster vertex).
-vec3 clusterPosition(uint vertex) { return fetchVec3(pc.positions, 0u, vertex); }
+// Positions come from the cluster vertex stream (`vertex` is a cluster vertex): one 16-byte
+// element per vertex, the position's float bits and (w) the vertex in the attribute streams.
+vec3 clusterPosition(uint vertex) { return uintBitsToFloat(visUvec4sRead[pc.positions].values[vertex].xyz); }
 vec4 clipPosition(mat4 mvp, uint vertex) { return mvp * vec4(clusterPosition(vertex), 1.0); }
 
 // A cluster vertex's vertex in the scene's attribute streams (normals, tangents, UVs).
-uint streamVertex(uint clusterVertex) { return fgbUintsRead[pc.vertexMap].values[clusterVertex]; }
+uint streamVertex(uint clusterVertex) { return visUvec4sRead[pc.positions].values[clusterVertex].w; }
 uvec3 streamVertices(uvec3 clusterVertices) {
   return uvec3(streamVertex(clusterVertices.x), streamVertex(clusterVertices.y), streamVertex(clusterVertices.z));
 }

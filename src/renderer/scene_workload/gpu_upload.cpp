@@ -8,6 +8,7 @@
 #include <glm/matrix.hpp>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <tuple>
@@ -234,26 +235,21 @@ std::vector<features::ClusterDrawGpu> clusterDraws(const scene::Scene& scene, co
   return draws;
 }
 
-// Per cluster vertex (scene::Scene::clusterVertices' order): its vertex in the scene-wide streams,
-// and its position copied out of them.
-struct ClusterVertexStreams {
-  std::vector<uint32_t> vertexMap;
-  std::vector<glm::vec3> positions;
-};
-
-ClusterVertexStreams clusterVertexStreams(const scene::Scene& scene) {
-  ClusterVertexStreams streams{std::vector<uint32_t>(scene.clusterVertices.size(), 0u),
-                               std::vector<glm::vec3>(scene.clusterVertices.size(), glm::vec3(0.0f))};
+// Per cluster vertex (scene::Scene::clusterVertices' order): its position copied out of the
+// scene-wide streams, and (w, as uint bits) its vertex in them: one 16-byte load gives both.
+std::vector<glm::uvec4> clusterVertexStream(const scene::Scene& scene) {
+  std::vector<glm::uvec4> stream(scene.clusterVertices.size(), glm::uvec4(0u));
   for (const scene::Mesh& mesh : scene.meshes) {
     for (uint32_t c = mesh.firstCluster; c < mesh.firstCluster + mesh.clusterCount; ++c) {
       const scene::Cluster& cluster = scene.clusters[c];
       for (uint32_t v = cluster.firstVertex; v < cluster.firstVertex + cluster.vertexCount; ++v) {
-        streams.vertexMap[v] = mesh.firstVertex + scene.clusterVertices[v];
-        streams.positions[v] = scene.positions[streams.vertexMap[v]];
+        const uint32_t vertex = mesh.firstVertex + scene.clusterVertices[v];
+        const glm::vec3& p = scene.positions[vertex];
+        stream[v] = {std::bit_cast<uint32_t>(p.x), std::bit_cast<uint32_t>(p.y), std::bit_cast<uint32_t>(p.z), vertex};
       }
     }
   }
-  return streams;
+  return stream;
 }
 
 void uploadClusters(SceneUploader& uploader, const scene::Scene& scene, GpuScene& gpu) {
@@ -263,9 +259,8 @@ void uploadClusters(SceneUploader& uploader, const scene::Scene& scene, GpuScene
   geometry.clusters = uploader.buffer("scene clusters", bytesOf(scene.clusters), rhi::kBufferStorage);
   geometry.packedTriangles =
       uploader.buffer("scene cluster triangles", bytesOf(scene.clusterTriangles), rhi::kBufferStorage);
-  const ClusterVertexStreams streams = clusterVertexStreams(scene);
-  geometry.positions = uploader.buffer("scene cluster positions", bytesOf(streams.positions), rhi::kBufferStorage);
-  geometry.vertexMap = uploader.buffer("scene cluster vertex map", bytesOf(streams.vertexMap), rhi::kBufferStorage);
+  geometry.vertices =
+      uploader.buffer("scene cluster vertices", bytesOf(clusterVertexStream(scene)), rhi::kBufferStorage);
   geometry.draws = uploader.buffer("cluster draws", bytesOf(draws), rhi::kBufferStorage);
 }
 

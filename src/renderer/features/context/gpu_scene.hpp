@@ -44,8 +44,7 @@ struct DrawGroup {
 struct ClusterGeometry {
   rhi::BufferId clusters;         // scene::Cluster[] (mesh-local bounds, cones, triangle and vertex ranges)
   rhi::BufferId packedTriangles;  // uint32 per triangle: scene::packClusterTriangle (cluster-local)
-  rhi::BufferId positions;        // vec3 per cluster vertex (tight: what "Triangle Filter" reads)
-  rhi::BufferId vertexMap;        // uint32 per cluster vertex: its vertex in GpuScene::vertices' streams
+  rhi::BufferId vertices;         // uvec4 per cluster vertex: position (float bits), its vertex in GpuScene::vertices
   rhi::BufferId draws;            // ClusterDrawGpu[]
   uint32_t drawCount = 0;
   uint64_t triangles = 0;  // triangles of all draws: the most "Triangle Filter" can keep

@@ -70,8 +70,9 @@ TEST(Atrium, HasEveryAlphaModeAndDoubleSidedMaterials) {
   EXPECT_TRUE(mask && blend && opaque && doubleSided);
 }
 
-// Every mesh's clusters hold exactly its triangles (as a multiset), at most 128 each, and every
-// vertex lies inside its cluster's bounding sphere; usable cones (cutoff < 1) have unit axes.
+// Every mesh's clusters hold exactly its triangles (as a multiset, read through the packed 8-bit
+// local indices and the cluster's vertex list), at most 128 triangles and 128 vertices each, and
+// every vertex lies inside its cluster's bounding sphere; usable cones (cutoff < 1) have unit axes.
 TEST(Atrium, ClustersPartitionEachMeshWithBounds) {
   const Scene& s = fullAtrium();
   ASSERT_FALSE(s.clusters.empty());
@@ -87,13 +88,21 @@ TEST(Atrium, ClustersPartitionEachMeshWithBounds) {
       const Cluster& cluster = s.clusters[c];
       ASSERT_GT(cluster.triangleCount, 0u);
       ASSERT_LE(cluster.triangleCount, kClusterMaxTriangles);
+      ASSERT_GT(cluster.vertexCount, 0u);
+      ASSERT_LE(cluster.vertexCount, kClusterMaxVertices);
       // A cutoff of 1 means "no usable cone" (meshoptimizer then leaves the axis zero).
       EXPECT_LE(std::abs(cluster.coneCutoff), 1.0f);
       if (cluster.coneCutoff < 1.0f) {
         EXPECT_NEAR(glm::length(cluster.coneAxis), 1.0f, 1e-2f) << mesh.name;
       }
       for (uint32_t t = 0; t < cluster.triangleCount; ++t) {
-        const uint32_t* tri = &s.clusterIndices[cluster.firstIndex + 3 * t];
+        const uint32_t packed = s.clusterTriangles[cluster.firstTriangle + t];
+        uint32_t tri[3];
+        for (uint32_t k = 0; k < 3; ++k) {
+          const uint32_t local = clusterTriangleCorner(packed, k);
+          ASSERT_LT(local, cluster.vertexCount) << mesh.name;
+          tri[k] = s.clusterVertices[cluster.firstVertex + local];
+        }
         fromClusters.insert(sorted(tri));
         for (int k = 0; k < 3; ++k) {
           const glm::vec3 p = s.positions[mesh.firstVertex + tri[k]];

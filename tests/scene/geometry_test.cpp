@@ -167,7 +167,7 @@ TEST(MergeScene, RenumbersAndPlaces) {
 }
 
 // Cooked parts bring their clusters: the merged meshes point at their own clusters, whose
-// triangle ranges point at their own (mesh-local) indices.
+// triangle and vertex ranges point at their own packed triangles and (mesh-local) vertex lists.
 TEST(MergeScene, KeepsEachPartsClusters) {
   Scene a, b;
   MeshData qa = quad(), qb = quad();
@@ -182,15 +182,20 @@ TEST(MergeScene, KeepsEachPartsClusters) {
   cookScene(b);
   ASSERT_EQ(a.clusters.size(), 1u);
   ASSERT_EQ(b.clusters.size(), 1u);
-  const std::vector<uint32_t> partIndices = b.clusterIndices;
+  const std::vector<uint32_t> partTriangles = b.clusterTriangles;
+  const std::vector<uint32_t> partVertices = b.clusterVertices;
+  ASSERT_EQ(partVertices.size(), 4u);
   mergeScene(a, std::move(b), glm::mat4(1.0f));
   ASSERT_EQ(a.clusters.size(), 2u);
   EXPECT_EQ(a.meshes[1].firstCluster, 1u);
   EXPECT_EQ(a.meshes[1].clusterCount, 1u);
   const Cluster& merged = a.clusters[1];
-  EXPECT_EQ(merged.firstIndex, 6u);
+  EXPECT_EQ(merged.firstTriangle, 2u);
+  EXPECT_EQ(merged.firstVertex, 4u);
   ASSERT_EQ(merged.triangleCount, 2u);
-  for (uint32_t i = 0; i < 6; ++i) EXPECT_EQ(a.clusterIndices[merged.firstIndex + i], partIndices[i]);
+  ASSERT_EQ(merged.vertexCount, 4u);
+  for (uint32_t t = 0; t < 2; ++t) EXPECT_EQ(a.clusterTriangles[merged.firstTriangle + t], partTriangles[t]);
+  for (uint32_t v = 0; v < 4; ++v) EXPECT_EQ(a.clusterVertices[merged.firstVertex + v], partVertices[v]);
 }
 
 TEST(Texture, MipChainReachesOnePixelAndAveragesInLinearSpace) {

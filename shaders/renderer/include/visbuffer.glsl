@@ -25,14 +25,21 @@ const uint kDrawMirrored = 2u;     // negative determinant: front faces wind the
 const uint kDrawConeUsable = 4u;   // near-uniform scale: the cluster's normal cone stays valid
 const uint kDrawAlphaMasked = 8u;  // alpha-tested during raster
 
+// Mirrors scene::Cluster. A cluster's triangles are packed words (scene::packClusterTriangle: three
+// 8-bit indices into the cluster's vertex list); its vertices are firstVertex + those indices in
+// the scene-wide cluster vertex streams (ClusterGeometry: positions, vertex map).
 struct ClusterData {
   vec4 sphere;  // mesh-local centre, radius
   vec4 cone;    // mesh-local axis, cutoff
-  uint firstIndex;
+  uint firstTriangle;
   uint triangleCount;
-  uint pad0;
-  uint pad1;
+  uint firstVertex;
+  uint vertexCount;
 };
+
+uvec3 clusterTriangleVertices(uint packed, uint firstVertex) {
+  return uvec3(packed & 0xffu, (packed >> 8) & 0xffu, packed >> 16) + firstVertex;
+}
 
 // One cluster of one instance (what "Cluster Cull" tests).
 struct ClusterDraw {
@@ -102,23 +109,22 @@ float depthFromKey(uint key, bool reversedZ) {
   return reversedZ ? uintBitsToFloat(key) : uintBitsToFloat(0xffffffffu - key);
 }
 
-// The triangle behind a visibility id: its instance and three vertex indices (into the vertex
-// streams, i.e. with the mesh's first vertex added).
+// The triangle behind a visibility id: its instance and three cluster vertices (indices into the
+// cluster vertex streams; the vertex map gives their vertices in the scene's attribute streams).
 struct VisTriangle {
   uint instance;
   uint flags;
   uvec3 vertices;
 };
 
-VisTriangle visTriangle(uint drawIndex, uint triangle, uint drawsBuffer, uint clustersBuffer, uint indicesBuffer) {
+VisTriangle visTriangle(uint drawIndex, uint triangle, uint drawsBuffer, uint clustersBuffer, uint trianglesBuffer) {
   ClusterDraw draw = visDraws[drawsBuffer].draws[drawIndex];
   ClusterData cluster = visClusters[clustersBuffer].clusters[draw.cluster];
-  uint first = cluster.firstIndex + 3u * triangle;
   VisTriangle t;
   t.instance = draw.instance;
   t.flags = draw.flags;
-  t.vertices = uvec3(fgbUintsRead[indicesBuffer].values[first], fgbUintsRead[indicesBuffer].values[first + 1u],
-                     fgbUintsRead[indicesBuffer].values[first + 2u]) + draw.firstVertex;
+  t.vertices =
+      clusterTriangleVertices(fgbUintsRead[trianglesBuffer].values[cluster.firstTriangle + triangle], cluster.firstVertex);
   return t;
 }
 

@@ -33,14 +33,19 @@ vec4 sampleSurfaceTexture(int textureIndex, vec2 uv) {
   return sum / taps;
 }
 
-// UV and its per-pixel derivatives at the barycentrics b (with derivatives dbdx, dbdy).
-vec2 interpolateUv(uvec3 vertices, vec3 b, vec3 dbdx, vec3 dbdy) {
+// UV and its per-pixel derivatives at the barycentrics b (with derivatives dbdx, dbdy), from the
+// triangle's vertices in the attribute streams (streamVertices).
+vec2 interpolateStreamUv(uvec3 vertices, vec3 b, vec3 dbdx, vec3 dbdy) {
   vec2 uv0 = fetchVec2(pc.vertices, pc.uvs, vertices.x);
   vec2 uv1 = fetchVec2(pc.vertices, pc.uvs, vertices.y);
   vec2 uv2 = fetchVec2(pc.vertices, pc.uvs, vertices.z);
   gUvDx = uv0 * dbdx.x + uv1 * dbdx.y + uv2 * dbdx.z;
   gUvDy = uv0 * dbdy.x + uv1 * dbdy.y + uv2 * dbdy.z;
   return uv0 * b.x + uv1 * b.y + uv2 * b.z;
+}
+// The same from the triangle's cluster vertices (VisTriangle::vertices).
+vec2 interpolateUv(uvec3 clusterVertices, vec3 b, vec3 dbdx, vec3 dbdy) {
+  return interpolateStreamUv(streamVertices(clusterVertices), b, dbdx, dbdy);
 }
 
 #endif

@@ -4,6 +4,7 @@
 #ifndef FGB_RENDERER_VISBUFFER_TRIANGLE_GLSL
 #define FGB_RENDERER_VISBUFFER_TRIANGLE_GLSL
 
+#extension GL_KHR_shader_subgroup_vote : require
 #include "visbuffer.glsl"
 
 layout(push_constant) uniform Push {
@@ -12,9 +13,9 @@ layout(push_constant) uniform Push {
   uint materials;
   uint draws;
   uint clusters;
-  uint indices;         // cluster triangle indices (mesh-local)
+  uint indices;         // cluster triangles (packed 8-bit cluster-local indices, ClusterData)
   uint vertices;        // the scene's vertex buffer (streams at the float offsets below)
-  uint positions;
+  uint positions;       // cluster vertices (uvec4: position as float bits, w: its vertex in `vertices`)
   uint normals;
   uint tangents;
   uint uvs;
@@ -69,7 +70,16 @@ vec2 viewportSize() { return gViewport; }
 // only in rounding).
 mat4 modelViewProj(mat4 model) { return gViewProj * model; }
 
-vec4 clipPosition(mat4 mvp, uint vertex) { return mvp * vec4(fetchVec3(pc.vertices, pc.positions, vertex), 1.0); }
+// Positions come from the cluster vertex stream (`vertex` is a cluster vertex): one 16-byte
+// element per vertex, the position's float bits and (w) the vertex in the attribute streams.
+vec3 clusterPosition(uint vertex) { return uintBitsToFloat(visUvec4sRead[pc.positions].values[vertex].xyz); }
+vec4 clipPosition(mat4 mvp, uint vertex) { return mvp * vec4(clusterPosition(vertex), 1.0); }
+
+// A cluster vertex's vertex in the scene's attribute streams (normals, tangents, UVs).
+uint streamVertex(uint clusterVertex) { return visUvec4sRead[pc.positions].values[clusterVertex].w; }
+uvec3 streamVertices(uvec3 clusterVertices) {
+  return uvec3(streamVertex(clusterVertices.x), streamVertex(clusterVertices.y), streamVertex(clusterVertices.z));
+}
 
 // Screen position (pixels, y down as the viewport transform makes it) of a clip-space point.
 vec2 toScreen(vec4 c) { return (c.xy / c.w * 0.5 + 0.5) * viewportSize(); }
@@ -105,7 +115,9 @@ ivec4 clippedPixelRange(vec4 c[3]) {
 
 // Straight-line code (no early exit per vertex): SIMD devices evaluate all three vertices anyway.
 // A vertex at or behind w = kMinW makes its screen position meaningless, but then the triangle is
-// not `projected` and only its clip positions are used.
+// not `projected` and only its clip positions are used. The rare unprojected triangles' clipped
+// box sits behind a subgroup vote: SIMD CPU devices (lavapipe) run a divergent branch under a
+// mask, a branch uniform in the subgroup only when taken.
 ScreenTriangle setupTriangle(mat4 mvp, uvec3 vertices) {
   ScreenTriangle t;
   t.clip[0] = clipPosition(mvp, vertices.x);
@@ -114,11 +126,11 @@ ScreenTriangle setupTriangle(mat4 mvp, uvec3 vertices) {
   vec2 s0 = toScreen(t.clip[0]), s1 = toScreen(t.clip[1]), s2 = toScreen(t.clip[2]);
   t.projected = t.clip[0].w > kMinW && t.clip[1].w > kMinW && t.clip[2].w > kMinW &&
                 !any(greaterThan(max(abs(s0), max(abs(s1), abs(s2))), vec2(kGuardBand)));
-  if (!t.projected) {
+  if (subgroupAny(!t.projected) && !t.projected) {  // see above
     t.area = 0;
     t.pixels = clippedPixelRange(t.clip);
-    return t;
   }
+  if (!t.projected) return t;
   t.fixedPos[0] = ivec2(round(s0 * float(kSubPixel)));
   t.fixedPos[1] = ivec2(round(s1 * float(kSubPixel)));
   t.fixedPos[2] = ivec2(round(s2 * float(kSubPixel)));

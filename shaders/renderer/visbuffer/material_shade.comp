@@ -38,11 +38,11 @@ void main() {
   vec3 b, dbdx, dbdy;
   barycentricsAt(bf, pixelNdc(pixel, vec2(size)), b, dbdx, dbdy);
 
-  uvec3 v = tri.vertices;
+  uvec3 v = streamVertices(tri.vertices);
   SurfacePoint p;
-  vec3 world0 = (inst.model * vec4(fetchVec3(pc.vertices, pc.positions, v.x), 1.0)).xyz;
-  vec3 world1 = (inst.model * vec4(fetchVec3(pc.vertices, pc.positions, v.y), 1.0)).xyz;
-  vec3 world2 = (inst.model * vec4(fetchVec3(pc.vertices, pc.positions, v.z), 1.0)).xyz;
+  vec3 world0 = (inst.model * vec4(clusterPosition(tri.vertices.x), 1.0)).xyz;
+  vec3 world1 = (inst.model * vec4(clusterPosition(tri.vertices.y), 1.0)).xyz;
+  vec3 world2 = (inst.model * vec4(clusterPosition(tri.vertices.z), 1.0)).xyz;
   p.worldPosition = interpolate3(world0, world1, world2, b);
   mat3 normalMatrix = mat3(inst.normalMatrix);
   p.normal = normalMatrix * interpolate3(fetchVec3(pc.vertices, pc.normals, v.x), fetchVec3(pc.vertices, pc.normals, v.y),
@@ -50,7 +50,7 @@ void main() {
   vec4 t0 = fetchVec4(pc.vertices, pc.tangents, v.x), t1 = fetchVec4(pc.vertices, pc.tangents, v.y),
        t2 = fetchVec4(pc.vertices, pc.tangents, v.z);
   p.tangent = vec4(mat3(inst.model) * interpolate3(t0.xyz, t1.xyz, t2.xyz, b), t0.w * b.x + t1.w * b.y + t2.w * b.z);
-  p.uv = safeUv(interpolateUv(v, b, dbdx, dbdy));
+  p.uv = safeUv(interpolateStreamUv(v, b, dbdx, dbdy));
   // The screen derivatives of the position, as forward.frag's cross(dFdx, dFdy) sees them.
   p.geometricNormal = cross(world0 * dbdx.x + world1 * dbdx.y + world2 * dbdx.z,
                             world0 * dbdy.x + world1 * dbdy.y + world2 * dbdy.z);

@@ -8,6 +8,7 @@
 #include <glm/matrix.hpp>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <tuple>
@@ -238,12 +239,32 @@ std::vector<features::ClusterDrawGpu> clusterDraws(const scene::Scene& scene, co
   return draws;
 }
 
+// Per cluster vertex (scene::Scene::clusterVertices' order): its position copied out of the
+// scene-wide streams, and (w, as uint bits) its vertex in them: one 16-byte load gives both.
+std::vector<glm::uvec4> clusterVertexStream(const scene::Scene& scene) {
+  std::vector<glm::uvec4> stream(scene.clusterVertices.size(), glm::uvec4(0u));
+  for (const scene::Mesh& mesh : scene.meshes) {
+    for (uint32_t c = mesh.firstCluster; c < mesh.firstCluster + mesh.clusterCount; ++c) {
+      const scene::Cluster& cluster = scene.clusters[c];
+      for (uint32_t v = cluster.firstVertex; v < cluster.firstVertex + cluster.vertexCount; ++v) {
+        const uint32_t vertex = mesh.firstVertex + scene.clusterVertices[v];
+        const glm::vec3& p = scene.positions[vertex];
+        stream[v] = {std::bit_cast<uint32_t>(p.x), std::bit_cast<uint32_t>(p.y), std::bit_cast<uint32_t>(p.z), vertex};
+      }
+    }
+  }
+  return stream;
+}
+
 void uploadClusters(SceneUploader& uploader, const scene::Scene& scene, GpuScene& gpu) {
   auto& geometry = gpu.clusterGeometry;
   const auto draws = clusterDraws(scene, gpu, geometry.triangles);
   geometry.drawCount = uint32_t(draws.size());
   geometry.clusters = uploader.buffer("scene clusters", bytesOf(scene.clusters), rhi::kBufferStorage);
-  geometry.indices = uploader.buffer("scene cluster indices", bytesOf(scene.clusterIndices), rhi::kBufferStorage);
+  geometry.packedTriangles =
+      uploader.buffer("scene cluster triangles", bytesOf(scene.clusterTriangles), rhi::kBufferStorage);
+  geometry.vertices =
+      uploader.buffer("scene cluster vertices", bytesOf(clusterVertexStream(scene)), rhi::kBufferStorage);
   geometry.draws = uploader.buffer("cluster draws", bytesOf(draws), rhi::kBufferStorage);
 }
 

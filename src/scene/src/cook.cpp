@@ -59,10 +59,16 @@ void buildClusters(Scene& scene, Mesh& mesh) {
     cluster.radius = bounds.radius;
     cluster.coneAxis = {bounds.cone_axis[0], bounds.cone_axis[1], bounds.cone_axis[2]};
     cluster.coneCutoff = bounds.cone_cutoff;
-    cluster.firstIndex = static_cast<uint32_t>(scene.clusterIndices.size());
+    cluster.firstTriangle = static_cast<uint32_t>(scene.clusterTriangles.size());
     cluster.triangleCount = m.triangle_count;
-    for (uint32_t t = 0; t < 3 * m.triangle_count; ++t)
-      scene.clusterIndices.push_back(meshletVertices[m.vertex_offset + meshletTriangles[m.triangle_offset + t]]);
+    cluster.firstVertex = static_cast<uint32_t>(scene.clusterVertices.size());
+    cluster.vertexCount = m.vertex_count;
+    // meshoptimizer's own form: 8-bit indices into the meshlet's vertex list, in its triangle order.
+    const unsigned char* local = &meshletTriangles[m.triangle_offset];
+    for (uint32_t t = 0; t < m.triangle_count; ++t)
+      scene.clusterTriangles.push_back(packClusterTriangle(local[3 * t], local[3 * t + 1], local[3 * t + 2]));
+    scene.clusterVertices.insert(scene.clusterVertices.end(), meshletVertices.begin() + m.vertex_offset,
+                                 meshletVertices.begin() + m.vertex_offset + m.vertex_count);
     scene.clusters.push_back(cluster);
   }
   mesh.clusterCount = static_cast<uint32_t>(count);
@@ -72,7 +78,8 @@ void buildClusters(Scene& scene, Mesh& mesh) {
 
 void cookScene(Scene& scene) {
   scene.clusters.clear();
-  scene.clusterIndices.clear();
+  scene.clusterTriangles.clear();
+  scene.clusterVertices.clear();
   for (Mesh& mesh : scene.meshes) {
     optimizeMesh(scene, mesh);
     buildClusters(scene, mesh);

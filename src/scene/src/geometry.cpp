@@ -315,7 +315,8 @@ void mergeScene(Scene& into, Scene&& part, const glm::dmat4& placement) {
   const auto indexOffset = static_cast<uint32_t>(into.indices.size());
   const auto meshOffset = static_cast<uint32_t>(into.meshes.size());
   const auto clusterOffset = static_cast<uint32_t>(into.clusters.size());
-  const auto clusterIndexOffset = static_cast<uint32_t>(into.clusterIndices.size());
+  const auto clusterTriangleOffset = static_cast<uint32_t>(into.clusterTriangles.size());
+  const auto clusterVertexOffset = static_cast<uint32_t>(into.clusterVertices.size());
   const auto materialOffset = static_cast<uint32_t>(into.materials.size());
   const auto textureOffset = static_cast<int32_t>(into.textures.size());
   const float scale = uniformScale(placement);
@@ -327,9 +328,13 @@ void mergeScene(Scene& into, Scene&& part, const glm::dmat4& placement) {
   appendMoved(into.tangents, part.tangents);
   appendMoved(into.uv0, part.uv0);
   appendMoved(into.indices, part.indices);  // mesh-local: no renumbering needed
-  for (Cluster& cluster : part.clusters) cluster.firstIndex += clusterIndexOffset;
+  for (Cluster& cluster : part.clusters) {
+    cluster.firstTriangle += clusterTriangleOffset;
+    cluster.firstVertex += clusterVertexOffset;
+  }
   appendMoved(into.clusters, part.clusters);
-  appendMoved(into.clusterIndices, part.clusterIndices);  // mesh-local too
+  appendMoved(into.clusterTriangles, part.clusterTriangles);  // cluster-local: no renumbering
+  appendMoved(into.clusterVertices, part.clusterVertices);    // mesh-local too
   for (Mesh& mesh : part.meshes) {
     mesh.firstVertex += vertexOffset;
     mesh.firstIndex += indexOffset;

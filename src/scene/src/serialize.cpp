@@ -225,10 +225,19 @@ void validateScene(const Scene& s) {
     for (uint32_t c = mesh.firstCluster; c < mesh.firstCluster + mesh.clusterCount; ++c) {
       const Cluster& cluster = s.clusters[c];
       check(cluster.triangleCount <= kClusterMaxTriangles &&
-                uint64_t(cluster.firstIndex) + 3ull * cluster.triangleCount <= s.clusterIndices.size(),
+                uint64_t(cluster.firstTriangle) + cluster.triangleCount <= s.clusterTriangles.size(),
             "cluster triangle range");
-      for (uint32_t i = 0; i < 3 * cluster.triangleCount; ++i)
-        check(s.clusterIndices[cluster.firstIndex + i] < mesh.vertexCount, "cluster index");
+      check(cluster.vertexCount <= kClusterMaxVertices &&
+                uint64_t(cluster.firstVertex) + cluster.vertexCount <= s.clusterVertices.size(),
+            "cluster vertex range");
+      for (uint32_t t = 0; t < cluster.triangleCount; ++t) {
+        const uint32_t packed = s.clusterTriangles[cluster.firstTriangle + t];
+        check(packed >> 24 == 0, "cluster triangle");
+        for (uint32_t corner = 0; corner < 3; ++corner)
+          check(clusterTriangleCorner(packed, corner) < cluster.vertexCount, "cluster triangle corner");
+      }
+      for (uint32_t v = 0; v < cluster.vertexCount; ++v)
+        check(s.clusterVertices[cluster.firstVertex + v] < mesh.vertexCount, "cluster vertex");
     }
   }
   for (const Instance& instance : s.instances) {
@@ -253,7 +262,8 @@ void writeScene(Writer<Sink>& w, const Scene& s) {
   w.array(s.uv0);
   w.array(s.indices);
   w.array(s.clusters);
-  w.array(s.clusterIndices);
+  w.array(s.clusterTriangles);
+  w.array(s.clusterVertices);
   writeList(w, s.meshes, [](auto& out, const Mesh& m) { writeMesh(out, m); });
   w.array(s.instances);
   writeList(w, s.materials, [](auto& out, const Material& m) { writeMaterial(out, m); });
@@ -279,7 +289,8 @@ Scene readScene(Reader& r) {
   s.uv0 = r.array<glm::vec2>();
   s.indices = r.array<uint32_t>();
   s.clusters = r.array<Cluster>();
-  s.clusterIndices = r.array<uint32_t>();
+  s.clusterTriangles = r.array<uint32_t>();
+  s.clusterVertices = r.array<uint32_t>();
   s.meshes = readList(r, readMesh);
   s.instances = r.array<Instance>();
   s.materials = readList(r, readMaterial);

@@ -38,10 +38,14 @@ struct DrawGroup {
 // The cooked clusters, uploaded for the visibility-buffer path only (render.path=visbuffer), and
 // one ClusterDrawGpu per cluster of every opaque or alpha-masked instance ("Cluster Cull" tests
 // each). Transparent instances stay with the forward "Mesh Render Transparent".
+// Cluster vertices are numbered across the scene (cluster.firstVertex + local index): a vertex
+// shared by several clusters has a copy in each, so a triangle's corners are found from its one
+// packed word without the mesh's index buffer.
 struct ClusterGeometry {
-  rhi::BufferId clusters;  // scene::Cluster[] (mesh-local bounds, cones, triangle ranges)
-  rhi::BufferId indices;   // uint32 mesh-local vertex indices, 3 per triangle
-  rhi::BufferId draws;     // ClusterDrawGpu[]
+  rhi::BufferId clusters;         // scene::Cluster[] (mesh-local bounds, cones, triangle and vertex ranges)
+  rhi::BufferId packedTriangles;  // uint32 per triangle: scene::packClusterTriangle (cluster-local)
+  rhi::BufferId vertices;         // uvec4 per cluster vertex: position (float bits), its vertex in GpuScene::vertices
+  rhi::BufferId draws;            // ClusterDrawGpu[]
   uint32_t drawCount = 0;
   uint64_t triangles = 0;  // triangles of all draws: the most "Triangle Filter" can keep
 };

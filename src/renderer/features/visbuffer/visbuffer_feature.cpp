@@ -56,7 +56,8 @@ struct ArgsPush {
 // Mirrors the push block of shaders/renderer/include/visbuffer_triangle.glsl.
 struct VisPush {
   uint32_t frame, instances, materials, draws, clusters, indices, vertices;
-  uint32_t positions, normals, tangents, uvs;  // float offsets of the vertex streams
+  uint32_t positions;               // cluster vertices (ClusterGeometry::vertices)
+  uint32_t normals, tangents, uvs;  // float offsets of the vertex streams
   uint32_t counters, args, visible, smallList, largeList, largeCapacity, words, depthOut, hdr;
   uint32_t materialSampler, lights, clusterCounts, clusterIndices, flags;
   uint32_t tileJobs, tileJobCapacity, pad;
@@ -172,9 +173,9 @@ VisBufferFeature::Buffers VisBufferFeature::declareBuffers(graph::FrameGraph& gr
   p.materials = device_->storageBufferIndex(scene.materials);
   p.draws = device_->storageBufferIndex(geometry.draws);
   p.clusters = device_->storageBufferIndex(geometry.clusters);
-  p.indices = device_->storageBufferIndex(geometry.indices);
+  p.indices = device_->storageBufferIndex(geometry.packedTriangles);
   p.vertices = device_->storageBufferIndex(scene.vertices);
-  p.positions = uint32_t(scene.streams.positions / 4);
+  p.positions = device_->storageBufferIndex(geometry.vertices);
   p.normals = uint32_t(scene.streams.normals / 4);
   p.tangents = uint32_t(scene.streams.tangents / 4);
   p.uvs = uint32_t(scene.streams.uvs / 4);

@@ -11,7 +11,9 @@
 namespace fgb::scene {
 
 // Bump when the cooked output of the same input changes: it is part of every cache key.
-inline constexpr uint32_t kCookerVersion = 4;  // 2: world placement in double; 3: stress-nan lights; 4: clusters (meshopt_buildMeshlets)
+// 2: world placement in double; 3: stress-nan lights; 4: clusters (meshopt_buildMeshlets);
+// 5: clusters as vertex lists + packed 8-bit local triangles
+inline constexpr uint32_t kCookerVersion = 5;
 
 void cookScene(Scene& scene);
 

@@ -67,11 +67,22 @@ struct Cluster {
   float radius = 0.0f;
   glm::vec3 coneAxis{0.0f};
   float coneCutoff = 1.0f;  // cos of the cone's half angle widened by 90 degrees; 1: never culled
-  uint32_t firstIndex = 0;  // into Scene::clusterIndices: 3 mesh-local vertex indices per triangle
+  uint32_t firstTriangle = 0;  // into Scene::clusterTriangles: one packed triangle each
   uint32_t triangleCount = 0;
-  uint32_t pad[2] = {0, 0};
+  uint32_t firstVertex = 0;  // into Scene::clusterVertices: the cluster's own vertex list
+  uint32_t vertexCount = 0;  // at most kClusterMaxVertices
 };
 static_assert(sizeof(Cluster) == 48);
+
+// A cluster triangle: three 8-bit indices into its cluster's vertex list (corner k in bits
+// 8k..8k+7), so the visibility-buffer shaders load one word per triangle and find its vertices at
+// cluster.firstVertex + local index, with no mesh index buffer in between.
+inline uint32_t packClusterTriangle(uint32_t a, uint32_t b, uint32_t c) {
+  return a | (b << 8) | (c << 16);
+}
+inline uint32_t clusterTriangleCorner(uint32_t packed, uint32_t corner) {
+  return (packed >> (8 * corner)) & 0xffu;
+}
 
 struct Instance {
   uint32_t mesh = 0;
@@ -199,7 +210,8 @@ struct Scene {
   std::vector<glm::vec2> uv0;
   std::vector<uint32_t> indices;
   std::vector<Cluster> clusters;         // every mesh's clusters, in mesh order
-  std::vector<uint32_t> clusterIndices;  // the clusters' triangles (same triangles as `indices`)
+  std::vector<uint32_t> clusterTriangles;  // packClusterTriangle; the same triangles as `indices`
+  std::vector<uint32_t> clusterVertices;   // per cluster vertex: the mesh-local vertex it is
 
   std::vector<Mesh> meshes;
   std::vector<Instance> instances;

@@ -1,12 +1,12 @@
 // addForwardPass and "MSAA Resolve": the first colour pass clears, later ones load, none resolves;
 // MsaaResolveFeature, composed after the last colour pass, declares the resolve into the HDR image
 // as its own node, and any colour pass declared after it is refused.
-#include "features/context/render_feature.hpp"
-#include "features/ssaa/msaa_resolve_feature.hpp"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
+
+#include "features/context/render_feature.hpp"
+#include "features/ssaa/msaa_resolve_feature.hpp"
 
 namespace fgb::features {
 namespace {

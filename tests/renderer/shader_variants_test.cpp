@@ -2,11 +2,10 @@
 // shade shaders compiled again with FGB_VIS_BACKING_IMAGE. The variants must be embedded under
 // "PATH:image" and must be the image code: only they declare the 64-bit image capability, which a
 // device without VK_EXT_shader_image_atomic_int64 refuses.
-#include <fgb/shaders/registry.hpp>
-
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <fgb/shaders/registry.hpp>
 #include <span>
 
 namespace fgb::shaders {

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 namespace fgb::graph::test {
 namespace {
 
@@ -107,6 +109,24 @@ TEST(Aliasing, DisjointLifetimesShareMemory) {
   EXPECT_LE(plan.peakBytesAliased, 2 * kSize);  // tA and tC never live together
   EXPECT_EQ(plan.placements[c.graph.resourceOf(BufferHandle{c.graph.resources()[0].firstVersion})].heap,
             kInvalidIndex);  // the imported output
+  expectAllInvariants(c.graph, compiled, {});
+}
+
+// tC takes tA's memory. A wrote tA (B only read it), so tC's first barrier must not only wait for
+// A and B but make A's write available: a write still in a cache could otherwise land on tC's data.
+TEST(Aliasing, ReusedMemoryMakesTheEarlierOccupantsWritesAvailable) {
+  const Chain c = chainOfFour();
+  const CompiledGraph compiled = compile(c.graph);
+  const Placement& a = compiled.aliasing.placements[c.transients[0]];
+  const Placement& cPlacement = compiled.aliasing.placements[c.transients[2]];
+  ASSERT_EQ(cPlacement.heap, a.heap);
+  ASSERT_EQ(cPlacement.offset, a.offset);
+  EXPECT_EQ(cPlacement.aliasedAfterWrites, kAccessShaderStorageWrite);
+  const auto first = std::find_if(compiled.barriers.begin(), compiled.barriers.end(),
+                                  [&](const Barrier& b) { return b.resource == c.transients[2]; });
+  ASSERT_NE(first, compiled.barriers.end());
+  EXPECT_NE(first->srcStages & kStageComputeShader, kStageNone);
+  EXPECT_EQ(first->srcAccess, kAccessShaderStorageWrite);
   expectAllInvariants(c.graph, compiled, {});
 }
 

@@ -154,11 +154,14 @@ class BarrierPlanner {
   }
 
   // A transient starts UNDEFINED on its first user's queue. The earlier occupants of its memory on
-  // that queue (see TransientPlacer) stand for its last write: its first barrier waits for them.
+  // that queue (see TransientPlacer) stand for its last write: its first barrier waits for them and
+  // makes their writes available.
   [[nodiscard]] TrackedState enterTransient(uint32_t resource) const {
+    const Placement& placement = state_.out.aliasing.placements[resource];
     TrackedState s;
     s.queue = queue_;
-    s.writeStages = state_.out.aliasing.placements[resource].aliasedAfterStages;
+    s.writeStages = placement.aliasedAfterStages;
+    s.writeAccess = placement.aliasedAfterWrites;
     return s;
   }
 
@@ -264,6 +267,7 @@ std::vector<Use> mergedUses(std::span<const Use> uses) {
 struct ResourceWalk {
   uint32_t usesLeft = 0;          // alive uses not walked yet: 0 after the last user's
   QueueStages stagesOnQueue{};    // stages used on each queue
+  QueueAccesses writesOnQueue{};  // writes made on each queue
   QueueArray lastSigmaOnQueue{};  // largest σ of a user on each queue
 };
 
@@ -299,6 +303,7 @@ void walkUses(CompileState& state, bool alias, bool firstWalk) {
         if (!state.isImported(r)) placer.place(r, node);
       }
       w.stagesOnQueue[queue] |= use.stages;
+      w.writesOnQueue[queue] |= use.accessMask & kWriteAccesses;
       w.lastSigmaOnQueue[queue] = sigma;  // uses come in order, and σ grows with it on a queue
       barriers.planUse(use, first);
     }
@@ -311,7 +316,7 @@ void walkUses(CompileState& state, bool alias, bool firstWalk) {
       if (state.isImported(r)) {
         barriers.finalState(r);
       } else {
-        placer.release(r, walk[r].lastSigmaOnQueue, walk[r].stagesOnQueue);
+        placer.release(r, walk[r].lastSigmaOnQueue, walk[r].stagesOnQueue, walk[r].writesOnQueue);
       }
     }
   }

@@ -20,6 +20,7 @@
 namespace fgb::graph::detail {
 
 using QueueStages = std::array<StageMask, kQueueClassCount>;
+using QueueAccesses = std::array<AccessMask, kQueueClassCount>;
 
 class TransientPlacer {
  public:
@@ -56,20 +57,22 @@ class TransientPlacer {
   }
 
   // Hands its range back after its last user; later occupants wait for what the users did (on
-  // each queue: the largest σ of a user, and the stages used).
-  void release(uint32_t resource, const QueueArray& lastSigma, const QueueStages& stages) {
+  // each queue: the largest σ of a user, the stages used and the writes made).
+  void release(uint32_t resource, const QueueArray& lastSigma, const QueueStages& stages,
+               const QueueAccesses& writes) {
     const Placement& placement = plan_.placements[resource];
-    free_[placement.heap].push_back({placement.offset, placement.size, lastSigma, stages});
+    free_[placement.heap].push_back({placement.offset, placement.size, lastSigma, stages, writes});
   }
 
  private:
-  // A range of a heap nobody uses any more, with who used it last (per queue: the largest σ and
-  // the stages).
+  // A range of a heap nobody uses any more, with who used it last (per queue: the largest σ, the
+  // stages and the writes).
   struct FreeRange {
     uint64_t offset;
     uint64_t size;
     QueueArray lastSigma;
     QueueStages stages;
+    QueueAccesses writes;
   };
 
   uint32_t heapFor(ResourceKind kind, uint32_t memoryTypeBits) {
@@ -106,6 +109,7 @@ class TransientPlacer {
     const uint64_t rangeEnd = free[best].offset + free[best].size;
     placement.offset = alignUp(rangeStart, req.alignment);
     placement.aliasedAfterStages = free[best].stages[state_.queueOf[user]];
+    placement.aliasedAfterWrites = free[best].writes[state_.queueOf[user]];
     const uint64_t placedEnd = placement.offset + req.size;
     const bool head = placement.offset > rangeStart;
     const bool tail = placedEnd < rangeEnd;

@@ -46,7 +46,7 @@ Flattened flatten(const FrameGraph& graph, const CompiledGraph& c) {
   for (const ResolvedResource& r : c.resources) addResource(f, r);
   for (const bool alive : c.resourceAlive) add(f, {alive});
   for (const Lifetime& l : c.lifetimes) add(f, {l.first, l.last});
-  for (const Placement& p : c.aliasing.placements) add(f, {p.heap, p.offset, p.size, p.aliasedAfterStages});
+  for (const Placement& p : c.aliasing.placements) add(f, {p.heap, p.offset, p.size, p.aliasedAfterStages, p.aliasedAfterWrites});
   for (const Heap& h : c.aliasing.heaps) add(f, {static_cast<uint64_t>(h.kind), h.memoryTypeBits, h.size, h.alignment});
   add(f, {c.aliasing.peakBytesAliased, c.aliasing.peakBytesUnaliased});
   return f;

@@ -102,8 +102,11 @@ struct Placement {
   uint64_t offset = 0;
   uint64_t size = 0;
   // Stages (on the resource's first queue) of earlier occupants of this memory that the first-use
-  // barrier must wait for; earlier occupants on other queues are ordered by semaphores.
+  // barrier must wait for, and their writes, which it makes available: an earlier occupant's write
+  // still in a cache must not land on top of the new resource's data (write after write). Earlier
+  // occupants on other queues are ordered by semaphores.
   StageMask aliasedAfterStages = kStageNone;
+  AccessMask aliasedAfterWrites = kAccessNone;
 };
 
 struct Heap {

@@ -3,6 +3,7 @@
 
 #include <fgb/core/error.hpp>
 #include <fgb/scene/cache.hpp>
+#include <fgb/scene/cook.hpp>
 #include <fgb/scene/generators.hpp>
 #include <fgb/scene/load.hpp>
 #include <fgb/scene/stats.hpp>
@@ -73,6 +74,38 @@ TEST(CookedCache, CorruptAndTruncatedEntriesAreDetected) {
 
   std::filesystem::resize_file(entry, 10);
   EXPECT_EQ(cache.load(key, {}).status, CacheStatus::Corrupt);
+}
+
+// A checksummed entry whose clusters point outside themselves (a packed corner past the cluster's
+// vertex list, a vertex past its mesh) is refused like a damaged one: the shaders would index
+// another cluster's vertices.
+TEST(CookedCache, ClusterCornersAndVerticesOutOfRangeAreCorrupt) {
+  TempDir dir;
+  CookedCache cache(dir.path());
+  const std::string key = "fedcba9876543210fedcba9876543210";
+  Scene good = smallScene();
+  cookScene(good);
+  ASSERT_FALSE(good.meshes.empty());
+  ASSERT_GT(good.meshes[0].clusterCount, 0u);
+  const Cluster& first = good.clusters[good.meshes[0].firstCluster];
+  ASSERT_LT(first.vertexCount, 255u);
+
+  Scene corner = good;
+  corner.clusterTriangles[first.firstTriangle] = packClusterTriangle(0, 1, first.vertexCount);
+  cache.store(key, corner, {});
+  CacheLookup lookup = cache.load(key, {});
+  EXPECT_EQ(lookup.status, CacheStatus::Corrupt);
+  EXPECT_THAT(lookup.reason, HasSubstr("cluster triangle corner"));
+
+  Scene vertex = good;
+  vertex.clusterVertices[first.firstVertex] = good.meshes[0].vertexCount;
+  cache.store(key, vertex, {});
+  lookup = cache.load(key, {});
+  EXPECT_EQ(lookup.status, CacheStatus::Corrupt);
+  EXPECT_THAT(lookup.reason, HasSubstr("cluster vertex"));
+
+  cache.store(key, good, {});
+  EXPECT_EQ(cache.load(key, {}).status, CacheStatus::Hit);
 }
 
 TEST(CookedCache, ChangedDependencyMakesEntryStale) {

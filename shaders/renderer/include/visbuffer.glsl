@@ -27,7 +27,7 @@ const uint kDrawAlphaMasked = 8u;  // alpha-tested during raster
 
 // Mirrors scene::Cluster. A cluster's triangles are packed words (scene::packClusterTriangle: three
 // 8-bit indices into the cluster's vertex list); its vertices are firstVertex + those indices in
-// the scene-wide cluster vertex streams (ClusterGeometry: positions, vertex map).
+// the scene-wide cluster vertex stream (ClusterGeometry::vertices: position, attribute vertex).
 struct ClusterData {
   vec4 sphere;  // mesh-local centre, radius
   vec4 cone;    // mesh-local axis, cutoff
@@ -110,7 +110,7 @@ float depthFromKey(uint key, bool reversedZ) {
 }
 
 // The triangle behind a visibility id: its instance and three cluster vertices (indices into the
-// cluster vertex streams; the vertex map gives their vertices in the scene's attribute streams).
+// cluster vertex stream, which also gives their vertices in the scene's attribute streams).
 struct VisTriangle {
   uint instance;
   uint flags;

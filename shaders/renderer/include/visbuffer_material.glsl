@@ -33,12 +33,17 @@ vec4 sampleSurfaceTexture(int textureIndex, vec2 uv) {
   return sum / taps;
 }
 
+// Tangents (vec4) and UVs (vec2) as one load per vertex of their whole element: their streams start
+// 16-byte aligned (StagingBuilder in gpu_upload.cpp) and their strides are 16 and 8 bytes, so the
+// float offsets in the push block are multiples of 4 and 2. SIMD CPU devices (lavapipe) load a
+// vector element per invocation at once, where separate floats are separate loads.
+vec4 fetchTangent(uint vertex) { return uintBitsToFloat(visUvec4sRead[pc.vertices].values[pc.tangents / 4u + vertex]); }
+vec2 fetchUv(uint vertex) { return uintBitsToFloat(visUvec2sRead[pc.vertices].values[pc.uvs / 2u + vertex]); }
+
 // UV and its per-pixel derivatives at the barycentrics b (with derivatives dbdx, dbdy), from the
 // triangle's vertices in the attribute streams (streamVertices).
 vec2 interpolateStreamUv(uvec3 vertices, vec3 b, vec3 dbdx, vec3 dbdy) {
-  vec2 uv0 = fetchVec2(pc.vertices, pc.uvs, vertices.x);
-  vec2 uv1 = fetchVec2(pc.vertices, pc.uvs, vertices.y);
-  vec2 uv2 = fetchVec2(pc.vertices, pc.uvs, vertices.z);
+  vec2 uv0 = fetchUv(vertices.x), uv1 = fetchUv(vertices.y), uv2 = fetchUv(vertices.z);
   gUvDx = uv0 * dbdx.x + uv1 * dbdx.y + uv2 * dbdx.z;
   gUvDy = uv0 * dbdy.x + uv1 * dbdy.y + uv2 * dbdy.z;
   return uv0 * b.x + uv1 * b.y + uv2 * b.z;

@@ -47,8 +47,7 @@ void main() {
   mat3 normalMatrix = mat3(inst.normalMatrix);
   p.normal = normalMatrix * interpolate3(fetchVec3(pc.vertices, pc.normals, v.x), fetchVec3(pc.vertices, pc.normals, v.y),
                                          fetchVec3(pc.vertices, pc.normals, v.z), b);
-  vec4 t0 = fetchVec4(pc.vertices, pc.tangents, v.x), t1 = fetchVec4(pc.vertices, pc.tangents, v.y),
-       t2 = fetchVec4(pc.vertices, pc.tangents, v.z);
+  vec4 t0 = fetchTangent(v.x), t1 = fetchTangent(v.y), t2 = fetchTangent(v.z);
   p.tangent = vec4(mat3(inst.model) * interpolate3(t0.xyz, t1.xyz, t2.xyz, b), t0.w * b.x + t1.w * b.y + t2.w * b.z);
   p.uv = safeUv(interpolateStreamUv(v, b, dbdx, dbdy));
   // The screen derivatives of the position, as forward.frag's cross(dFdx, dFdy) sees them.

@@ -32,7 +32,8 @@ layout(push_constant) uniform Push {
   uint lights;
   uint clusterCounts;   // FGB_NONE: no clustered lighting
   uint clusterIndices;
-  uint flags;           // bit 0: reversed Z; bit 1: raster the large-triangle tiles (else small)
+  uint flags;           // bit 0: reversed Z; bit 1: raster the large-triangle tiles (else small);
+                        // bit 2: serial subgroups (Triangle Filter)
   uint tileJobs;        // uvec2 per tile job: large-list slot, job index within the triangle
   uint tileJobCapacity;
   uint pad;
@@ -41,6 +42,7 @@ layout(push_constant) uniform Push {
 
 const uint kFlagReversedZ = 1u;
 const uint kFlagLargeTiles = 2u;
+const uint kFlagSerialSubgroups = 4u;  // a CPU device: a workgroup's subgroups run one after another
 bool reversedZ() { return (pc.flags & kFlagReversedZ) != 0u; }
 
 const float kMinW = 1e-5;        // vertices closer to the eye plane use homogeneous rasterisation

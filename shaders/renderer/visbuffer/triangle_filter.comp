@@ -98,18 +98,19 @@ void filterTriangle(ClusterSetup c, uint clusterSlot, uint triangle) {
   }
 }
 
-// Which invocations share the cluster's triangles. GPUs run a workgroup's subgroups (32 or 64
-// wide) side by side: all 64 invocations take two triangles each. SIMD CPU devices (lavapipe: 8
-// lanes of AVX2) run its subgroups one after another on one thread, so more subgroups buy no
-// parallelism and each repeats the cluster setup (loadCluster: draw, instance, transform product):
-// there the first subgroup takes all the triangles and the others leave at once (atrium
-// 640x360 on lavapipe: about 11 of the filter's 46 ms were that setup, seven times over).
-const uint kParallelSubgroupSize = 32u;
+// Which invocations share the cluster's triangles. GPUs run a workgroup's subgroups side by side:
+// all 64 invocations take two triangles each. CPU devices (lavapipe: 8 lanes of AVX2) run its
+// subgroups one after another on one thread (kFlagSerialSubgroups, set by the feature from the
+// adapter type), so more subgroups buy no parallelism and each repeats the cluster setup
+// (loadCluster: draw, instance, transform product): there the first subgroup takes all the
+// triangles and the others leave at once (atrium 640x360 on lavapipe: about 11 of the filter's
+// 46 ms were that setup, seven times over). The subgroup size alone cannot tell: GPUs with 8- or
+// 16-wide subgroups run them in parallel too.
 
 void main() {
   uint clusterSlot = linearGroup();
   if (clusterSlot >= visCountersRead[pc.args].c.visibleClusters) return;  // uniform in the workgroup
-  bool wholeGroup = gl_SubgroupSize >= kParallelSubgroupSize;
+  bool wholeGroup = (pc.flags & kFlagSerialSubgroups) == 0u;
   if (!wholeGroup && gl_SubgroupID != 0u) return;  // uniform in the subgroup
   uint sharing = wholeGroup ? gl_WorkGroupSize.x : gl_SubgroupSize;
   uint lane = wholeGroup ? gl_LocalInvocationIndex : gl_SubgroupInvocationID;

@@ -67,6 +67,7 @@ static_assert(offsetof(VisPush, background) == 112 && sizeof(VisPush) == rhi::kP
 
 constexpr uint32_t kFlagReversedZ = 1;
 constexpr uint32_t kFlagLargeTiles = 2;
+constexpr uint32_t kFlagSerialSubgroups = 4;  // CPU device: see triangle_filter.comp
 constexpr uint32_t kRasterGroupSize = 64;     // visibility_raster.comp's local size
 constexpr uint64_t kLargeTriangleBytes = 64;  // 4 uvec4 (packLargeTriangle in visbuffer_triangle.glsl)
 constexpr uint64_t kTileJobBytes = 8;         // uvec2: large-list slot, job index within the triangle
@@ -184,7 +185,7 @@ VisBufferFeature::Buffers VisBufferFeature::declareBuffers(graph::FrameGraph& gr
   p.materialSampler = device_->samplerIndex(scene.materialSampler);
   p.lights = device_->storageBufferIndex(scene.lights);
   p.clusterCounts = p.clusterIndices = rhi::kInvalidId;
-  p.flags = reversedZ_ ? kFlagReversedZ : 0u;
+  p.flags = (reversedZ_ ? kFlagReversedZ : 0u) | (device_->adapter().type == "cpu" ? kFlagSerialSubgroups : 0u);
   p.background = {targets.background[0], targets.background[1], targets.background[2], targets.background[3]};
   return b;
 }

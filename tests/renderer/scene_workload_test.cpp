@@ -434,6 +434,11 @@ TEST(VisBuffer, OcclusionCullingKeepsTheImage) {
     EXPECT_EQ(differingValues(on.hdr, off.hdr, 0.0f, 0.0f), 0u);
     EXPECT_EQ(differingValues(held.hdr, off.hdr, 0.0f, 0.0f), 0u);
   }
+  // The forward path has no clusters to cull: the knob is accepted and changes nothing there.
+  const auto forward = render(sized(lavapipeConfig("atrium-small.json", {{"render.occlusion", "1"}}), 64, 36, 1), 1);
+  const auto names = aliveNames(forward.passes);
+  EXPECT_TRUE(names.count("Mesh Render"));
+  EXPECT_FALSE(names.count("HiZ Build"));
 }
 
 TEST(VisBuffer, RefusesMsaaNamingSupersampling) {

@@ -65,7 +65,7 @@ void main() {
   }
   bool holdBack = (pc.drawCount & kCullHoldBackOdd) != 0u && (id & 1u) != 0u;
   if (holdBack || ((pc.drawCount & kCullOcclusion) != 0u &&
-                   hizOccluded(pc.occlusion & 0xffffu, fgbFrames[pc.frame].frame, center, radius,
+                   hizOccluded(pc.occlusion & 0xffffu, pc.frame, center, radius,
                                (pc.drawCount & kCullReversedZ) != 0u))) {
     uint candidate = atomicAdd(visCounters[pc.counters].c.occluded, 1u);
     fgbUints[pc.occlusion >> 16].values[candidate] = id;

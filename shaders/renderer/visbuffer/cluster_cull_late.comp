@@ -35,7 +35,7 @@ void main() {
   ClusterData cluster = visClusters[pc.clusters].clusters[draw.cluster];
   vec3 center = (inst.model * vec4(cluster.sphere.xyz, 1.0)).xyz;
   float radius = cluster.sphere.w * maxScale(inst.model);
-  if (hizOccluded(pc.hiz, fgbFrames[pc.frame].frame, center, radius, pc.reversedZ != 0u)) return;
+  if (hizOccluded(pc.hiz, pc.frame, center, radius, pc.reversedZ != 0u)) return;
   uint slot = atomicAdd(visCounters[pc.counters].c.visibleClusters, 1u);
   fgbUints[pc.visible].values[early.visibleClusters + slot] = drawIndex;
 }

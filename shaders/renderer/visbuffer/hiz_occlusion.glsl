@@ -36,27 +36,31 @@ float maxScale(mat4 model) {
 // Conservative: a sphere crossing the near plane or behind the eye is visible; the sphere is
 // enlarged, its screen rectangle grown by a pixel, and its depth key must be below the texels'
 // farthest by a margin, so rounding in the raster's depths can never hide a pixel it would win.
-bool hizOccluded(uint hiz, FrameConstants frame, vec3 center, float radius, bool reversedZ) {
-  vec3 viewCenter = (frame.view * vec4(center, 1.0)).xyz;
+// `frame`: the frame constants' storage-buffer index (only the fields used are loaded).
+bool hizOccluded(uint hiz, uint frame, vec3 center, float radius, bool reversedZ) {
+  mat4 view = fgbFrames[frame].frame.view;
+  mat4 proj = fgbFrames[frame].frame.proj;
+  vec2 viewportSize = fgbFrames[frame].frame.viewport.xy;
+  vec3 viewCenter = (view * vec4(center, 1.0)).xyz;
   float r = radius * 1.001 + 1e-4 * length(viewCenter);
   float nearestZ = viewCenter.z + r;  // the view looks down -z
-  if (-nearestZ <= frame.depthRange.x) return false;  // crosses the near plane, or behind the eye
+  if (-nearestZ <= fgbFrames[frame].frame.depthRange.x) return false;  // crosses the near plane, or behind the eye
   // The screen rectangle of the sphere's view-space bounding box (its 8 corners are in front of
   // the eye, so the projection of the box, which holds the sphere's, is their hull).
   vec2 ndcMin = vec2(1e30), ndcMax = vec2(-1e30);
   for (uint i = 0u; i < 8u; ++i) {
     vec3 corner = viewCenter + r * vec3((i & 1u) != 0u ? 1.0 : -1.0, (i & 2u) != 0u ? 1.0 : -1.0, (i & 4u) != 0u ? 1.0 : -1.0);
-    vec4 clip = frame.proj * vec4(corner, 1.0);
+    vec4 clip = proj * vec4(corner, 1.0);
     vec2 ndc = clip.xy / clip.w;
     ndcMin = min(ndcMin, ndc);
     ndcMax = max(ndcMax, ndc);
   }
-  vec4 nearestClip = frame.proj * vec4(viewCenter.xy, nearestZ, 1.0);
+  vec4 nearestClip = proj * vec4(viewCenter.xy, nearestZ, 1.0);
   uint sphereKey = depthKey(nearestClip.z / nearestClip.w, reversedZ);
 
-  uvec2 viewport = uvec2(frame.viewport.xy);
-  vec2 lo = clamp(floor((ndcMin * 0.5 + 0.5) * frame.viewport.xy) - 1.0, vec2(0.0), frame.viewport.xy - 1.0);
-  vec2 hi = clamp(floor((ndcMax * 0.5 + 0.5) * frame.viewport.xy) + 1.0, vec2(0.0), frame.viewport.xy - 1.0);
+  uvec2 viewport = uvec2(viewportSize);
+  vec2 lo = clamp(floor((ndcMin * 0.5 + 0.5) * viewportSize) - 1.0, vec2(0.0), viewportSize - 1.0);
+  vec2 hi = clamp(floor((ndcMax * 0.5 + 0.5) * viewportSize) + 1.0, vec2(0.0), viewportSize - 1.0);
   uvec2 p0 = uvec2(lo), p1 = uvec2(hi);
   // The finest level at which the rectangle spans at most 2 x 2 texels.
   uint levels = hizLevels(viewport);

@@ -65,6 +65,12 @@ struct HizPush {
 };
 constexpr uint32_t kHizGroupSize = 8;  // hiz_build.comp: 8 x 8
 
+// Mirrors the push block of shaders/renderer/visbuffer/hiz_args.comp.
+struct HizArgsPush {
+  uint32_t rasterArgs, args, width, height;
+};
+constexpr uint64_t kHizLevelArgsBytes = 12;  // one VkDispatchIndirectCommand per level
+
 // The HiZ pyramid's levels (>= 1; see hiz_occlusion.glsl) and its size in 32-bit keys.
 uint32_t hizLevels(uint32_t width, uint32_t height) {
   uint32_t level = 1;
@@ -145,8 +151,9 @@ struct VisBufferFeature::Buffers {
   graph::BufferHandle words;       // the buffer backing, or
   graph::TextureHandle wordImage;  // the image backing (render.vis_backing)
   graph::BufferHandle depth;
-  graph::BufferHandle hiz;         // render.occlusion: the HiZ pyramid (persistent), and
-  graph::BufferHandle candidates;  // the clusters phase 1 held back
+  graph::BufferHandle hiz;          // render.occlusion: the HiZ pyramid (persistent), and
+  graph::BufferHandle candidates;   // the clusters phase 1 held back
+  graph::BufferHandle hizLateArgs;  // "HiZ Build (late)"'s dispatches (none when phase 2 drew nothing)
   graph::Extent extent;
   VisPush push{};  // the scene's persistent indices; per-node handles are filled in by the jobs
 };
@@ -192,6 +199,7 @@ void VisBufferFeature::initialize(FeatureInit& init) {
     pipelines_.cullLate =
         init.device.createComputePipeline({"cluster cull late", "renderer/visbuffer/cluster_cull_late.comp"});
     pipelines_.hizBuild = init.device.createComputePipeline({"hiz build", backed("renderer/visbuffer/hiz_build.comp")});
+    pipelines_.hizArgs = init.device.createComputePipeline({"hiz arguments", "renderer/visbuffer/hiz_args.comp"});
     // Kept from frame to frame: phase 1 tests against the previous frame's depths.
     hizKeys_ = hizKeys(init.settings.sceneWidth(), init.settings.sceneHeight());
     hiz_ = init.device.createBuffer({"hiz pyramid", 4 * hizKeys_, rhi::kBufferStorage, rhi::MemoryUsage::DeviceLocal});
@@ -216,6 +224,8 @@ VisBufferFeature::Buffers VisBufferFeature::declareBuffers(graph::FrameGraph& gr
     b.late.cullArgs = graph.createBuffer("cluster cull args (late)", {sizeof(VisCounters), {}});
     b.late.rasterArgs = graph.createBuffer("triangle filter args (late)", {sizeof(VisCounters), {}});
     b.candidates = graph.createBuffer("occlusion candidates", {uint64_t{4} * geometry.drawCount, {}});
+    b.hizLateArgs = graph.createBuffer(
+        "hiz build args (late)", {kHizLevelArgsBytes * hizLevels(targets.extent.width, targets.extent.height), {}});
     // Written by "HiZ Build (late)", read by the next frame's "Cluster Cull": all compute on the
     // graphics queue.
     const graph::ImportState hizState{graph::kStageComputeShader,
@@ -377,7 +387,10 @@ void VisBufferFeature::declareTriangleFilter(graph::FrameGraph& graph, Buffers& 
   b.largeList = node.write(b.largeList, Access::StorageWrite);
   b.tileJobs = node.write(b.tileJobs, Access::StorageWrite);
   phase.rasterArgs = node.write(phase.rasterArgs, Access::StorageReadWrite);  // see cullArgs in Cluster Cull
-  node.setJob([push = b.push, pipelines = pipelines_, b, phase](graph::JobContext& context) mutable {
+  // Phase 2's filter also says whether "HiZ Build (late)" has anything to do (hiz_args.comp).
+  const bool late = &phase == &b.late;
+  if (late) b.hizLateArgs = node.write(b.hizLateArgs, Access::StorageWrite);
+  node.setJob([push = b.push, pipelines = pipelines_, b, phase, late](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
     push.counters = ctx.storageBufferIndex(phase.counters);
@@ -392,6 +405,12 @@ void VisBufferFeature::declareTriangleFilter(graph::FrameGraph& graph, Buffers& 
     cmd.computeBarrier();
     cmd.bindPipeline(pipelines.args);
     cmd.push(ArgsPush{push.counters, ctx.storageBufferIndex(phase.rasterArgs), kRasterGroupSize, push.tileJobCapacity});
+    cmd.dispatch(1);
+    if (!late) return;
+    cmd.computeBarrier();
+    cmd.bindPipeline(pipelines.hizArgs);
+    cmd.push(HizArgsPush{ctx.storageBufferIndex(phase.rasterArgs), ctx.storageBufferIndex(b.hizLateArgs),
+                         b.extent.width, b.extent.height});
     cmd.dispatch(1);
   });
 }
@@ -430,16 +449,18 @@ void VisBufferFeature::declareRaster(graph::FrameGraph& graph, Buffers& b, const
 }
 
 // The HiZ pyramid of the visibility buffer's depths as they are now: after phase 1's raster for
-// phase 2, after phase 2's for the next frame's phase 1.
-void VisBufferFeature::declareHizBuild(graph::FrameGraph& graph, Buffers& b, std::string_view suffix) const {
-  auto node = graph.addNode(std::string("HiZ Build") + std::string(suffix), graph::NodeType::Compute, kQueue);
+// phase 2, after phase 2's for the next frame's phase 1 (late: dispatched indirectly, with no
+// groups when phase 2 drew nothing and phase 1's pyramid is already the frame's).
+void VisBufferFeature::declareHizBuild(graph::FrameGraph& graph, Buffers& b, bool late) const {
+  auto node = graph.addNode(late ? "HiZ Build (late)" : "HiZ Build", graph::NodeType::Compute, kQueue);
+  if (late) node.read(b.hizLateArgs, Access::Indirect);
   if (b.wordImage.valid())
     node.read(b.wordImage, Access::StorageRead);
   else
     node.read(b.words, Access::StorageRead);
   b.hiz = node.write(b.hiz, Access::StorageReadWrite);  // each level reads the one below
   const uint32_t levels = hizLevels(b.extent.width, b.extent.height);
-  node.setJob([pipeline = pipelines_.hizBuild, b, levels](graph::JobContext& context) {
+  node.setJob([pipeline = pipelines_.hizBuild, b, levels, late](graph::JobContext& context) {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
     HizPush push{b.wordImage.valid() ? ctx.storageTextureIndex(b.wordImage) : ctx.storageBufferIndex(b.words),
@@ -449,6 +470,10 @@ void VisBufferFeature::declareHizBuild(graph::FrameGraph& graph, Buffers& b, std
       if (level > 1) cmd.computeBarrier();  // a level reads the one before it
       push.level = level;
       cmd.push(push);
+      if (late) {
+        cmd.dispatchIndirect(ctx.buffer(b.hizLateArgs), kHizLevelArgsBytes * (level - 1));
+        continue;
+      }
       const uint32_t width = (b.extent.width + (1u << level) - 1) >> level;
       const uint32_t height = (b.extent.height + (1u << level) - 1) >> level;
       cmd.dispatch((width + kHizGroupSize - 1) / kHizGroupSize, (height + kHizGroupSize - 1) / kHizGroupSize);
@@ -526,11 +551,11 @@ void VisBufferFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
   declareTriangleFilter(graph, b, b.early);
   declareRaster(graph, b, b.early);
   if (occlusion_) {
-    declareHizBuild(graph, b, "");
+    declareHizBuild(graph, b, false);
     declareClusterCullLate(graph, b);
     declareTriangleFilter(graph, b, b.late);
     declareRaster(graph, b, b.late);
-    declareHizBuild(graph, b, " (late)");  // kept for the next frame's phase 1
+    declareHizBuild(graph, b, true);  // kept for the next frame's phase 1
   }
   declareShade(graph, board, b);
   board.set(VisibilityOutputs{b.early.rasterArgs, b.late.rasterArgs, b.visible, b.words, b.wordImage});

@@ -57,6 +57,7 @@ class VisBufferFeature final : public IRenderFeature {
     rhi::PipelineId clearImage;  // image backing only
     rhi::PipelineId cullLate;    // render.occlusion only
     rhi::PipelineId hizBuild;    // render.occlusion only
+    rhi::PipelineId hizArgs;     // render.occlusion only
   };
   struct Buffers;
 
@@ -66,7 +67,7 @@ class VisBufferFeature final : public IRenderFeature {
   void declareClusterCullLate(graph::FrameGraph& graph, Buffers& buffers) const;
   void declareTriangleFilter(graph::FrameGraph& graph, Buffers& buffers, VisPhase& phase) const;
   void declareRaster(graph::FrameGraph& graph, Buffers& buffers, const VisPhase& phase) const;
-  void declareHizBuild(graph::FrameGraph& graph, Buffers& buffers, std::string_view suffix) const;
+  void declareHizBuild(graph::FrameGraph& graph, Buffers& buffers, bool late) const;
   void declareShade(graph::FrameGraph& graph, Blackboard& board, Buffers& buffers) const;
 
   rhi::Device* device_ = nullptr;

@@ -20,12 +20,8 @@ uint hizLevelOffset(uvec2 viewport, uint level) {
   return offset;
 }
 
-// Levels until the top one is a single texel (at least 1).
-uint hizLevels(uvec2 viewport) {
-  uint level = 1u;
-  while (any(greaterThan(hizLevelSize(viewport, level), uvec2(1u)))) ++level;
-  return level;
-}
+// Levels until the top one is a single texel (at least 1): ceil(log2(max(W, H))).
+uint hizLevels(uvec2 viewport) { return uint(max(1, findMSB(max(viewport.x, viewport.y) - 1u) + 1)); }
 
 #ifndef FGB_HIZ_BUILD_ONLY
 float maxScale(mat4 model) {
@@ -62,9 +58,11 @@ bool hizOccluded(uint hiz, uint frame, vec3 center, float radius, bool reversedZ
   vec2 lo = clamp(floor((ndcMin * 0.5 + 0.5) * viewportSize) - 1.0, vec2(0.0), viewportSize - 1.0);
   vec2 hi = clamp(floor((ndcMax * 0.5 + 0.5) * viewportSize) + 1.0, vec2(0.0), viewportSize - 1.0);
   uvec2 p0 = uvec2(lo), p1 = uvec2(hi);
-  // The finest level at which the rectangle spans at most 2 x 2 texels.
+  // The finest level at which the rectangle spans at most 2 x 2 texels: a span s < 2^k does at
+  // level k, one of s < 2^(k+1) may at level k, so the search starts at findMSB(s).
   uint levels = hizLevels(viewport);
-  uint level = 1u;
+  uvec2 span = p1 - p0;
+  uint level = uint(clamp(findMSB(max(span.x, span.y)), 1, int(levels)));
   while (level < levels && any(greaterThan((p1 >> level) - (p0 >> level), uvec2(1u)))) ++level;
   uvec2 size = hizLevelSize(viewport, level);
   uint base = hizLevelOffset(viewport, level);

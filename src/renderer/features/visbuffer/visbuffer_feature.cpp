@@ -483,9 +483,10 @@ void VisBufferFeature::declareHizBuild(graph::FrameGraph& graph, Buffers& b, boo
 
 // Material Shade also copies the culling counters to the host (statistics). A node of its own
 // reading them after "Triangle Filter" ran between "Visibility Raster" and "Material Shade", on
-// the critical path (H100: 5 us plus a ~20 us bubble); here the 64-byte copy is recorded before the
-// dispatch with no barrier between them, so it runs beside the shading, and its source's barrier
-// (filter's compute write -> transfer read) joins the one shading waits at anyway.
+// the critical path (H100: 5 us plus a ~20 us bubble); here the 80-byte copy (one per phase with
+// render.occlusion) is recorded before the dispatch with no barrier between them, so it runs
+// beside the shading, and its source's barrier (filter's compute write -> transfer read) joins the
+// one shading waits at anyway.
 void VisBufferFeature::declareShade(graph::FrameGraph& graph, Blackboard& board, Buffers& b) const {
   auto& targets = board.get<FrameTargets>();
   const graph::ImportState hostState{graph::kStageHost | graph::kStageTransfer,

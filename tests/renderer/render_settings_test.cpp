@@ -52,6 +52,18 @@ TEST(RenderSettings, RenderPathDefaultsToForwardAndRejectsOthers) {
   }
 }
 
+TEST(RenderSettings, OcclusionIsOffByDefaultAndAFlag) {
+  RenderSettings settings;
+  EXPECT_FALSE(settings.occlusion);
+  EXPECT_FALSE(settings.occlusionHoldBack);
+  applyRendererKnobs(settings, {{"render.occlusion", "1"}, {"debug.occlusion_hold_back", "on"}});
+  EXPECT_TRUE(settings.occlusion);
+  EXPECT_TRUE(settings.occlusionHoldBack);
+  applyRendererKnobs(settings, {{"render.occlusion", "off"}});
+  EXPECT_FALSE(settings.occlusion);
+  EXPECT_THROW(applyRendererKnobs(settings, {{"render.occlusion", "hiz"}}), InputError);
+}
+
 TEST(RenderSettings, VisBackingDefaultsToAutoAndRejectsOthers) {
   RenderSettings settings;
   EXPECT_EQ(settings.visBacking, VisBacking::Auto);

@@ -401,6 +401,46 @@ TEST(VisBuffer, ComputeNodesReplaceMeshRenderAndTheImageMatchesForward) {
   EXPECT_LT(differingValues(vis.hdr, forward.hdr, 0.1f, 0.02f), vis.hdr.pixels.size() / 20);
 }
 
+// render.occlusion=1 is conservative: the same image as without it, under validation, at
+// render.ssaa=1 and 2, over three frames (the first has no HiZ history). A still camera leaves
+// phase 2 nothing to recover, so debug.occlusion_hold_back makes phase 1 hold back every other
+// cluster: phase 2 must find the visible ones again (appended after phase 1's) and drop the rest.
+TEST(VisBuffer, OcclusionCullingKeepsTheImage) {
+  for (const char* ssaa : {"1", "2"}) {
+    SCOPED_TRACE(std::string("render.ssaa=") + ssaa);
+    const auto config = [&](std::map<std::string, std::string> knobs) {
+      knobs["render.path"] = "visbuffer";
+      knobs["render.ssaa"] = ssaa;
+      return sized(lavapipeConfig("atrium-small.json", knobs, true), 160, 90, 1);
+    };
+    const auto off = renderImages(config({}), 3);
+    const auto on = renderImages(config({{"render.occlusion", "1"}}), 3);
+    const auto held = renderImages(config({{"render.occlusion", "1"}, {"debug.occlusion_hold_back", "1"}}), 3);
+    EXPECT_EQ(on.validationMessages, 0u);
+    EXPECT_EQ(held.validationMessages, 0u);
+    for (const char* node : {"HiZ Build", "Cluster Cull (late)", "Triangle Filter (late)", "Visibility Raster (late)",
+                             "HiZ Build (late)"}) {
+      EXPECT_TRUE(on.passes.count(node)) << node;
+      EXPECT_FALSE(off.passes.count(node)) << node;
+    }
+    EXPECT_FALSE(off.stats.count("vis_occlusion_phase1_occluded"));
+    // Still camera: phase 1 tests against the very depths phase 2 would, so it recovers nothing.
+    EXPECT_EQ(on.stats.at("vis_occlusion_phase2_recovered"), 0.0);
+    EXPECT_LE(on.stats.at("vis_clusters_visible"), off.stats.at("vis_clusters_visible"));
+    EXPECT_GT(held.stats.at("vis_occlusion_phase2_recovered"), 0.0);
+    EXPECT_LE(held.stats.at("vis_occlusion_phase2_recovered"), held.stats.at("vis_occlusion_phase1_occluded"));
+    EXPECT_GE(held.stats.at("vis_occlusion_phase1_occluded"), 0.4 * off.stats.at("vis_clusters_visible"));
+    ASSERT_EQ(on.hdr.pixels.size(), off.hdr.pixels.size());
+    EXPECT_EQ(differingValues(on.hdr, off.hdr, 0.0f, 0.0f), 0u);
+    EXPECT_EQ(differingValues(held.hdr, off.hdr, 0.0f, 0.0f), 0u);
+  }
+  // The forward path has no clusters to cull: the knob is accepted and changes nothing there.
+  const auto forward = render(sized(lavapipeConfig("atrium-small.json", {{"render.occlusion", "1"}}), 64, 36, 1), 1);
+  const auto names = aliveNames(forward.passes);
+  EXPECT_TRUE(names.count("Mesh Render"));
+  EXPECT_FALSE(names.count("HiZ Build"));
+}
+
 TEST(VisBuffer, RefusesMsaaNamingSupersampling) {
   try {
     (void)openSceneWorkload(sized(lavapipeConfig("atrium-small.json", {{"render.path", "visbuffer"}}), 64, 36, 4));

@@ -60,6 +60,11 @@ struct VisCounters {
   uint tileJobs;          // jobs of at most 16 8x8 tiles of one large triangle (capped by the list)
   uint tileGroups[3];     // "Visibility Raster", large triangles: one workgroup per tile job
   uint overflow;          // large triangles dropped for lack of list space (should stay 0)
+  // render.occlusion=1 (two-phase HiZ culling). The phase-2 ("late") nodes count in counters of
+  // their own, whose visible clusters follow phase 1's in the visible-cluster list:
+  uint firstCluster;      // the list slot of this phase's first cluster (0 in phase 1)
+  uint occluded;          // phase 1: clusters held back by last frame's HiZ (phase 2 re-tests them)
+  uint reserved[2];
 };
 
 FGB_READONLY_STORAGE_BUFFER(ClusterBlock, visClusters) { ClusterData clusters[]; } visClusters[FGB_MAX_STORAGE_BUFFERS];

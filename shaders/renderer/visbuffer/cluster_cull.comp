@@ -4,10 +4,20 @@
 // planes; clusters of single-sided materials are also dropped when their normal cone faces away
 // from the camera (meshoptimizer's cone test). Survivors are appended to the visible-cluster list
 // ("Triangle Filter" runs one workgroup per entry). Counters were zeroed by "Visibility Clear".
+// With render.occlusion=1 (phase 1 of two-phase occlusion culling) survivors whose sphere is
+// hidden behind last frame's HiZ pyramid go to the occlusion candidates instead, which
+// "Cluster Cull (late)" re-tests against this frame's (cluster_cull_late.comp).
 #extension GL_GOOGLE_include_directive : require
 #include "../include/visbuffer.glsl"
+#include "hiz_occlusion.glsl"
 
 layout(local_size_x = 64) in;
+
+// drawCount's top bits (render.occlusion):
+const uint kCullOcclusion = 0x80000000u;  // test against last frame's HiZ pyramid (not on the first frame)
+const uint kCullReversedZ = 0x40000000u;
+const uint kCullHoldBackOdd = 0x20000000u;  // debug.occlusion_hold_back: odd clusters are candidates too
+const uint kCullDrawCountMask = 0x1fffffffu;
 
 layout(push_constant) uniform Push {
   vec4 planes[6];  // inside: dot(n, p) + d >= 0
@@ -17,7 +27,8 @@ layout(push_constant) uniform Push {
   uint clusters;
   uint counters;
   uint visible;    // visible-cluster list: ClusterDraw indices
-  uint drawCount;
+  uint occlusion;  // render.occlusion: HiZ pyramid (low 16 bits), occlusion candidates (high 16 bits)
+  uint drawCount;  // kCullDrawCountMask; kCullOcclusion, kCullReversedZ, kCullHoldBackOdd
 } pc;
 
 bool boxInside(vec3 boxMin, vec3 boxMax) {
@@ -35,13 +46,9 @@ bool sphereInside(vec3 center, float radius) {
   return true;
 }
 
-float maxScale(mat4 model) {
-  return sqrt(max(dot(model[0].xyz, model[0].xyz), max(dot(model[1].xyz, model[1].xyz), dot(model[2].xyz, model[2].xyz))));
-}
-
 void main() {
   uint id = gl_GlobalInvocationID.x;
-  if (id >= pc.drawCount) return;
+  if (id >= (pc.drawCount & kCullDrawCountMask)) return;
   ClusterDraw draw = visDraws[pc.draws].draws[id];
   Instance inst = fgbInstances[pc.instances].instances[draw.instance];
   if (!boxInside(inst.boundsMin.xyz, inst.boundsMax.xyz)) return;
@@ -55,6 +62,14 @@ void main() {
     vec3 axis = normalize(mat3(inst.normalMatrix) * cluster.cone.xyz);
     vec3 fromEye = center - fgbFrames[pc.frame].frame.cameraPosition.xyz;
     if (dot(fromEye, axis) >= cluster.cone.w * length(fromEye) + radius) return;
+  }
+  bool holdBack = (pc.drawCount & kCullHoldBackOdd) != 0u && (id & 1u) != 0u;
+  if (holdBack || ((pc.drawCount & kCullOcclusion) != 0u &&
+                   hizOccluded(pc.occlusion & 0xffffu, pc.frame, center, radius,
+                               (pc.drawCount & kCullReversedZ) != 0u))) {
+    uint candidate = atomicAdd(visCounters[pc.counters].c.occluded, 1u);
+    fgbUints[pc.occlusion >> 16].values[candidate] = id;
+    return;
   }
   uint slot = atomicAdd(visCounters[pc.counters].c.visibleClusters, 1u);
   fgbUints[pc.visible].values[slot] = id;

@@ -110,6 +110,7 @@ void filterTriangle(ClusterSetup c, uint clusterSlot, uint triangle) {
 void main() {
   uint clusterSlot = linearGroup();
   if (clusterSlot >= visCountersRead[pc.args].c.visibleClusters) return;  // uniform in the workgroup
+  clusterSlot += visCountersRead[pc.args].c.firstCluster;  // occ: phase-2 clusters follow phase 1's (0 in phase 1)
   bool wholeGroup = (pc.flags & kFlagSerialSubgroups) == 0u;
   if (!wholeGroup && gl_SubgroupID != 0u) return;  // uniform in the subgroup
   uint sharing = wholeGroup ? gl_WorkGroupSize.x : gl_SubgroupSize;

@@ -48,6 +48,8 @@ void applyOne(RenderSettings& settings, const std::string& key, const std::strin
   else if (key == "render.ssaa") settings.ssaa = count(value);
   else if (key == "render.path") settings.renderPath = value == "visbuffer" ? RenderPath::VisBuffer : RenderPath::Forward;
   else if (key == "render.vis_backing") settings.visBacking = visBackingNamed(value);
+  else if (key == "render.occlusion") settings.occlusion = flag(value);
+  else if (key == "debug.occlusion_hold_back") settings.occlusionHoldBack = flag(value);
   else if (key == "lighting.mode") settings.lightingMode = value == "all" ? LightingMode::All : LightingMode::Clustered;
   else if (key == "lighting.slices") settings.clusterSlices = count(value);
   else if (key == "lighting.max_per_cluster") settings.maxLightsPerCluster = count(value);
@@ -66,11 +68,17 @@ const std::vector<KnobSpec>& rendererKnobSpecs() {
       word("render.path", {"forward", "visbuffer"}, "what draws the opaque scene: forward raster or compute visibility buffer"),
       word("render.vis_backing", {"auto", "buffer", "image"},
            "visbuffer words: R64 image atomics or a storage buffer (auto: image where the device has them)"),
+      {"render.occlusion", KnobType::Flag, 0, 0, false, false, {}, "renderer",
+       "visbuffer: two-phase HiZ occlusion culling of clusters (no effect on render.path=forward)"},
       word("lighting.mode", {"clustered", "all"}, "clustered light lists, or every light for every pixel"),
       integer("lighting.slices", 1, 64, "cluster depth slices"),
       integer("lighting.max_per_cluster", 1, 1024, "lights kept per cluster (overflow guard)"),
       integer("bloom.mips", 1, 10, "bloom chain levels (clamped to what the size allows)"),
       integer("particles.seed", 0, 1 << 30, "added to every emitter's seed"),
+      // Phase 2 of render.occlusion has nothing to recover while the camera stands still (phase 1
+      // tests against the same depths); this makes it recover clusters (tests: same image).
+      {"debug.occlusion_hold_back", KnobType::Flag, 0, 0, false, false, {}, "renderer",
+       "render.occlusion: phase 1 also holds back every other cluster for phase 2 (tests)"},
       // The passes whose shaders can write a NaN on request (tests of --check-finite).
       word("debug.inject_nan", {"none", "Mesh Render", "Bloom"}, "pass that writes a NaN (tests of --check-finite)"),
   };

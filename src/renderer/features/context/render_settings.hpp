@@ -33,6 +33,8 @@ struct RenderSettings {
   uint32_t msaa = 1;
   RenderPath renderPath = RenderPath::Forward;  // render.path = forward | visbuffer
   VisBacking visBacking = VisBacking::Auto;     // render.vis_backing = auto | buffer | image
+  bool occlusion = false;             // render.occlusion: two-phase HiZ cluster culling (visbuffer)
+  bool occlusionHoldBack = false;     // debug.occlusion_hold_back: phase 1 also holds back odd clusters
   uint32_t ssaa = 1;                  // render.ssaa: scene passes at ssaa*width x ssaa*height
   bool depthPrepass = false;          // render.depth_prepass
   DebugView debugView = DebugView::None;  // debug.view = none | light-complexity

@@ -26,8 +26,11 @@ struct VisCounters {
   uint32_t tileJobs;
   uint32_t tileGroups[3];
   uint32_t overflow;
+  uint32_t firstCluster;  // render.occlusion: the visible-list slot of the phase's first cluster
+  uint32_t occluded;      // phase 1: clusters held back by last frame's HiZ
+  uint32_t reserved[2];
 };
-static_assert(sizeof(VisCounters) == 64);
+static_assert(sizeof(VisCounters) == 80);
 constexpr uint64_t kFilterArgsOffset = offsetof(VisCounters, filterGroups);
 constexpr uint64_t kSmallArgsOffset = offsetof(VisCounters, smallGroups);
 constexpr uint64_t kTileArgsOffset = offsetof(VisCounters, tileGroups);
@@ -41,9 +44,45 @@ struct CullPush {
   uint32_t clusters;
   uint32_t counters;
   uint32_t visible;
-  uint32_t drawCount;
+  uint32_t occlusion;  // HiZ pyramid | occlusion candidates << 16 (indices < 16384: bindless.glsl)
+  uint32_t drawCount;  // kCullDrawCountMask, | kCullOcclusion | kCullReversedZ | kCullHoldBackOdd
 };
 static_assert(sizeof(CullPush) <= rhi::kPushConstantBytes);
+constexpr uint32_t kCullOcclusion = 0x80000000u;
+constexpr uint32_t kCullReversedZ = 0x40000000u;
+constexpr uint32_t kCullHoldBackOdd = 0x20000000u;  // debug.occlusion_hold_back
+constexpr uint32_t kCullDrawCountMask = 0x1fffffffu;
+
+// Mirrors the push block of shaders/renderer/visbuffer/cluster_cull_late.comp.
+struct LateCullPush {
+  uint32_t frame, instances, draws, clusters;
+  uint32_t hiz, candidates, earlyArgs, counters, visible, reversedZ;
+};
+
+// Mirrors the push block of shaders/renderer/visbuffer/hiz_build.comp.
+struct HizPush {
+  uint32_t words, hiz, width, height, level;
+};
+constexpr uint32_t kHizGroupSize = 8;  // hiz_build.comp: 8 x 8
+
+// Mirrors the push block of shaders/renderer/visbuffer/hiz_args.comp.
+struct HizArgsPush {
+  uint32_t rasterArgs, args, width, height;
+};
+constexpr uint64_t kHizLevelArgsBytes = 12;  // one VkDispatchIndirectCommand per level
+
+// The HiZ pyramid's levels (>= 1; see hiz_occlusion.glsl) and its size in 32-bit keys.
+uint32_t hizLevels(uint32_t width, uint32_t height) {
+  uint32_t level = 1;
+  while (((width + (1u << level) - 1) >> level) > 1 || ((height + (1u << level) - 1) >> level) > 1) ++level;
+  return level;
+}
+uint64_t hizKeys(uint32_t width, uint32_t height) {
+  uint64_t keys = 0;
+  for (uint32_t level = 1; level <= hizLevels(width, height); ++level)
+    keys += uint64_t{(width + (1u << level) - 1) >> level} * ((height + (1u << level) - 1) >> level);
+  return keys;
+}
 
 // Mirrors shaders/renderer/visbuffer/vis_args.comp.
 struct ArgsPush {
@@ -93,10 +132,18 @@ bool projectsReversedZ(const FrameConstantsGpu& constants) {
 
 }  // namespace
 
+// One culling phase's counters: render.occlusion runs the filter and raster twice, the second
+// time ("late") with counters of its own (the lists are reused: phase 1's raster has read them).
+struct VisPhase {
+  std::string_view suffix;         // "" or " (late)", appended to the node names
+  graph::BufferHandle counters;    // VisCounters, added to by the phase's culling nodes
+  graph::BufferHandle cullArgs;    // snapshot after the cull: the filter's arguments
+  graph::BufferHandle rasterArgs;  // snapshot after the filter: the raster's arguments
+};
+
 struct VisBufferFeature::Buffers {
-  graph::BufferHandle counters;    // VisCounters, added to by the culling nodes
-  graph::BufferHandle cullArgs;    // snapshot after "Cluster Cull": "Triangle Filter"'s arguments
-  graph::BufferHandle rasterArgs;  // snapshot after "Triangle Filter": "Visibility Raster"'s arguments
+  VisPhase early{"", {}, {}, {}};
+  VisPhase late{" (late)", {}, {}, {}};  // render.occlusion only
   graph::BufferHandle visible;
   graph::BufferHandle smallList;
   graph::BufferHandle largeList;
@@ -104,6 +151,9 @@ struct VisBufferFeature::Buffers {
   graph::BufferHandle words;       // the buffer backing, or
   graph::TextureHandle wordImage;  // the image backing (render.vis_backing)
   graph::BufferHandle depth;
+  graph::BufferHandle hiz;          // render.occlusion: the HiZ pyramid (persistent), and
+  graph::BufferHandle candidates;   // the clusters phase 1 held back
+  graph::BufferHandle hizLateArgs;  // "HiZ Build (late)"'s dispatches (none when phase 2 drew nothing)
   graph::Extent extent;
   VisPush push{};  // the scene's persistent indices; per-node handles are filled in by the jobs
 };
@@ -128,6 +178,8 @@ void VisBufferFeature::initialize(FeatureInit& init) {
   if (init.settings.visBacking == VisBacking::Auto)
     throw std::logic_error("render.vis_backing=auto reached the visibility buffer unresolved (resolveDeviceSettings)");
   imageBacking_ = init.settings.visBacking == VisBacking::Image;
+  occlusion_ = init.settings.occlusion;
+  occlusionHoldBack_ = occlusion_ && init.settings.occlusionHoldBack;
   // The word accesses are compiled per backing: the image variants declare 64-bit image
   // capabilities, which a device without them refuses even where unused.
   const auto backed = [&](const char* shader) {
@@ -143,9 +195,18 @@ void VisBufferFeature::initialize(FeatureInit& init) {
   if (imageBacking_)
     pipelines_.clearImage =
         init.device.createComputePipeline({"visibility clear", "renderer/visbuffer/vis_clear.comp"});
+  if (occlusion_) {
+    pipelines_.cullLate =
+        init.device.createComputePipeline({"cluster cull late", "renderer/visbuffer/cluster_cull_late.comp"});
+    pipelines_.hizBuild = init.device.createComputePipeline({"hiz build", backed("renderer/visbuffer/hiz_build.comp")});
+    pipelines_.hizArgs = init.device.createComputePipeline({"hiz arguments", "renderer/visbuffer/hiz_args.comp"});
+    // Kept from frame to frame: phase 1 tests against the previous frame's depths.
+    hizKeys_ = hizKeys(init.settings.sceneWidth(), init.settings.sceneHeight());
+    hiz_ = init.device.createBuffer({"hiz pyramid", 4 * hizKeys_, rhi::kBufferStorage, rhi::MemoryUsage::DeviceLocal});
+  }
   statsReadback_ = init.device.createBuffer(
-      {"visibility stats readback", sizeof(VisCounters), rhi::kBufferTransferDst, rhi::MemoryUsage::Readback});
-  std::memset(init.device.mapped(statsReadback_).data(), 0, sizeof(VisCounters));
+      {"visibility stats readback", 2 * sizeof(VisCounters), rhi::kBufferTransferDst, rhi::MemoryUsage::Readback});
+  std::memset(init.device.mapped(statsReadback_).data(), 0, 2 * sizeof(VisCounters));
 }
 
 VisBufferFeature::Buffers VisBufferFeature::declareBuffers(graph::FrameGraph& graph,
@@ -155,9 +216,23 @@ VisBufferFeature::Buffers VisBufferFeature::declareBuffers(graph::FrameGraph& gr
   Buffers b;
   b.extent = targets.extent;
   const uint64_t pixels = uint64_t{targets.extent.width} * targets.extent.height;
-  b.counters = graph.createBuffer("vis counters", {sizeof(VisCounters), {}});
-  b.cullArgs = graph.createBuffer("cluster cull args", {sizeof(VisCounters), {}});
-  b.rasterArgs = graph.createBuffer("triangle filter args", {sizeof(VisCounters), {}});
+  b.early.counters = graph.createBuffer("vis counters", {sizeof(VisCounters), {}});
+  b.early.cullArgs = graph.createBuffer("cluster cull args", {sizeof(VisCounters), {}});
+  b.early.rasterArgs = graph.createBuffer("triangle filter args", {sizeof(VisCounters), {}});
+  if (occlusion_) {
+    b.late.counters = graph.createBuffer("vis counters (late)", {sizeof(VisCounters), {}});
+    b.late.cullArgs = graph.createBuffer("cluster cull args (late)", {sizeof(VisCounters), {}});
+    b.late.rasterArgs = graph.createBuffer("triangle filter args (late)", {sizeof(VisCounters), {}});
+    b.candidates = graph.createBuffer("occlusion candidates", {uint64_t{4} * geometry.drawCount, {}});
+    b.hizLateArgs = graph.createBuffer(
+        "hiz build args (late)", {kHizLevelArgsBytes * hizLevels(targets.extent.width, targets.extent.height), {}});
+    // Written by "HiZ Build (late)", read by the next frame's "Cluster Cull": all compute on the
+    // graphics queue.
+    const graph::ImportState hizState{graph::kStageComputeShader,
+                                      graph::kAccessShaderStorageRead | graph::kAccessShaderStorageWrite,
+                                      graph::Layout::Undefined, graph::QueueClass::Graphics};
+    b.hiz = graph.importBuffer("hiz pyramid", {4 * hizKeys_, {}}, rhi::external(hiz_), hizState, hizState);
+  }
   b.visible = graph.createBuffer("visible clusters", {uint64_t{4} * geometry.drawCount, {}});
   b.smallList = graph.createBuffer("small triangles", {uint64_t{32} * geometry.triangles, {}});  // 2 uvec4 each
   b.largeList = graph.createBuffer("large triangles", {kLargeTriangleBytes * largeCapacity_, {}});
@@ -198,12 +273,17 @@ void VisBufferFeature::declareClear(graph::FrameGraph& graph, Buffers& b) const 
     b.wordImage = node.write(b.wordImage, Access::StorageWrite);
   else
     b.words = node.write(b.words, Access::TransferDst);
-  b.counters = node.write(b.counters, Access::TransferDst);
   // The argument snapshots are zeroed too: the culling nodes then update them (read-write).
-  b.cullArgs = node.write(b.cullArgs, Access::TransferDst);
-  b.rasterArgs = node.write(b.rasterArgs, Access::TransferDst);
+  std::vector<graph::BufferHandle> zeroed;
+  for (VisPhase* phase : {&b.early, &b.late}) {
+    if (!phase->counters.valid()) continue;
+    for (graph::BufferHandle* counters : {&phase->counters, &phase->cullArgs, &phase->rasterArgs}) {
+      *counters = node.write(*counters, Access::TransferDst);
+      zeroed.push_back(*counters);
+    }
+  }
   const uint64_t wordBytes = uint64_t{8} * b.extent.width * b.extent.height;
-  node.setJob([b, wordBytes, clearImage = pipelines_.clearImage](graph::JobContext& context) {
+  node.setJob([b, zeroed, wordBytes, clearImage = pipelines_.clearImage](graph::JobContext& context) {
     auto& ctx = rhi::rhiContext(context);
     if (b.wordImage.valid()) {
       ctx.cmd().bindPipeline(clearImage);
@@ -213,18 +293,21 @@ void VisBufferFeature::declareClear(graph::FrameGraph& graph, Buffers& b) const 
     } else {
       ctx.cmd().fillBuffer(ctx.buffer(b.words), 0, wordBytes, 0);  // 0: no triangle (see visbuffer.glsl)
     }
-    for (const auto counters : {b.counters, b.cullArgs, b.rasterArgs})
-      ctx.cmd().fillBuffer(ctx.buffer(counters), 0, sizeof(VisCounters), 0);
+    for (const auto counters : zeroed) ctx.cmd().fillBuffer(ctx.buffer(counters), 0, sizeof(VisCounters), 0);
   });
 }
 
 void VisBufferFeature::declareClusterCull(graph::FrameGraph& graph, Buffers& b) const {
   auto node = graph.addNode("Cluster Cull", graph::NodeType::Compute, kQueue);
-  b.counters = node.write(b.counters, Access::StorageReadWrite);
+  b.early.counters = node.write(b.early.counters, Access::StorageReadWrite);
   b.visible = node.write(b.visible, Access::StorageWrite);
   // Read-write, not write: under validation the node's read-only binding exposes every buffer it
   // declared, and the cull shader reads that binding, so sync validation counts it as a reader.
-  b.cullArgs = node.write(b.cullArgs, Access::StorageReadWrite);
+  b.early.cullArgs = node.write(b.early.cullArgs, Access::StorageReadWrite);
+  if (occlusion_) {
+    node.read(b.hiz, Access::StorageRead);
+    b.candidates = node.write(b.candidates, Access::StorageWrite);
+  }
   CullPush push{};
   const auto frustum = scene::Frustum::fromMatrix(scene_->constants.viewProj);
   for (size_t i = 0; i < 6; ++i) push.planes[i] = frustum.planes[i];
@@ -232,16 +315,24 @@ void VisBufferFeature::declareClusterCull(graph::FrameGraph& graph, Buffers& b) 
   push.instances = b.push.instances;
   push.draws = b.push.draws;
   push.clusters = b.push.clusters;
-  push.drawCount = drawCount_;
-  node.setJob([push, pipelines = pipelines_, counters = b.counters, visible = b.visible, args = b.cullArgs,
+  if (drawCount_ > kCullDrawCountMask) throw std::logic_error("visbuffer: more clusters than Cluster Cull can count");
+  push.drawCount = drawCount_ | (reversedZ_ ? kCullReversedZ : 0u) | (occlusionHoldBack_ ? kCullHoldBackOdd : 0u);
+  node.setJob([push, pipelines = pipelines_, counters = b.early.counters, visible = b.visible, args = b.early.cullArgs,
+               hiz = b.hiz, candidates = b.candidates,
                jobCapacity = tileJobCapacity_](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
     push.counters = ctx.storageBufferIndex(counters);
     push.visible = ctx.storageBufferIndex(visible);
+    if (hiz.valid()) {
+      push.occlusion = ctx.storageBufferIndex(hiz) | ctx.storageBufferIndex(candidates) << 16;
+      // The first frame has no previous depths: no HiZ test.
+      if (ctx.execution() > 0) push.drawCount |= kCullOcclusion;
+    }
+    const uint32_t drawCount = push.drawCount & kCullDrawCountMask;
     cmd.bindPipeline(pipelines.cull);
     cmd.push(push);
-    cmd.dispatch((push.drawCount + 63) / 64);
+    cmd.dispatch((drawCount + 63) / 64);
     cmd.computeBarrier();  // the arguments read every workgroup's count
     cmd.bindPipeline(pipelines.args);
     cmd.push(ArgsPush{push.counters, ctx.storageBufferIndex(args), kRasterGroupSize, jobCapacity});
@@ -249,39 +340,86 @@ void VisBufferFeature::declareClusterCull(graph::FrameGraph& graph, Buffers& b) 
   });
 }
 
-void VisBufferFeature::declareTriangleFilter(graph::FrameGraph& graph, Buffers& b) const {
-  auto node = graph.addNode("Triangle Filter", graph::NodeType::Compute, kQueue);
-  node.read(b.cullArgs, Access::Indirect);
-  node.read(b.cullArgs, Access::StorageRead);
+// Phase 2 of render.occlusion: the clusters phase 1 held back, tested again against this frame's
+// HiZ; those not hidden are appended to the visible list after phase 1's.
+void VisBufferFeature::declareClusterCullLate(graph::FrameGraph& graph, Buffers& b) const {
+  auto node = graph.addNode("Cluster Cull (late)", graph::NodeType::Compute, kQueue);
+  node.read(b.hiz, Access::StorageRead);
+  node.read(b.candidates, Access::StorageRead);
+  node.read(b.early.cullArgs, Access::StorageRead);
+  b.late.counters = node.write(b.late.counters, Access::StorageReadWrite);
+  b.visible = node.write(b.visible, Access::StorageReadWrite);
+  b.late.cullArgs = node.write(b.late.cullArgs, Access::StorageReadWrite);  // see cullArgs in Cluster Cull
+  LateCullPush push{};
+  push.frame = b.push.frame;
+  push.instances = b.push.instances;
+  push.draws = b.push.draws;
+  push.clusters = b.push.clusters;
+  push.reversedZ = reversedZ_ ? 1u : 0u;
+  node.setJob([push, pipelines = pipelines_, b, drawCount = drawCount_,
+               jobCapacity = tileJobCapacity_](graph::JobContext& context) mutable {
+    auto& ctx = rhi::rhiContext(context);
+    auto& cmd = ctx.cmd();
+    push.hiz = ctx.storageBufferIndex(b.hiz);
+    push.candidates = ctx.storageBufferIndex(b.candidates);
+    push.earlyArgs = ctx.storageBufferIndex(b.early.cullArgs);
+    push.counters = ctx.storageBufferIndex(b.late.counters);
+    push.visible = ctx.storageBufferIndex(b.visible);
+    cmd.bindPipeline(pipelines.cullLate);
+    cmd.push(push);
+    // Sized for every cluster (the candidate count is on the GPU); the invocations past it leave.
+    cmd.dispatch((drawCount + 63) / 64);
+    cmd.computeBarrier();
+    cmd.bindPipeline(pipelines.args);
+    cmd.push(ArgsPush{push.counters, ctx.storageBufferIndex(b.late.cullArgs), kRasterGroupSize, jobCapacity});
+    cmd.dispatch(1);
+  });
+}
+
+void VisBufferFeature::declareTriangleFilter(graph::FrameGraph& graph, Buffers& b, VisPhase& phase) const {
+  auto node =
+      graph.addNode(std::string("Triangle Filter") + std::string(phase.suffix), graph::NodeType::Compute, kQueue);
+  node.read(phase.cullArgs, Access::Indirect);
+  node.read(phase.cullArgs, Access::StorageRead);
   node.read(b.visible, Access::StorageRead);
-  b.counters = node.write(b.counters, Access::StorageReadWrite);
+  phase.counters = node.write(phase.counters, Access::StorageReadWrite);
   b.smallList = node.write(b.smallList, Access::StorageWrite);
   b.largeList = node.write(b.largeList, Access::StorageWrite);
   b.tileJobs = node.write(b.tileJobs, Access::StorageWrite);
-  b.rasterArgs = node.write(b.rasterArgs, Access::StorageReadWrite);  // see cullArgs in Cluster Cull
-  node.setJob([push = b.push, pipelines = pipelines_, b](graph::JobContext& context) mutable {
+  phase.rasterArgs = node.write(phase.rasterArgs, Access::StorageReadWrite);  // see cullArgs in Cluster Cull
+  // Phase 2's filter also says whether "HiZ Build (late)" has anything to do (hiz_args.comp).
+  const bool late = &phase == &b.late;
+  if (late) b.hizLateArgs = node.write(b.hizLateArgs, Access::StorageWrite);
+  node.setJob([push = b.push, pipelines = pipelines_, b, phase, late](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
-    push.counters = ctx.storageBufferIndex(b.counters);
-    push.args = ctx.storageBufferIndex(b.cullArgs);
+    push.counters = ctx.storageBufferIndex(phase.counters);
+    push.args = ctx.storageBufferIndex(phase.cullArgs);
     push.visible = ctx.storageBufferIndex(b.visible);
     push.smallList = ctx.storageBufferIndex(b.smallList);
     push.largeList = ctx.storageBufferIndex(b.largeList);
     push.tileJobs = ctx.storageBufferIndex(b.tileJobs);
     cmd.bindPipeline(pipelines.filter);
     cmd.push(push);
-    cmd.dispatchIndirect(ctx.buffer(b.cullArgs), kFilterArgsOffset);
+    cmd.dispatchIndirect(ctx.buffer(phase.cullArgs), kFilterArgsOffset);
     cmd.computeBarrier();
     cmd.bindPipeline(pipelines.args);
-    cmd.push(ArgsPush{push.counters, ctx.storageBufferIndex(b.rasterArgs), kRasterGroupSize, push.tileJobCapacity});
+    cmd.push(ArgsPush{push.counters, ctx.storageBufferIndex(phase.rasterArgs), kRasterGroupSize, push.tileJobCapacity});
+    cmd.dispatch(1);
+    if (!late) return;
+    cmd.computeBarrier();
+    cmd.bindPipeline(pipelines.hizArgs);
+    cmd.push(HizArgsPush{ctx.storageBufferIndex(phase.rasterArgs), ctx.storageBufferIndex(b.hizLateArgs),
+                         b.extent.width, b.extent.height});
     cmd.dispatch(1);
   });
 }
 
-void VisBufferFeature::declareRaster(graph::FrameGraph& graph, Buffers& b) const {
-  auto node = graph.addNode("Visibility Raster", graph::NodeType::Compute, kQueue);
-  node.read(b.rasterArgs, Access::Indirect);
-  node.read(b.rasterArgs, Access::StorageRead);
+void VisBufferFeature::declareRaster(graph::FrameGraph& graph, Buffers& b, const VisPhase& phase) const {
+  auto node =
+      graph.addNode(std::string("Visibility Raster") + std::string(phase.suffix), graph::NodeType::Compute, kQueue);
+  node.read(phase.rasterArgs, Access::Indirect);
+  node.read(phase.rasterArgs, Access::StorageRead);
   node.read(b.visible, Access::StorageRead);
   node.read(b.smallList, Access::StorageRead);
   node.read(b.largeList, Access::StorageRead);
@@ -290,10 +428,10 @@ void VisBufferFeature::declareRaster(graph::FrameGraph& graph, Buffers& b) const
     b.wordImage = node.write(b.wordImage, Access::StorageReadWrite);
   else
     b.words = node.write(b.words, Access::StorageReadWrite);
-  node.setJob([push = b.push, pipelines = pipelines_, b](graph::JobContext& context) mutable {
+  node.setJob([push = b.push, pipelines = pipelines_, b, args = phase.rasterArgs](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
-    push.args = ctx.storageBufferIndex(b.rasterArgs);
+    push.args = ctx.storageBufferIndex(args);
     push.visible = ctx.storageBufferIndex(b.visible);
     push.smallList = ctx.storageBufferIndex(b.smallList);
     push.largeList = ctx.storageBufferIndex(b.largeList);
@@ -301,34 +439,69 @@ void VisBufferFeature::declareRaster(graph::FrameGraph& graph, Buffers& b) const
     push.words = b.wordImage.valid() ? ctx.storageTextureIndex(b.wordImage) : ctx.storageBufferIndex(b.words);
     cmd.bindPipeline(pipelines.raster);
     cmd.push(push);
-    cmd.dispatchIndirect(ctx.buffer(b.rasterArgs), kSmallArgsOffset);
+    cmd.dispatchIndirect(ctx.buffer(args), kSmallArgsOffset);
     // No barrier between the two: atomic max commutes. (A copy: the job runs every frame.)
     VisPush tiles = push;
     tiles.flags |= kFlagLargeTiles;
     cmd.push(tiles);
-    cmd.dispatchIndirect(ctx.buffer(b.rasterArgs), kTileArgsOffset);
+    cmd.dispatchIndirect(ctx.buffer(args), kTileArgsOffset);
+  });
+}
+
+// The HiZ pyramid of the visibility buffer's depths as they are now: after phase 1's raster for
+// phase 2, after phase 2's for the next frame's phase 1 (late: dispatched indirectly, with no
+// groups when phase 2 drew nothing and phase 1's pyramid is already the frame's).
+void VisBufferFeature::declareHizBuild(graph::FrameGraph& graph, Buffers& b, bool late) const {
+  auto node = graph.addNode(late ? "HiZ Build (late)" : "HiZ Build", graph::NodeType::Compute, kQueue);
+  if (late) node.read(b.hizLateArgs, Access::Indirect);
+  if (b.wordImage.valid())
+    node.read(b.wordImage, Access::StorageRead);
+  else
+    node.read(b.words, Access::StorageRead);
+  b.hiz = node.write(b.hiz, Access::StorageReadWrite);  // each level reads the one below
+  const uint32_t levels = hizLevels(b.extent.width, b.extent.height);
+  node.setJob([pipeline = pipelines_.hizBuild, b, levels, late](graph::JobContext& context) {
+    auto& ctx = rhi::rhiContext(context);
+    auto& cmd = ctx.cmd();
+    HizPush push{b.wordImage.valid() ? ctx.storageTextureIndex(b.wordImage) : ctx.storageBufferIndex(b.words),
+                 ctx.storageBufferIndex(b.hiz), b.extent.width, b.extent.height, 0};
+    cmd.bindPipeline(pipeline);
+    for (uint32_t level = 1; level <= levels; ++level) {
+      if (level > 1) cmd.computeBarrier();  // a level reads the one before it
+      push.level = level;
+      cmd.push(push);
+      if (late) {
+        cmd.dispatchIndirect(ctx.buffer(b.hizLateArgs), kHizLevelArgsBytes * (level - 1));
+        continue;
+      }
+      const uint32_t width = (b.extent.width + (1u << level) - 1) >> level;
+      const uint32_t height = (b.extent.height + (1u << level) - 1) >> level;
+      cmd.dispatch((width + kHizGroupSize - 1) / kHizGroupSize, (height + kHizGroupSize - 1) / kHizGroupSize);
+    }
   });
 }
 
 // Material Shade also copies the culling counters to the host (statistics). A node of its own
 // reading them after "Triangle Filter" ran between "Visibility Raster" and "Material Shade", on
-// the critical path (H100: 5 us plus a ~20 us bubble); here the 64-byte copy is recorded before the
-// dispatch with no barrier between them, so it runs beside the shading, and its source's barrier
-// (filter's compute write -> transfer read) joins the one shading waits at anyway.
+// the critical path (H100: 5 us plus a ~20 us bubble); here the 80-byte copy (one per phase with
+// render.occlusion) is recorded before the dispatch with no barrier between them, so it runs
+// beside the shading, and its source's barrier (filter's compute write -> transfer read) joins the
+// one shading waits at anyway.
 void VisBufferFeature::declareShade(graph::FrameGraph& graph, Blackboard& board, Buffers& b) const {
   auto& targets = board.get<FrameTargets>();
   const graph::ImportState hostState{graph::kStageHost | graph::kStageTransfer,
                                      graph::kAccessHostRead | graph::kAccessTransferWrite, graph::Layout::Undefined,
                                      graph::QueueClass::Graphics};
-  auto stats = graph.importBuffer("visibility stats readback", {sizeof(VisCounters), {}}, rhi::external(statsReadback_),
-                                  hostState, hostState);
+  auto stats = graph.importBuffer("visibility stats readback", {2 * sizeof(VisCounters), {}},
+                                  rhi::external(statsReadback_), hostState, hostState);
   auto node = graph.addNode("Material Shade", graph::NodeType::Compute, kQueue);
   if (b.wordImage.valid())
     node.read(b.wordImage, Access::StorageRead);
   else
     node.read(b.words, Access::StorageRead);
   node.read(b.visible, Access::StorageRead);
-  node.read(b.rasterArgs, Access::TransferSrc);
+  node.read(b.early.rasterArgs, Access::TransferSrc);
+  if (b.late.rasterArgs.valid()) node.read(b.late.rasterArgs, Access::TransferSrc);
   stats = node.write(stats, Access::TransferDst);
   b.depth = node.write(b.depth, Access::StorageWrite);
   targets.hdr = node.write(targets.hdr, Access::StorageWrite);
@@ -344,7 +517,11 @@ void VisBufferFeature::declareShade(graph::FrameGraph& graph, Blackboard& board,
                stats](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
-    cmd.copyBuffer(ctx.buffer(b.rasterArgs), ctx.buffer(stats), sizeof(VisCounters));
+    cmd.copyBuffer(ctx.buffer(b.early.rasterArgs), ctx.buffer(stats), sizeof(VisCounters));
+    if (b.late.rasterArgs.valid()) {
+      const rhi::BufferCopy second{0, sizeof(VisCounters), sizeof(VisCounters)};
+      cmd.copyBuffer(ctx.buffer(b.late.rasterArgs), ctx.buffer(stats), std::span(&second, 1));
+    }
     push.words = b.wordImage.valid() ? ctx.storageTextureIndex(b.wordImage) : ctx.storageBufferIndex(b.words);
     push.visible = ctx.storageBufferIndex(b.visible);
     push.depthOut = ctx.storageBufferIndex(b.depth);
@@ -372,24 +549,41 @@ void VisBufferFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
   Buffers b = declareBuffers(graph, targets);
   declareClear(graph, b);
   declareClusterCull(graph, b);
-  declareTriangleFilter(graph, b);
-  declareRaster(graph, b);
+  declareTriangleFilter(graph, b, b.early);
+  declareRaster(graph, b, b.early);
+  if (occlusion_) {
+    declareHizBuild(graph, b, false);
+    declareClusterCullLate(graph, b);
+    declareTriangleFilter(graph, b, b.late);
+    declareRaster(graph, b, b.late);
+    declareHizBuild(graph, b, true);  // kept for the next frame's phase 1
+  }
   declareShade(graph, board, b);
-  board.set(VisibilityOutputs{b.rasterArgs, b.visible, b.words, b.wordImage});
+  board.set(VisibilityOutputs{b.early.rasterArgs, b.late.rasterArgs, b.visible, b.words, b.wordImage});
 }
 
 void VisBufferFeature::addStats(std::map<std::string, double>& stats) const {
   if (!enabled()) return;
-  VisCounters read{};
-  std::memcpy(&read, device_->mapped(statsReadback_).data(), sizeof(read));
+  VisCounters phases[2]{};
+  std::memcpy(phases, device_->mapped(statsReadback_).data(), sizeof(phases));
+  const VisCounters& early = phases[0];
+  const VisCounters& late = phases[1];                     // zero without render.occlusion
   stats["vis_backing_image"] = imageBacking_ ? 1.0 : 0.0;  // render.vis_backing as run: 1 image, 0 buffer
   stats["vis_clusters"] = drawCount_;
-  stats["vis_clusters_visible"] = read.visibleClusters;
-  stats["vis_triangles_small"] = read.smallTriangles;
-  stats["vis_triangles_large"] = read.largeTriangles;
-  stats["vis_triangles_rasterised"] = double(read.smallTriangles) + read.largeTriangles;
-  stats["vis_raster_tile_jobs"] = read.tileJobs;
-  stats["vis_large_overflow"] = read.overflow;
+  stats["vis_clusters_visible"] = double(early.visibleClusters) + late.visibleClusters;
+  stats["vis_triangles_small"] = double(early.smallTriangles) + late.smallTriangles;
+  stats["vis_triangles_large"] = double(early.largeTriangles) + late.largeTriangles;
+  stats["vis_triangles_rasterised"] =
+      double(early.smallTriangles) + early.largeTriangles + late.smallTriangles + late.largeTriangles;
+  stats["vis_raster_tile_jobs"] = double(early.tileJobs) + late.tileJobs;
+  stats["vis_large_overflow"] = double(early.overflow) + late.overflow;
+  if (occlusion_) {
+    // Two-phase occlusion (render.occlusion): held back by last frame's HiZ in phase 1, and of
+    // those, found visible again against this frame's in phase 2.
+    stats["vis_occlusion_phase1_occluded"] = early.occluded;
+    stats["vis_occlusion_phase2_recovered"] = late.visibleClusters;
+    stats["vis_occlusion_culled"] = double(early.occluded) - late.visibleClusters;
+  }
 }
 
 }  // namespace fgb::features

@@ -7,6 +7,12 @@
 //                               triangle lists and the raster's indirect arguments;
 //   "Visibility Raster"         64-bit atomic max of (depth, id) per pixel (storage buffer, or R64
 //                               image with 64-bit image atomics: render.vis_backing);
+//   with render.occlusion=1 (two-phase HiZ occlusion culling), "Cluster Cull" also holds back the
+//   clusters hidden behind last frame's HiZ pyramid (a persistent buffer), then
+//   "HiZ Build"                 the pyramid of the depths phase 1 rasterised;
+//   "Cluster Cull (late)"       the held-back clusters against it: the visible ones go through
+//   "Triangle Filter (late)", "Visibility Raster (late)" (counters of their own), and
+//   "HiZ Build (late)"          the pyramid of the whole frame, for the next frame's phase 1;
 //   "Material Shade"            rebuilds each pixel's triangle, shades it like forward.frag (shared
 //                               include) into the HDR target, writes the pixel depths into
 //                               "visibility depth" (FrameTargets::opaqueDepth), against which the
@@ -20,9 +26,12 @@
 
 namespace fgb::features {
 
+struct VisPhase;  // one culling phase's counters (visbuffer_feature.cpp)
+
 // Published by the visibility-buffer feature for later nodes (debug views, statistics).
 struct VisibilityOutputs {
   graph::BufferHandle counters;         // VisCounters after "Triangle Filter"
+  graph::BufferHandle lateCounters;     // after "Triangle Filter (late)" (render.occlusion only)
   graph::BufferHandle visibleClusters;  // ClusterDraw indices that passed "Cluster Cull"
   // uint64 per pixel, depth key << 32 | id (render.vis_backing): a row-major storage buffer, or an
   // R64Uint storage texture. Exactly one of the two is valid.
@@ -46,14 +55,19 @@ class VisBufferFeature final : public IRenderFeature {
     rhi::PipelineId raster;
     rhi::PipelineId shade;
     rhi::PipelineId clearImage;  // image backing only
+    rhi::PipelineId cullLate;    // render.occlusion only
+    rhi::PipelineId hizBuild;    // render.occlusion only
+    rhi::PipelineId hizArgs;     // render.occlusion only
   };
   struct Buffers;
 
   Buffers declareBuffers(graph::FrameGraph& graph, const FrameTargets& targets) const;
   void declareClear(graph::FrameGraph& graph, Buffers& buffers) const;
   void declareClusterCull(graph::FrameGraph& graph, Buffers& buffers) const;
-  void declareTriangleFilter(graph::FrameGraph& graph, Buffers& buffers) const;
-  void declareRaster(graph::FrameGraph& graph, Buffers& buffers) const;
+  void declareClusterCullLate(graph::FrameGraph& graph, Buffers& buffers) const;
+  void declareTriangleFilter(graph::FrameGraph& graph, Buffers& buffers, VisPhase& phase) const;
+  void declareRaster(graph::FrameGraph& graph, Buffers& buffers, const VisPhase& phase) const;
+  void declareHizBuild(graph::FrameGraph& graph, Buffers& buffers, bool late) const;
   void declareShade(graph::FrameGraph& graph, Blackboard& board, Buffers& buffers) const;
 
   rhi::Device* device_ = nullptr;
@@ -64,7 +78,11 @@ class VisBufferFeature final : public IRenderFeature {
   uint32_t largeCapacity_ = 0;
   uint32_t tileJobCapacity_ = 0;
   bool reversedZ_ = false;
-  bool imageBacking_ = false;  // render.vis_backing resolved to image
+  bool imageBacking_ = false;       // render.vis_backing resolved to image
+  bool occlusion_ = false;          // render.occlusion
+  bool occlusionHoldBack_ = false;  // debug.occlusion_hold_back (with render.occlusion)
+  rhi::BufferId hiz_;               // the HiZ pyramid, kept from frame to frame (render.occlusion)
+  uint64_t hizKeys_ = 0;            // its size in 32-bit depth keys
 };
 
 }  // namespace fgb::features

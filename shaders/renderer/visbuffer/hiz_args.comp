@@ -1,0 +1,35 @@
+#version 460
+// "HiZ Build (late)"'s indirect arguments, one invocation, run at the end of "Triangle Filter
+// (late)" (render.occlusion=1): a group count per pyramid level, or none at all when phase 2
+// rasterises no triangle. Then the visibility buffer is as phase 1 left it, and so is the pyramid
+// "HiZ Build" made of it, which the next frame can use as it is (with a still camera, phase 2
+// usually has nothing to draw).
+#extension GL_GOOGLE_include_directive : require
+#include "../include/visbuffer.glsl"
+#define FGB_HIZ_BUILD_ONLY
+#include "hiz_occlusion.glsl"
+
+layout(local_size_x = 1) in;
+
+layout(push_constant) uniform Push {
+  uint rasterArgs;  // "Triangle Filter (late)"'s snapshot (read)
+  uint args;        // written: uvec3 per level from level 1
+  uint width;       // the viewport
+  uint height;
+} pc;
+
+const uint kHizGroupSize = 8u;  // hiz_build.comp's local size
+
+void main() {
+  VisCounters c = visCountersRead[pc.rasterArgs].c;
+  bool drew = c.smallTriangles + c.tileJobs > 0u;
+  uvec2 viewport = uvec2(pc.width, pc.height);
+  uint levels = hizLevels(viewport);
+  for (uint level = 1u; level <= levels; ++level) {
+    uvec2 groups = drew ? (hizLevelSize(viewport, level) + kHizGroupSize - 1u) / kHizGroupSize : uvec2(0u);
+    uint at = 3u * (level - 1u);
+    fgbUints[pc.args].values[at] = groups.x;
+    fgbUints[pc.args].values[at + 1u] = groups.y;
+    fgbUints[pc.args].values[at + 2u] = 1u;
+  }
+}

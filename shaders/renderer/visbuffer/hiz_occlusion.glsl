@@ -1,0 +1,78 @@
+// HiZ occlusion (render.occlusion=1; included by cluster_cull.comp, cluster_cull_late.comp and
+// hiz_build.comp). The HiZ pyramid is a storage buffer of depth keys (depthKey in visbuffer.glsl:
+// larger = nearer, 0 = no triangle): level k >= 1 has ceil(W / 2^k) x ceil(H / 2^k) texels, row
+// major, levels one after another from level 1; texel (i, j) of level k holds the smallest key,
+// i.e. the farthest depth, of the viewport's pixels [i * 2^k, (i + 1) * 2^k) x [j * 2^k, ...)
+// (clamped to the viewport), so a sphere whose nearest depth is farther than a texel's key is
+// hidden at every pixel the texel covers. (Level 0, the pixels themselves, is not stored.)
+#ifndef FGB_RENDERER_HIZ_OCCLUSION_GLSL
+#define FGB_RENDERER_HIZ_OCCLUSION_GLSL
+
+uvec2 hizLevelSize(uvec2 viewport, uint level) { return (viewport + (1u << level) - 1u) >> level; }
+
+// Offset (in keys) of a level >= 1 in the pyramid buffer.
+uint hizLevelOffset(uvec2 viewport, uint level) {
+  uint offset = 0u;
+  for (uint k = 1u; k < level; ++k) {
+    uvec2 size = hizLevelSize(viewport, k);
+    offset += size.x * size.y;
+  }
+  return offset;
+}
+
+// Levels until the top one is a single texel (at least 1): ceil(log2(max(W, H))).
+uint hizLevels(uvec2 viewport) { return uint(max(1, findMSB(max(viewport.x, viewport.y) - 1u) + 1)); }
+
+#ifndef FGB_HIZ_BUILD_ONLY
+float maxScale(mat4 model) {
+  return sqrt(max(dot(model[0].xyz, model[0].xyz), max(dot(model[1].xyz, model[1].xyz), dot(model[2].xyz, model[2].xyz))));
+}
+
+// Whether a world-space sphere is certainly hidden behind the depths the pyramid `hiz` holds.
+// Conservative: a sphere crossing the near plane or behind the eye is visible; the sphere is
+// enlarged, its screen rectangle grown by a pixel, and its depth key must be below the texels'
+// farthest by a margin, so rounding in the raster's depths can never hide a pixel it would win.
+// `frame`: the frame constants' storage-buffer index (only the fields used are loaded).
+bool hizOccluded(uint hiz, uint frame, vec3 center, float radius, bool reversedZ) {
+  mat4 view = fgbFrames[frame].frame.view;
+  mat4 proj = fgbFrames[frame].frame.proj;
+  vec2 viewportSize = fgbFrames[frame].frame.viewport.xy;
+  vec3 viewCenter = (view * vec4(center, 1.0)).xyz;
+  float r = radius * 1.001 + 1e-4 * length(viewCenter);
+  float nearestZ = viewCenter.z + r;  // the view looks down -z
+  if (-nearestZ <= fgbFrames[frame].frame.depthRange.x) return false;  // crosses the near plane, or behind the eye
+  // The screen rectangle of the sphere's view-space bounding box (its 8 corners are in front of
+  // the eye, so the projection of the box, which holds the sphere's, is their hull).
+  vec2 ndcMin = vec2(1e30), ndcMax = vec2(-1e30);
+  for (uint i = 0u; i < 8u; ++i) {
+    vec3 corner = viewCenter + r * vec3((i & 1u) != 0u ? 1.0 : -1.0, (i & 2u) != 0u ? 1.0 : -1.0, (i & 4u) != 0u ? 1.0 : -1.0);
+    vec4 clip = proj * vec4(corner, 1.0);
+    vec2 ndc = clip.xy / clip.w;
+    ndcMin = min(ndcMin, ndc);
+    ndcMax = max(ndcMax, ndc);
+  }
+  vec4 nearestClip = proj * vec4(viewCenter.xy, nearestZ, 1.0);
+  uint sphereKey = depthKey(nearestClip.z / nearestClip.w, reversedZ);
+
+  uvec2 viewport = uvec2(viewportSize);
+  vec2 lo = clamp(floor((ndcMin * 0.5 + 0.5) * viewportSize) - 1.0, vec2(0.0), viewportSize - 1.0);
+  vec2 hi = clamp(floor((ndcMax * 0.5 + 0.5) * viewportSize) + 1.0, vec2(0.0), viewportSize - 1.0);
+  uvec2 p0 = uvec2(lo), p1 = uvec2(hi);
+  // The finest level at which the rectangle spans at most 2 x 2 texels: a span s < 2^k does at
+  // level k, one of s < 2^(k+1) may at level k, so the search starts at findMSB(s).
+  uint levels = hizLevels(viewport);
+  uvec2 span = p1 - p0;
+  uint level = uint(clamp(findMSB(max(span.x, span.y)), 1, int(levels)));
+  while (level < levels && any(greaterThan((p1 >> level) - (p0 >> level), uvec2(1u)))) ++level;
+  uvec2 size = hizLevelSize(viewport, level);
+  uint base = hizLevelOffset(viewport, level);
+  uvec2 t0 = p0 >> level, t1 = min(p1 >> level, size - 1u);
+  uint farthest = 0xffffffffu;
+  for (uint y = t0.y; y <= t1.y; ++y)
+    for (uint x = t0.x; x <= t1.x; ++x) farthest = min(farthest, fgbUintsRead[hiz].values[base + y * size.x + x]);
+  // Keys are float bits: 64 units is 64 ulps of depth, beyond the raster's interpolation error.
+  return farthest > 64u && sphereKey < farthest - 64u;
+}
+#endif
+
+#endif

@@ -1,12 +1,12 @@
 #version 460
 // "Visibility Raster": writes (depth key << 32 | id) into the visibility buffer with a 64-bit
-// atomic max per covered pixel centre (storage buffer, or R64 image in the "image" variant). Two dispatches of this shader in one node: small triangles
-// (one invocation each walks its at most 8x8 pixel centres) and the tiles of large triangles (one
-// workgroup per 8x8-pixel tile, one invocation per pixel; the tile's triangle is found by binary
-// search over the large list's first-job offsets). Projected triangles use 8-bit sub-pixel
-// integer edge functions with the top-left rule; those crossing the eye plane or the guard band
-// use homogeneous edge functions. Depth outside [0, 1] is clipped per pixel, like the hardware's
-// depth clipping, and alpha-masked materials are tested per pixel.
+// atomic max per covered pixel centre (storage buffer, or R64 image in the "image" variant). Two
+// dispatches of this shader in one node: small triangles (one invocation each walks its at most
+// 8x8 pixel centres) and the tile jobs of large triangles (one workgroup per job of up to
+// kTilesPerJob 8x8-pixel tiles, one invocation per pixel of each tile). Projected triangles use
+// 8-bit sub-pixel integer edge functions with the top-left rule; those crossing the eye plane or
+// the guard band use homogeneous edge functions. Depth outside [0, 1] is clipped per pixel, like
+// the hardware's depth clipping, and alpha-masked materials are tested per pixel.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_nonuniform_qualifier : require
 #include "../include/visbuffer_material.glsl"
@@ -60,23 +60,42 @@ void rasterPixel(RasterTriangle r, ivec2 pixel) {
     z = dot(e, vec3(r.screen.clip[0].z, r.screen.clip[1].z, r.screen.clip[2].z));
   }
   if (!(z >= 0.0 && z <= 1.0)) return;  // depth clipping (also drops NaN)
-  if (r.masked && !alphaPasses(r, pixel)) return;
-  visWordMax(pc.words, pixel, uint(viewportSize().x), (uint64_t(depthKey(z, reversedZ())) << 32) | uint64_t(r.id));
+  uint width = uint(viewportSize().x);
+  uint key = depthKey(z, reversedZ());
+  // The alpha test (up to kMaxAnisotropy texture taps) is skipped where the word cannot win the
+  // max: a pixel's words only grow during the pass, so a depth key already greater than ours (in a
+  // stale read too) keeps ours out whatever the test says. Only the key half is compared, strictly:
+  // a plain 64-bit read racing the atomics could pair halves of two words, a 32-bit half cannot
+  // be torn. Leaves behind leaves and walls are common.
+  if (r.masked && (uint(visWordAt(pc.words, pixel, width) >> 32) > key || !alphaPasses(r, pixel))) return;
+  uint64_t word = (uint64_t(key) << 32) | uint64_t(r.id);
+  visWordMax(pc.words, pixel, width, word);
 }
 
 int edge32(ivec2 a, ivec2 b, ivec2 p) { return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x); }
 
+// The alpha-masked small triangles: the general path with its per-pixel test.
+void rasterSmallMasked(uint id) {
+  RasterTriangle r = loadTriangle(id);
+  for (int y = r.screen.pixels.y; y <= r.screen.pixels.w; ++y)
+    for (int x = r.screen.pixels.x; x <= r.screen.pixels.z; ++x) rasterPixel(r, ivec2(x, y));
+}
+
 // A small triangle, set up by "Triangle Filter" (packSmallTriangle): positions relative to its
 // first covered pixel fit 32-bit edge functions. Same coverage rule as coverage(): top-left, pixel
 // centres, and the same pixel range (pixelRange of the vertex box).
+// SIMD CPU devices (lavapipe) run a loop as long as its longest lane and a divergent branch under
+// a mask whether or not any lane takes it, so: the masked path sits behind a subgroup vote; the
+// box is walked with one flat loop (a lane with a 1x8 box and one with an 8x1 box cost 8
+// iterations, not 64); the edge functions step by their exact integer increments (the same
+// values as evaluating them at each pixel centre).
 void rasterSmall() {
   uint slot = linearGroup() * gl_WorkGroupSize.x + gl_LocalInvocationID.x;
   if (slot >= visCountersRead[pc.args].c.smallTriangles) return;
   uvec4 a = visUvec4sRead[pc.smallList].values[2u * slot];
-  if ((a.y & kSmallMasked) != 0u) {  // alpha-masked: the general path with its per-pixel test
-    RasterTriangle r = loadTriangle(a.x);
-    for (int y = r.screen.pixels.y; y <= r.screen.pixels.w; ++y)
-      for (int x = r.screen.pixels.x; x <= r.screen.pixels.z; ++x) rasterPixel(r, ivec2(x, y));
+  bool masked = (a.y & kSmallMasked) != 0u;
+  if (subgroupAny(masked) && masked) {  // see above
+    rasterSmallMasked(a.x);
     return;
   }
   uvec4 b = visUvec4sRead[pc.smallList].values[2u * slot + 1u];
@@ -90,23 +109,34 @@ void rasterSmall() {
     v[2] = swap;
     ndcZ = ndcZ.xzy;
   }
-  ivec3 bias = ivec3(isTopLeft(v[1], v[2]) ? 0 : -1, isTopLeft(v[2], v[0]) ? 0 : -1, isTopLeft(v[0], v[1]) ? 0 : -1);
+  // A pixel centre is covered when every edge function w >= minW (0 on top-left edges, else 1).
+  ivec3 minW = ivec3(isTopLeft(v[1], v[2]) ? 0 : 1, isTopLeft(v[2], v[0]) ? 0 : 1, isTopLeft(v[0], v[1]) ? 0 : 1);
   ivec2 origin = first * kSubPixel;
   vec2 lo = vec2(origin + min(v[0], min(v[1], v[2]))) / float(kSubPixel);
   vec2 hi = vec2(origin + max(v[0], max(v[1], v[2]))) / float(kSubPixel);
   ivec4 pixels = pixelRange(lo, hi);
+  ivec2 span = max(pixels.zw - pixels.xy + 1, ivec2(0));
+  int count = span.x * span.y;
   float invArea = 1.0 / float(abs(area));
   uint64_t id = uint64_t(a.x);
   uint width = uint(viewportSize().x);
-  for (int y = pixels.y; y <= pixels.w; ++y) {
-    for (int x = pixels.x; x <= pixels.z; ++x) {
-      ivec2 p = (ivec2(x, y) - first) * kSubPixel + kSubPixel / 2;
-      ivec3 w = ivec3(edge32(v[1], v[2], p), edge32(v[2], v[0], p), edge32(v[0], v[1], p));
-      if (any(lessThan(w + bias, ivec3(0)))) continue;
+  // edge32(a, b, p) grows by (a.y - b.y) * kSubPixel per pixel in x and (b.x - a.x) * kSubPixel in y.
+  ivec3 stepX = ivec3(v[1].y - v[2].y, v[2].y - v[0].y, v[0].y - v[1].y) * kSubPixel;
+  ivec3 stepY = ivec3(v[2].x - v[1].x, v[0].x - v[2].x, v[1].x - v[0].x) * kSubPixel;
+  ivec2 p = (pixels.xy - first) * kSubPixel + kSubPixel / 2;
+  ivec3 rowStart = ivec3(edge32(v[1], v[2], p), edge32(v[2], v[0], p), edge32(v[0], v[1], p));
+  ivec3 w = rowStart;
+  ivec2 pixel = pixels.xy;
+  for (int i = 0; i < count; ++i) {
+    if (all(greaterThanEqual(w, minW))) {
       float z = dot(vec3(w) * invArea, ndcZ);
-      if (!(z >= 0.0 && z <= 1.0)) continue;
-      visWordMax(pc.words, ivec2(x, y), width, (uint64_t(depthKey(z, reversedZ())) << 32) | id);
+      if (z >= 0.0 && z <= 1.0)  // depth clipping (also drops NaN)
+        visWordMax(pc.words, pixel, width, (uint64_t(depthKey(z, reversedZ())) << 32) | id);
     }
+    bool rowEnd = pixel.x == pixels.z;  // selects, not branches: every lane steps alike
+    rowStart += rowEnd ? stepY : ivec3(0);
+    w = rowEnd ? rowStart : w + stepX;
+    pixel = rowEnd ? ivec2(pixels.x, pixel.y + 1) : ivec2(pixel.x + 1, pixel.y);
   }
 }
 

@@ -66,7 +66,9 @@ bool alphaPasses(AlphaTest t, ivec2 pixel) {
   vec2 uv = interpolateUv(t.vertices, b, dbdx, dbdy);
   return surfaceBaseColor(t.material, uv).a >= t.material.alphaCutoff;
 }
-bool alphaPasses(RasterTriangle r, ivec2 pixel) { return alphaPasses(AlphaTest(r.frame, r.vertices, r.material), pixel); }
+bool alphaPasses(RasterTriangle r, ivec2 pixel) {
+  return alphaPasses(AlphaTest(r.frame, r.vertices, r.material), pixel);
+}
 
 // The alpha test (up to kMaxAnisotropy texture taps) is skipped where the word cannot win the
 // max: a pixel's words only grow during the pass, so a depth key already greater than ours (in a
@@ -176,7 +178,8 @@ bool walkMaskedSmall(SmallTriangle t, bool test, AlphaTest alpha) {
       uint key = depthKey(z, reversedZ());
       if (z >= 0.0 && z <= 1.0 && !keyBeaten(pixel, width, key)) {  // depth clipping (also drops NaN)
         candidates = true;
-        if (test && alphaPasses(alpha, pixel)) visWordMax(pc.words, pixel, width, (uint64_t(key) << 32) | uint64_t(t.id));
+        if (test && alphaPasses(alpha, pixel))
+          visWordMax(pc.words, pixel, width, (uint64_t(key) << 32) | uint64_t(t.id));
       }
     }
     stepPixel(t, pixel, rowStart, w);

@@ -1,17 +1,24 @@
 #version 460
 // "Visibility Raster": writes (depth key << 32 | id) into the visibility buffer with a 64-bit
-// atomic max per covered pixel centre (storage buffer, or R64 image in the "image" variant). Two dispatches of this shader in one node: small triangles
-// (one invocation each walks its at most 8x8 pixel centres) and the tiles of large triangles (one
-// workgroup per 8x8-pixel tile, one invocation per pixel; the tile's triangle is found by binary
-// search over the large list's first-job offsets). Projected triangles use 8-bit sub-pixel
-// integer edge functions with the top-left rule; those crossing the eye plane or the guard band
-// use homogeneous edge functions. Depth outside [0, 1] is clipped per pixel, like the hardware's
-// depth clipping, and alpha-masked materials are tested per pixel.
+// atomic max per covered pixel centre (storage buffer, or R64 image in the "image" variant). Two
+// dispatches of this shader in one node: small triangles (one invocation each walks its at most
+// 8x8 pixel centres) and the tile jobs of large triangles (one workgroup per job of up to
+// kTilesPerJob 8x8-pixel tiles, one invocation per pixel of each tile). Projected triangles use
+// 8-bit sub-pixel integer edge functions with the top-left rule; those crossing the eye plane or
+// the guard band use homogeneous edge functions. Depth outside [0, 1] is clipped per pixel, like
+// the hardware's depth clipping, and alpha-masked materials are tested per pixel.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_nonuniform_qualifier : require
 #include "../include/visbuffer_material.glsl"
 
 layout(local_size_x = 64) in;
+
+// What the alpha test needs of a triangle.
+struct AlphaTest {
+  BarycentricFrame frame;
+  uvec3 vertices;
+  Material material;
+};
 
 struct RasterTriangle {
   ScreenTriangle screen;
@@ -39,12 +46,36 @@ RasterTriangle loadTriangle(uint id) {
   return r;
 }
 
-bool alphaPasses(RasterTriangle r, ivec2 pixel) {
-  vec3 b, dbdx, dbdy;
-  barycentricsAt(r.frame, pixelNdc(uvec2(pixel), viewportSize()), b, dbdx, dbdy);
-  vec2 uv = interpolateUv(r.vertices, b, dbdx, dbdy);
-  return surfaceBaseColor(r.material, uv).a >= r.material.alphaCutoff;
+// The alpha test's inputs alone, for a small triangle whose coverage came packed: the same clip
+// positions as loadTriangle's (same product, same fetches), without the screen and edge setup.
+AlphaTest loadAlphaTest(uint id) {
+  uint drawIndex = fgbUintsRead[pc.visible].values[id >> kClusterTriangleBits];
+  VisTriangle tri = visTriangle(drawIndex, id & ((1u << kClusterTriangleBits) - 1u), pc.draws, pc.clusters, pc.indices);
+  mat4 mvp = modelViewProj(fgbInstances[pc.instances].instances[tri.instance].model);
+  AlphaTest t;
+  t.vertices = tri.vertices;
+  t.material = fgbMaterials[pc.materials].materials[fgbInstances[pc.instances].instances[tri.instance].material];
+  t.frame = barycentricFrame(clipPosition(mvp, tri.vertices.x), clipPosition(mvp, tri.vertices.y),
+                             clipPosition(mvp, tri.vertices.z), viewportSize());
+  return t;
 }
+
+bool alphaPasses(AlphaTest t, ivec2 pixel) {
+  vec3 b, dbdx, dbdy;
+  barycentricsAt(t.frame, pixelNdc(uvec2(pixel), viewportSize()), b, dbdx, dbdy);
+  vec2 uv = interpolateUv(t.vertices, b, dbdx, dbdy);
+  return surfaceBaseColor(t.material, uv).a >= t.material.alphaCutoff;
+}
+bool alphaPasses(RasterTriangle r, ivec2 pixel) {
+  return alphaPasses(AlphaTest(r.frame, r.vertices, r.material), pixel);
+}
+
+// The alpha test (up to kMaxAnisotropy texture taps) is skipped where the word cannot win the
+// max: a pixel's words only grow during the pass, so a depth key already greater than ours (in a
+// stale read too) keeps ours out whatever the test says. Only the key half is compared, strictly:
+// a plain 64-bit read racing the atomics could pair halves of two words, a 32-bit half cannot be
+// torn. Leaves behind leaves and walls are common.
+bool keyBeaten(ivec2 pixel, uint width, uint key) { return uint(visWordAt(pc.words, pixel, width) >> 32) > key; }
 
 void rasterPixel(RasterTriangle r, ivec2 pixel) {
   float z;
@@ -60,53 +91,137 @@ void rasterPixel(RasterTriangle r, ivec2 pixel) {
     z = dot(e, vec3(r.screen.clip[0].z, r.screen.clip[1].z, r.screen.clip[2].z));
   }
   if (!(z >= 0.0 && z <= 1.0)) return;  // depth clipping (also drops NaN)
-  if (r.masked && !alphaPasses(r, pixel)) return;
-  visWordMax(pc.words, pixel, uint(viewportSize().x), (uint64_t(depthKey(z, reversedZ())) << 32) | uint64_t(r.id));
+  uint width = uint(viewportSize().x);
+  uint key = depthKey(z, reversedZ());
+  if (r.masked && (keyBeaten(pixel, width, key) || !alphaPasses(r, pixel))) return;  // keyBeaten: see there
+  uint64_t word = (uint64_t(key) << 32) | uint64_t(r.id);
+  visWordMax(pc.words, pixel, width, word);
 }
 
 int edge32(ivec2 a, ivec2 b, ivec2 p) { return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x); }
 
-// A small triangle, set up by "Triangle Filter" (packSmallTriangle): positions relative to its
+// A small triangle as "Triangle Filter" packed it (packSmallTriangle): positions relative to its
 // first covered pixel fit 32-bit edge functions. Same coverage rule as coverage(): top-left, pixel
-// centres, and the same pixel range (pixelRange of the vertex box).
+// centres, and the same pixel range (pixelRange of the vertex box). The box is walked from
+// pixels.xy in rows with the edge functions stepped by their exact integer increments (the same
+// values as evaluating them at each pixel centre).
+struct SmallTriangle {
+  uint id;
+  ivec4 pixels;
+  int area;            // positive: vertices 1 and 2 exchanged where the packed order had it negative
+  bool swapped;        // so exchanged
+  vec3 ndcZ;           // NDC depths in the packed order
+  ivec3 minW;          // a pixel centre is covered when every edge function w >= minW (0 on top-left edges)
+  ivec3 rowStart;      // edge functions at the centre of pixels.xy
+  ivec3 stepX, stepY;  // and their increments per pixel
+};
+
+SmallTriangle unpackSmallTriangle(uvec4 a, uvec4 b) {
+  SmallTriangle t;
+  t.id = a.x;
+  ivec2 first = ivec2(a.y & 0xffffu, (a.y >> 16) & 0x7fffu);
+  ivec2 v[3] = ivec2[3](unpackOffset(a.z), unpackOffset(a.w), unpackOffset(b.x));
+  t.ndcZ = vec3(uintBitsToFloat(b.y), uintBitsToFloat(b.z), uintBitsToFloat(b.w));
+  t.area = edge32(v[0], v[1], v[2]);
+  t.swapped = t.area < 0;
+  if (t.swapped) {
+    ivec2 swap = v[1];
+    v[1] = v[2];
+    v[2] = swap;
+    t.area = -t.area;
+  }
+  t.minW = ivec3(isTopLeft(v[1], v[2]) ? 0 : 1, isTopLeft(v[2], v[0]) ? 0 : 1, isTopLeft(v[0], v[1]) ? 0 : 1);
+  ivec2 origin = first * kSubPixel;
+  vec2 lo = vec2(origin + min(v[0], min(v[1], v[2]))) / float(kSubPixel);
+  vec2 hi = vec2(origin + max(v[0], max(v[1], v[2]))) / float(kSubPixel);
+  t.pixels = pixelRange(lo, hi);
+  // edge32(a, b, p) grows by (a.y - b.y) * kSubPixel per pixel in x and (b.x - a.x) * kSubPixel in y.
+  t.stepX = ivec3(v[1].y - v[2].y, v[2].y - v[0].y, v[0].y - v[1].y) * kSubPixel;
+  t.stepY = ivec3(v[2].x - v[1].x, v[0].x - v[2].x, v[1].x - v[0].x) * kSubPixel;
+  ivec2 p = (t.pixels.xy - first) * kSubPixel + kSubPixel / 2;
+  t.rowStart = ivec3(edge32(v[1], v[2], p), edge32(v[2], v[0], p), edge32(v[0], v[1], p));
+  return t;
+}
+
+int pixelCount(SmallTriangle t) {
+  ivec2 span = max(t.pixels.zw - t.pixels.xy + 1, ivec2(0));
+  return span.x * span.y;
+}
+
+// To the next pixel of the box, row by row. Selects, not branches: every lane steps alike.
+void stepPixel(SmallTriangle t, inout ivec2 pixel, inout ivec3 rowStart, inout ivec3 w) {
+  bool rowEnd = pixel.x == t.pixels.z;
+  rowStart += rowEnd ? t.stepY : ivec3(0);
+  w = rowEnd ? rowStart : w + t.stepX;
+  pixel = rowEnd ? ivec2(t.pixels.x, pixel.y + 1) : ivec2(pixel.x + 1, pixel.y);
+}
+
+// Depth of an alpha-masked triangle at edge functions w: coverage()'s weights (divided by the
+// area, in the packed vertex order), as loadTriangle's path computed it before.
+float maskedDepth(SmallTriangle t, ivec3 w) {
+  vec3 weights = vec3(w) / float(t.area);
+  return dot(t.swapped ? weights.xzy : weights, t.ndcZ);
+}
+
+// Walks an alpha-masked small triangle's box. Without `test` it only says whether any pixel is
+// covered, in depth and not already beaten (keyBeaten), so most leaves (hidden or covering no
+// pixel centre) never load the alpha test's inputs; with it, it also tests and writes them.
+bool walkMaskedSmall(SmallTriangle t, bool test, AlphaTest alpha) {
+  uint width = uint(viewportSize().x);
+  int count = pixelCount(t);
+  ivec3 rowStart = t.rowStart, w = rowStart;
+  ivec2 pixel = t.pixels.xy;
+  bool candidates = false;
+  for (int i = 0; i < count; ++i) {
+    if (all(greaterThanEqual(w, t.minW))) {
+      float z = maskedDepth(t, w);
+      uint key = depthKey(z, reversedZ());
+      if (z >= 0.0 && z <= 1.0 && !keyBeaten(pixel, width, key)) {  // depth clipping (also drops NaN)
+        candidates = true;
+        if (test && alphaPasses(alpha, pixel))
+          visWordMax(pc.words, pixel, width, (uint64_t(key) << 32) | uint64_t(t.id));
+      }
+    }
+    stepPixel(t, pixel, rowStart, w);
+  }
+  return candidates;
+}
+
+void rasterSmallMasked(SmallTriangle t) {
+  AlphaTest none;
+  bool needed = walkMaskedSmall(t, false, none);
+  if (subgroupAny(needed) && needed) walkMaskedSmall(t, true, loadAlphaTest(t.id));  // see rasterSmall
+}
+
+// One invocation per small triangle. SIMD CPU devices (lavapipe) run a loop as long as its longest
+// lane and a divergent branch under a mask whether or not any lane takes it, so: the masked path
+// sits behind a subgroup vote, and the box is one flat loop (a lane with a 1x8 box and one with an
+// 8x1 box cost 8 iterations, not 64).
 void rasterSmall() {
   uint slot = linearGroup() * gl_WorkGroupSize.x + gl_LocalInvocationID.x;
   if (slot >= visCountersRead[pc.args].c.smallTriangles) return;
   uvec4 a = visUvec4sRead[pc.smallList].values[2u * slot];
-  if ((a.y & kSmallMasked) != 0u) {  // alpha-masked: the general path with its per-pixel test
-    RasterTriangle r = loadTriangle(a.x);
-    for (int y = r.screen.pixels.y; y <= r.screen.pixels.w; ++y)
-      for (int x = r.screen.pixels.x; x <= r.screen.pixels.z; ++x) rasterPixel(r, ivec2(x, y));
+  uvec4 b = visUvec4sRead[pc.smallList].values[2u * slot + 1u];
+  SmallTriangle t = unpackSmallTriangle(a, b);
+  bool masked = (a.y & kSmallMasked) != 0u;
+  if (subgroupAny(masked) && masked) {  // see above
+    rasterSmallMasked(t);
     return;
   }
-  uvec4 b = visUvec4sRead[pc.smallList].values[2u * slot + 1u];
-  ivec2 first = ivec2(a.y & 0xffffu, (a.y >> 16) & 0x7fffu);
-  ivec2 v[3] = ivec2[3](unpackOffset(a.z), unpackOffset(a.w), unpackOffset(b.x));
-  vec3 ndcZ = vec3(uintBitsToFloat(b.y), uintBitsToFloat(b.z), uintBitsToFloat(b.w));
-  int area = edge32(v[0], v[1], v[2]);
-  if (area < 0) {  // order the vertices so the area is positive (weights swapped back below)
-    ivec2 swap = v[1];
-    v[1] = v[2];
-    v[2] = swap;
-    ndcZ = ndcZ.xzy;
-  }
-  ivec3 bias = ivec3(isTopLeft(v[1], v[2]) ? 0 : -1, isTopLeft(v[2], v[0]) ? 0 : -1, isTopLeft(v[0], v[1]) ? 0 : -1);
-  ivec2 origin = first * kSubPixel;
-  vec2 lo = vec2(origin + min(v[0], min(v[1], v[2]))) / float(kSubPixel);
-  vec2 hi = vec2(origin + max(v[0], max(v[1], v[2]))) / float(kSubPixel);
-  ivec4 pixels = pixelRange(lo, hi);
-  float invArea = 1.0 / float(abs(area));
-  uint64_t id = uint64_t(a.x);
+  int count = pixelCount(t);
+  float invArea = 1.0 / float(t.area);
+  vec3 ndcZ = t.swapped ? t.ndcZ.xzy : t.ndcZ;  // in the exchanged vertex order, like w
+  uint64_t id = uint64_t(t.id);
   uint width = uint(viewportSize().x);
-  for (int y = pixels.y; y <= pixels.w; ++y) {
-    for (int x = pixels.x; x <= pixels.z; ++x) {
-      ivec2 p = (ivec2(x, y) - first) * kSubPixel + kSubPixel / 2;
-      ivec3 w = ivec3(edge32(v[1], v[2], p), edge32(v[2], v[0], p), edge32(v[0], v[1], p));
-      if (any(lessThan(w + bias, ivec3(0)))) continue;
+  ivec3 rowStart = t.rowStart, w = rowStart;
+  ivec2 pixel = t.pixels.xy;
+  for (int i = 0; i < count; ++i) {
+    if (all(greaterThanEqual(w, t.minW))) {
       float z = dot(vec3(w) * invArea, ndcZ);
-      if (!(z >= 0.0 && z <= 1.0)) continue;
-      visWordMax(pc.words, ivec2(x, y), width, (uint64_t(depthKey(z, reversedZ())) << 32) | id);
+      if (z >= 0.0 && z <= 1.0)  // depth clipping (also drops NaN)
+        visWordMax(pc.words, pixel, width, (uint64_t(depthKey(z, reversedZ())) << 32) | id);
     }
+    stepPixel(t, pixel, rowStart, w);
   }
 }
 

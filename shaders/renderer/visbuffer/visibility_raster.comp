@@ -163,34 +163,49 @@ float maskedDepth(SmallTriangle t, ivec3 w) {
   return dot(t.swapped ? weights.xzy : weights, t.ndcZ);
 }
 
-// Walks an alpha-masked small triangle's box. Without `test` it only says whether any pixel is
-// covered, in depth and not already beaten (keyBeaten), so most leaves (hidden or covering no
-// pixel centre) never load the alpha test's inputs; with it, it also tests and writes them.
-bool walkMaskedSmall(SmallTriangle t, bool test, AlphaTest alpha) {
+// The pixels of an alpha-masked small triangle's box (row-major indices, at most 8x8 = 64: one
+// bit each in a uint64_t) that need the alpha test: covered, in depth and not already beaten
+// (keyBeaten). Most leaves (hidden or covering no pixel centre) have none.
+uint64_t maskedCandidates(SmallTriangle t) {
   uint width = uint(viewportSize().x);
   int count = pixelCount(t);
   ivec3 rowStart = t.rowStart, w = rowStart;
   ivec2 pixel = t.pixels.xy;
-  bool candidates = false;
+  uint64_t candidates = 0ul;
   for (int i = 0; i < count; ++i) {
     if (all(greaterThanEqual(w, t.minW))) {
       float z = maskedDepth(t, w);
-      uint key = depthKey(z, reversedZ());
-      if (z >= 0.0 && z <= 1.0 && !keyBeaten(pixel, width, key)) {  // depth clipping (also drops NaN)
-        candidates = true;
-        if (test && alphaPasses(alpha, pixel))
-          visWordMax(pc.words, pixel, width, (uint64_t(key) << 32) | uint64_t(t.id));
-      }
+      if (z >= 0.0 && z <= 1.0 && !keyBeaten(pixel, width, depthKey(z, reversedZ())))  // depth clipping (also NaN)
+        candidates |= 1ul << uint(i);
     }
     stepPixel(t, pixel, rowStart, w);
   }
   return candidates;
 }
 
+// Alpha tests and writes the candidate pixels, one per iteration for every lane (not one per box
+// pixel): SIMD CPU devices then sample the textures with every lane that has work left.
+void rasterMaskedCandidates(SmallTriangle t, uint64_t candidates) {
+  AlphaTest alpha = loadAlphaTest(t.id);
+  uint width = uint(viewportSize().x);
+  int spanX = t.pixels.z - t.pixels.x + 1;
+  while (candidates != 0ul) {
+    uint low = uint(candidates), high = uint(candidates >> 32);
+    int i = low != 0u ? findLSB(low) : 32 + findLSB(high);
+    candidates &= candidates - 1ul;
+    ivec2 offset = ivec2(i % spanX, i / spanX);
+    ivec3 w = t.rowStart + offset.x * t.stepX + offset.y * t.stepY;  // what stepPixel reaches
+    ivec2 pixel = t.pixels.xy + offset;
+    uint key = depthKey(maskedDepth(t, w), reversedZ());
+    if (!keyBeaten(pixel, width, key) && alphaPasses(alpha, pixel))
+      visWordMax(pc.words, pixel, width, (uint64_t(key) << 32) | uint64_t(t.id));
+  }
+}
+
 void rasterSmallMasked(SmallTriangle t) {
-  AlphaTest none;
-  bool needed = walkMaskedSmall(t, false, none);
-  if (subgroupAny(needed) && needed) walkMaskedSmall(t, true, loadAlphaTest(t.id));  // see rasterSmall
+  uint64_t candidates = maskedCandidates(t);
+  bool needed = candidates != 0ul;
+  if (subgroupAny(needed) && needed) rasterMaskedCandidates(t, candidates);  // see rasterSmall
 }
 
 // One invocation per small triangle. SIMD CPU devices (lavapipe) run a loop as long as its longest

@@ -61,8 +61,9 @@ class IRenderFeature {
 // Render") depth-test against it. Forward: the depth attachment, kDepthCompare in the pipeline.
 // Visibility buffer: no depth attachment (the opaque depth is a buffer "Material Shade" writes,
 // FrameTargets::opaqueDepth); the fragment shaders' "opaque_depth" variants (setDepthState picks
-// them) read it and discard what the attachment's test would reject (include/opaque_depth.glsl). The pipelines differ (a depth format or none), so a
-// feature picks the form from the settings once, at initialisation.
+// them) read it and discard what the attachment's test would reject (include/opaque_depth.glsl).
+// The pipelines differ (a depth format or none), so a feature picks the form from the settings
+// once, at initialisation.
 enum class DepthTest : uint8_t { Attachment, OpaqueDepthBuffer };
 [[nodiscard]] DepthTest depthTestFor(const RenderSettings& settings);
 // The pipeline's depth state for `form`: the depth format and kDepthCompare, writing when asked;

@@ -71,16 +71,21 @@ struct HizArgsPush {
 };
 constexpr uint64_t kHizLevelArgsBytes = 12;  // one VkDispatchIndirectCommand per level
 
+// A viewport side at a HiZ pyramid level: ceil(size / 2^level) (hizLevelSize in hiz_occlusion.glsl).
+uint32_t hizLevelSize(uint32_t size, uint32_t level) {
+  return (size + (1u << level) - 1) >> level;
+}
 // The HiZ pyramid's levels (>= 1; see hiz_occlusion.glsl) and its size in 32-bit keys.
 uint32_t hizLevels(uint32_t width, uint32_t height) {
   uint32_t level = 1;
-  while (((width + (1u << level) - 1) >> level) > 1 || ((height + (1u << level) - 1) >> level) > 1) ++level;
+  while (hizLevelSize(width, level) > 1 || hizLevelSize(height, level) > 1) ++level;
   return level;
 }
 uint64_t hizKeys(uint32_t width, uint32_t height) {
   uint64_t keys = 0;
-  for (uint32_t level = 1; level <= hizLevels(width, height); ++level)
-    keys += uint64_t{(width + (1u << level) - 1) >> level} * ((height + (1u << level) - 1) >> level);
+  const uint32_t levels = hizLevels(width, height);
+  for (uint32_t level = 1; level <= levels; ++level)
+    keys += uint64_t{hizLevelSize(width, level)} * hizLevelSize(height, level);
   return keys;
 }
 
@@ -156,6 +161,23 @@ struct VisBufferFeature::Buffers {
   graph::BufferHandle hizLateArgs;  // "HiZ Build (late)"'s dispatches (none when phase 2 drew nothing)
   graph::Extent extent;
   VisPush push{};  // the scene's persistent indices; per-node handles are filled in by the jobs
+
+  // The visibility words in a node's declarations and in its job, whichever backing holds them.
+  void readWords(graph::NodeBuilder& node) const {
+    if (wordImage.valid())
+      node.read(wordImage, Access::StorageRead);
+    else
+      node.read(words, Access::StorageRead);
+  }
+  void writeWords(graph::NodeBuilder& node, Access access) {
+    if (wordImage.valid())
+      wordImage = node.write(wordImage, access);
+    else
+      words = node.write(words, access);
+  }
+  [[nodiscard]] uint32_t wordsIndex(const rhi::JobContext& ctx) const {
+    return wordImage.valid() ? ctx.storageTextureIndex(wordImage) : ctx.storageBufferIndex(words);
+  }
 };
 
 void VisBufferFeature::initialize(FeatureInit& init) {
@@ -424,10 +446,7 @@ void VisBufferFeature::declareRaster(graph::FrameGraph& graph, Buffers& b, const
   node.read(b.smallList, Access::StorageRead);
   node.read(b.largeList, Access::StorageRead);
   node.read(b.tileJobs, Access::StorageRead);
-  if (b.wordImage.valid())
-    b.wordImage = node.write(b.wordImage, Access::StorageReadWrite);
-  else
-    b.words = node.write(b.words, Access::StorageReadWrite);
+  b.writeWords(node, Access::StorageReadWrite);
   node.setJob([push = b.push, pipelines = pipelines_, b, args = phase.rasterArgs](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
@@ -436,7 +455,7 @@ void VisBufferFeature::declareRaster(graph::FrameGraph& graph, Buffers& b, const
     push.smallList = ctx.storageBufferIndex(b.smallList);
     push.largeList = ctx.storageBufferIndex(b.largeList);
     push.tileJobs = ctx.storageBufferIndex(b.tileJobs);
-    push.words = b.wordImage.valid() ? ctx.storageTextureIndex(b.wordImage) : ctx.storageBufferIndex(b.words);
+    push.words = b.wordsIndex(ctx);
     cmd.bindPipeline(pipelines.raster);
     cmd.push(push);
     cmd.dispatchIndirect(ctx.buffer(args), kSmallArgsOffset);
@@ -454,17 +473,13 @@ void VisBufferFeature::declareRaster(graph::FrameGraph& graph, Buffers& b, const
 void VisBufferFeature::declareHizBuild(graph::FrameGraph& graph, Buffers& b, bool late) const {
   auto node = graph.addNode(late ? "HiZ Build (late)" : "HiZ Build", graph::NodeType::Compute, kQueue);
   if (late) node.read(b.hizLateArgs, Access::Indirect);
-  if (b.wordImage.valid())
-    node.read(b.wordImage, Access::StorageRead);
-  else
-    node.read(b.words, Access::StorageRead);
+  b.readWords(node);
   b.hiz = node.write(b.hiz, Access::StorageReadWrite);  // each level reads the one below
   const uint32_t levels = hizLevels(b.extent.width, b.extent.height);
   node.setJob([pipeline = pipelines_.hizBuild, b, levels, late](graph::JobContext& context) {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
-    HizPush push{b.wordImage.valid() ? ctx.storageTextureIndex(b.wordImage) : ctx.storageBufferIndex(b.words),
-                 ctx.storageBufferIndex(b.hiz), b.extent.width, b.extent.height, 0};
+    HizPush push{b.wordsIndex(ctx), ctx.storageBufferIndex(b.hiz), b.extent.width, b.extent.height, 0};
     cmd.bindPipeline(pipeline);
     for (uint32_t level = 1; level <= levels; ++level) {
       if (level > 1) cmd.computeBarrier();  // a level reads the one before it
@@ -474,8 +489,8 @@ void VisBufferFeature::declareHizBuild(graph::FrameGraph& graph, Buffers& b, boo
         cmd.dispatchIndirect(ctx.buffer(b.hizLateArgs), kHizLevelArgsBytes * (level - 1));
         continue;
       }
-      const uint32_t width = (b.extent.width + (1u << level) - 1) >> level;
-      const uint32_t height = (b.extent.height + (1u << level) - 1) >> level;
+      const uint32_t width = hizLevelSize(b.extent.width, level);
+      const uint32_t height = hizLevelSize(b.extent.height, level);
       cmd.dispatch((width + kHizGroupSize - 1) / kHizGroupSize, (height + kHizGroupSize - 1) / kHizGroupSize);
     }
   });
@@ -495,10 +510,7 @@ void VisBufferFeature::declareShade(graph::FrameGraph& graph, Blackboard& board,
   auto stats = graph.importBuffer("visibility stats readback", {2 * sizeof(VisCounters), {}},
                                   rhi::external(statsReadback_), hostState, hostState);
   auto node = graph.addNode("Material Shade", graph::NodeType::Compute, kQueue);
-  if (b.wordImage.valid())
-    node.read(b.wordImage, Access::StorageRead);
-  else
-    node.read(b.words, Access::StorageRead);
+  b.readWords(node);
   node.read(b.visible, Access::StorageRead);
   node.read(b.early.rasterArgs, Access::TransferSrc);
   if (b.late.rasterArgs.valid()) node.read(b.late.rasterArgs, Access::TransferSrc);
@@ -522,7 +534,7 @@ void VisBufferFeature::declareShade(graph::FrameGraph& graph, Blackboard& board,
       const rhi::BufferCopy second{0, sizeof(VisCounters), sizeof(VisCounters)};
       cmd.copyBuffer(ctx.buffer(b.late.rasterArgs), ctx.buffer(stats), std::span(&second, 1));
     }
-    push.words = b.wordImage.valid() ? ctx.storageTextureIndex(b.wordImage) : ctx.storageBufferIndex(b.words);
+    push.words = b.wordsIndex(ctx);
     push.visible = ctx.storageBufferIndex(b.visible);
     push.depthOut = ctx.storageBufferIndex(b.depth);
     push.hdr = ctx.storageTextureIndex(hdr);

@@ -14,11 +14,14 @@
 #include <map>
 #include <string>
 
+#include "scene_render.hpp"
+
 namespace fgb::render {
 namespace {
 
-const std::string kScenes = FGB_RENDERER_TEST_SCENES;
-const std::string kRepositoryScenes = FGB_SCENES_DIR;
+using scene_test::kRepositoryScenes;
+using scene_test::kScenes;
+using scene_test::meanOf;
 
 struct Frame {
   ImageRGBA32F display;
@@ -55,13 +58,6 @@ double shareDiffering(const ImageRGBA32F& a, const ImageRGBA32F& b, float tolera
     differing += std::abs(a.pixels[i] - b.pixels[i]) > tolerance;
   }
   return channels ? double(differing) / double(channels) : 1.0;
-}
-
-double meanRgb(const ImageRGBA32F& image) {
-  double sum = 0.0;
-  for (size_t i = 0; i < image.pixels.size(); i += 4)
-    sum += image.pixels[i] + image.pixels[i + 1] + image.pixels[i + 2];
-  return sum / double(image.pixels.size() / 4 * 3);
 }
 
 bool allFinite(const ImageRGBA32F& image) {
@@ -118,8 +114,8 @@ TEST(Stability, AutoExposureShowsASceneTheFixedExposureBurnsOut) {
   const std::string scene = kScenes + "/showcase-small.json";
   const auto fixed = render(scene, {{"scene.light_scale", "1e6"}});
   const auto automatic = render(scene, {{"scene.light_scale", "1e6"}, {"post.exposure", "auto"}});
-  EXPECT_GT(meanRgb(fixed.display), 0.9);  // the problem: burnt out
-  const double mean = meanRgb(automatic.display);
+  EXPECT_GT(meanOf(fixed.display), 0.9);  // the problem: burnt out
+  const double mean = meanOf(automatic.display);
   EXPECT_GT(mean, 0.05);
   EXPECT_LT(mean, 0.7);
   EXPECT_TRUE(allFinite(automatic.hdr));
@@ -136,7 +132,7 @@ TEST(Stability, StressNanRendersNoNonFinitePixel) {
   const auto frame = render(kRepositoryScenes + "/stress-nan.json", {}, 2);
   EXPECT_TRUE(allFinite(frame.hdr));
   EXPECT_TRUE(allFinite(frame.display));
-  EXPECT_GT(meanRgb(frame.display), 0.01);
+  EXPECT_GT(meanOf(frame.display), 0.01);
 }
 
 }  // namespace

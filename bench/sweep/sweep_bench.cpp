@@ -139,7 +139,7 @@ void BM_Sweep(benchmark::State& state) {
 }
 
 void BM_SweepReference(benchmark::State& state) {
-  const render::WorkloadConfig reference = referenceOf(plan(state).configurations.front().workload);
+  const render::WorkloadConfig reference = referenceOf(plan(state).configurations.front());
   for (auto _ : state) benchmark::DoNotOptimize(renderReference(kOpen, reference, 2));
   label(state);
 }

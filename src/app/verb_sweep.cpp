@@ -32,6 +32,7 @@ struct SweepOptions {
   uint32_t roundFrames = 16;
   double maxMinutes = 0.0;
   uint64_t seed = 1;
+  uint32_t referenceSsaa = 4;
 };
 
 // Axes from the sweep file, then --vary (a --vary of a key the file also varies replaces it).
@@ -81,6 +82,16 @@ harness::SweepPlan makePlan(const CLI::App& command, SweepOptions& o, std::vecto
   harness::SweepPlan plan;
   plan.scene = o.scene;
   plan.configurations = harness::expandGrid(workloadConfig(o.scene, o.common, knobs), axes);
+  // A configuration supersampled beyond its reference would be judged against a coarser image.
+  for (const auto& c : plan.configurations) {
+    const auto ssaa = c.workload.knobs.find("render.ssaa");
+    if (ssaa != c.workload.knobs.end() && std::stoul(ssaa->second) > o.referenceSsaa)
+      throw InputError(fmt::format("render.ssaa={}: above the reference's SSAA {} (raise --reference-ssaa)",
+                                   ssaa->second, o.referenceSsaa));
+  }
+  plan.referenceRules.knobs = &knobRegistry();
+  plan.referenceRules.ssaa = o.referenceSsaa;
+  plan.referenceRules.baseKnobs = knobs;
   plan.warmup = o.common.warmup;
   plan.frames = o.common.frames;
   plan.stableFrameCap = o.maxFrames;
@@ -161,6 +172,11 @@ static VerbRegistrar reg(30, [](CLI::App& app) {
   sub->add_option("--max-minutes", o->maxMinutes, "Start no new measuring round after this many minutes (0: no limit)")
       ->check(CLI::Range(0.0, 1e6));
   sub->add_option("--seed", o->seed, "Seed of the configurations' order in each round")->capture_default_str();
+  sub->add_option("--reference-ssaa", o->referenceSsaa,
+                  "SSAA of the reference (its convergence is checked one step down, and errors within 2x that gap are "
+                  "marked unresolved): raise it when the gap is too large, up to what the device can hold")
+      ->capture_default_str()
+      ->check(CLI::Range(2u, 8u));
   return Verb{sub, [sub, o] { return sweepVerb(*sub, *o); }};
 });
 

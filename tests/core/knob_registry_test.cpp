@@ -3,6 +3,7 @@
 #include <fgb/core/error.hpp>
 #include <fgb/core/knob_registry.hpp>
 #include <limits>
+#include <stdexcept>
 
 namespace fgb {
 namespace {
@@ -11,13 +12,24 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 KnobRegistry twoLayers() {
   KnobRegistry registry;
-  registry.add({{"render.ssaa", KnobType::Integer, 1, 4, false, false, {}, "renderer", ""},
-                {"lighting.mode", KnobType::Word, 0, 0, false, false, {"clustered", "all"}, "renderer", ""}});
-  registry.add({{"camera.near", KnobType::Number, 0, kInf, true, false, {}, "scene", ""},
-                {"camera.far", KnobType::Number, 0, kInf, true, false, {"inf"}, "scene", ""},
-                {"camera.fov", KnobType::Number, 0, 179, true, true, {}, "scene", ""},
-                {"camera.position", KnobType::Vec3, -kInf, kInf, false, false, {}, "scene", ""},
-                {"post.bloom", KnobType::Flag, 0, 0, false, false, {}, "scene", ""}});
+  using enum ReferenceRole;
+  registry.add({{"render.ssaa", KnobType::Integer, 1, 4, false, false, {}, "renderer", "", Approximation, "4"},
+                {"lighting.mode",
+                 KnobType::Word,
+                 0,
+                 0,
+                 false,
+                 false,
+                 {"clustered", "all"},
+                 "renderer",
+                 "",
+                 Approximation,
+                 "all"}});
+  registry.add({{"camera.near", KnobType::Number, 0, kInf, true, false, {}, "scene", "", Content, ""},
+                {"camera.far", KnobType::Number, 0, kInf, true, false, {"inf"}, "scene", "", Content, ""},
+                {"camera.fov", KnobType::Number, 0, 179, true, true, {}, "scene", "", Content, ""},
+                {"camera.position", KnobType::Vec3, -kInf, kInf, false, false, {}, "scene", "", Content, ""},
+                {"post.bloom", KnobType::Flag, 0, 0, false, false, {}, "scene", "", Look, ""}});
   return registry;
 }
 
@@ -75,8 +87,10 @@ TEST(KnobRegistry, OutOfRangeAndMalformedValuesSayWhatWasExpected) {
 
 TEST(KnobRegistry, AKeyRegisteredTwiceIsAProgrammingError) {
   KnobRegistry registry = twoLayers();
-  EXPECT_THROW(registry.add({{"render.ssaa", KnobType::Integer, 1, 2, false, false, {}, "other", ""}}),
-               std::logic_error);
+  EXPECT_THROW(
+      registry.add(
+          {{"render.ssaa", KnobType::Integer, 1, 2, false, false, {}, "other", "", ReferenceRole::Content, ""}}),
+      std::logic_error);
 }
 
 TEST(KnobRegistry, SplitsAssignmentsAndRejectsOnesWithoutAKey) {
@@ -85,6 +99,32 @@ TEST(KnobRegistry, SplitsAssignmentsAndRejectsOnesWithoutAKey) {
   EXPECT_EQ(knobs.at("c.d"), "x=y");
   EXPECT_THROW(splitKnobAssignments({"novalue"}), InputError);
   EXPECT_THROW(splitKnobAssignments({"=1"}), InputError);
+}
+
+// Issue 30: the sweep's reference reads each knob's role from its registry entry, so a knob added
+// without one (or an approximation without the value at which it is exact) must not register.
+TEST(KnobRegistry, RefusesAKnobWithoutAReferenceRole) {
+  KnobRegistry registry;
+  EXPECT_THROW(
+      registry.add(
+          {{"render.new_knob", KnobType::Flag, 0, 0, false, false, {}, "renderer", "", ReferenceRole::Unset, ""}}),
+      std::logic_error);
+  EXPECT_THROW(registry.add({{"render.ssaa",
+                              KnobType::Integer,
+                              1,
+                              4,
+                              false,
+                              false,
+                              {},
+                              "renderer",
+                              "",
+                              ReferenceRole::Approximation,
+                              "9"}}),
+               std::logic_error);
+  EXPECT_NO_THROW(registry.add(
+      {{"render.ok", KnobType::Flag, 0, 0, false, false, {}, "renderer", "", ReferenceRole::CostOnly, "0"}}));
+  EXPECT_EQ(registry.find("render.ok")->role, ReferenceRole::CostOnly);
+  EXPECT_STREQ(referenceRoleName(ReferenceRole::Look), "look");
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <fgb/harness/sweep_report.hpp>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 
 #include "label_placement.hpp"
@@ -62,26 +63,107 @@ TEST(SweepGrid, BadGridsAreInputErrors) {
   EXPECT_THROW(expandGrid(base, axes), InputError);
 }
 
-TEST(SweepGrid, ReferenceIsTheHighestQualityAndSharedAcrossSpeedKnobs) {
-  render::WorkloadConfig a;
-  a.width = 320;
-  a.msaa = 1;
-  a.knobs = {
-      {"lighting.max_per_cluster", "4"}, {"bloom.mips", "2"}, {"post.exposure", "0.7"}, {"render.path", "visbuffer"}};
-  render::WorkloadConfig b = a;
-  b.msaa = 4;
-  b.knobs.insert_or_assign("lighting.max_per_cluster", std::string("64"));
-  b.knobs.insert_or_assign("bloom.mips", std::string("6"));
-  const render::WorkloadConfig ra = referenceOf(a), rb = referenceOf(b);
+// A registry shaped like the real one (fgbench's knobs carry these roles).
+KnobRegistry roleRegistry() {
+  using enum ReferenceRole;
+  KnobRegistry registry;
+  registry.add({{"render.ssaa", KnobType::Integer, 1, 8, false, false, {}, "renderer", "", Approximation, "4"},
+                {"lighting.mode",
+                 KnobType::Word,
+                 0,
+                 0,
+                 false,
+                 false,
+                 {"clustered", "all"},
+                 "renderer",
+                 "",
+                 Approximation,
+                 "all"},
+                {"lighting.max_per_cluster",
+                 KnobType::Integer,
+                 1,
+                 1024,
+                 false,
+                 false,
+                 {},
+                 "renderer",
+                 "",
+                 Approximation,
+                 "1024"},
+                {"render.path",
+                 KnobType::Word,
+                 0,
+                 0,
+                 false,
+                 false,
+                 {"forward", "visbuffer"},
+                 "renderer",
+                 "",
+                 CostOnly,
+                 "forward"},
+                {"render.depth_prepass", KnobType::Flag, 0, 0, false, false, {}, "renderer", "", CostOnly, ""},
+                {"bloom.mips", KnobType::Integer, 1, 10, false, false, {}, "renderer", "", Look, ""},
+                {"post.exposure", KnobType::Number, 0, 100, true, false, {}, "scene", "", Look, ""},
+                {"camera.fov", KnobType::Number, 0, 179, true, true, {}, "scene", "", Content, ""}});
+  return registry;
+}
+
+TEST(SweepGrid, ReferenceSetsApproximationsExactKeepsTheLookAndPinsCostOnlyKnobs) {
+  const KnobRegistry registry = roleRegistry();
+  render::WorkloadConfig base;
+  base.width = 320;
+  base.knobs = {{"bloom.mips", "6"}, {"post.exposure", "0.7"}, {"camera.fov", "50"}, {"render.depth_prepass", "1"}};
+  ReferenceRules rules{&registry, 4, 8, base.knobs};
+  const auto grid = expandGrid(base, {parseVary("msaa=1,4"), parseVary("lighting.max_per_cluster=4,64"),
+                                      parseVary("render.path=forward,visbuffer")});
+  const render::WorkloadConfig ra = referenceOf(grid.front(), rules);
   EXPECT_EQ(ra.msaa, 8u);
+  EXPECT_TRUE(ra.clampMsaaToPath);
   EXPECT_EQ(ra.width, 320u);
   EXPECT_EQ(ra.knobs.at("render.ssaa"), "4");
-  EXPECT_EQ(ra.knobs.at("lighting.mode"), "all");
-  EXPECT_EQ(ra.knobs.at("bloom.mips"), "10");
-  EXPECT_EQ(ra.knobs.at("post.exposure"), "0.7");  // content knobs stay
-  EXPECT_EQ(ra.knobs.count("lighting.max_per_cluster"), 0u);
-  EXPECT_EQ(ra.knobs.count("render.path"), 0u);
-  EXPECT_EQ(ra.knobs, rb.knobs);
+  EXPECT_EQ(ra.knobs.at("lighting.mode"), "all");              // approximation: exact
+  EXPECT_EQ(ra.knobs.at("lighting.max_per_cluster"), "1024");  // approximation: exact
+  EXPECT_EQ(ra.knobs.at("bloom.mips"), "6");                   // look: the scene's own, not the widest
+  EXPECT_EQ(ra.knobs.at("post.exposure"), "0.7");              // look: copied
+  EXPECT_EQ(ra.knobs.at("camera.fov"), "50");                  // content: copied
+  EXPECT_EQ(ra.knobs.at("render.path"), "forward");            // cost only: pinned
+  EXPECT_EQ(ra.knobs.count("render.depth_prepass"), 0u);       // cost only, no pinned value: dropped
+  for (const auto& c : grid) EXPECT_EQ(referenceOf(c, rules).knobs, ra.knobs) << c.label;  // one reference
+  // The convergence step is the same reference one SSAA step down.
+  const auto step = convergenceStepOf(ra);
+  ASSERT_TRUE(step);
+  EXPECT_EQ(step->knobs.at("render.ssaa"), "3");
+  render::WorkloadConfig single = ra;
+  single.knobs.insert_or_assign("render.ssaa", std::string("1"));
+  EXPECT_FALSE(convergenceStepOf(single));
+  // Bias renders: only where a varied cost-only knob differs from the pinned value.
+  EXPECT_FALSE(biasRenderOf(grid[0], ra, rules));  // render.path=forward
+  const auto bias = biasRenderOf(grid[1], ra, rules);
+  ASSERT_TRUE(bias);
+  EXPECT_EQ(bias->knobs.at("render.path"), "visbuffer");
+  EXPECT_EQ(bias->knobs.at("render.ssaa"), "4");
+  EXPECT_EQ(biasLabelOf(grid[1], rules), "render.path=visbuffer");
+  EXPECT_TRUE(variedLookKeys(grid, rules).empty());
+}
+
+TEST(SweepGrid, AVariedLookKnobIsJudgedAgainstTheScenesOwnValue) {
+  const KnobRegistry registry = roleRegistry();
+  render::WorkloadConfig base;
+  ReferenceRules rules{&registry, 4, 8, {}};
+  const auto grid = expandGrid(base, {parseVary("bloom.mips=2,10"), parseVary("camera.fov=40,60")});
+  // No --set bloom.mips: the scene's own value, so the knob is dropped from the reference.
+  EXPECT_EQ(referenceOf(grid[0], rules).knobs.count("bloom.mips"), 0u);
+  EXPECT_EQ(referenceOf(grid[0], rules).knobs, referenceOf(grid[2], rules).knobs);
+  // A varied content knob: each value its own reference.
+  EXPECT_EQ(referenceOf(grid[0], rules).knobs.at("camera.fov"), "40");
+  EXPECT_NE(referenceOf(grid[0], rules).knobs, referenceOf(grid[1], rules).knobs);
+  EXPECT_EQ(variedLookKeys(grid, rules), (std::vector<std::string>{"bloom.mips"}));
+  // The sweep's base value (a sweep file's or --set value) counts as the scene's look.
+  rules.baseKnobs = {{"bloom.mips", "4"}};
+  EXPECT_EQ(referenceOf(grid[0], rules).knobs.at("bloom.mips"), "4");
+  // A key the registry lacks cannot be classified.
+  const auto unknown = expandGrid(base, {parseVary("k.unknown=1,2")});
+  EXPECT_THROW(referenceOf(unknown[0], rules), std::logic_error);
 }
 
 TEST(SweepGrid, SweepFileRoundTripAndErrors) {
@@ -110,7 +192,9 @@ TEST(SweepGrid, SweepFileRoundTripAndErrors) {
 // value 0.5) except for msaa 2, which is both slower than msaa 1 and further off: dominated.
 class GridWorkload : public render::Workload {
  public:
-  explicit GridWorkload(const render::WorkloadConfig& c, std::vector<std::string>& log) : config_(c), log_(log) {
+  using ValueOf = std::function<float(const render::WorkloadConfig&)>;
+  explicit GridWorkload(const render::WorkloadConfig& c, std::vector<std::string>& log, ValueOf valueOf = {})
+      : config_(c), log_(log), valueOf_(std::move(valueOf)) {
     device_.name = "fake";
     device_.type = "cpu";
   }
@@ -132,6 +216,7 @@ class GridWorkload : public render::Workload {
 
  private:
   float value() const {
+    if (valueOf_) return valueOf_(config_);
     switch (config_.msaa) {
       case 1:
         return 0.40f;
@@ -152,6 +237,7 @@ class GridWorkload : public render::Workload {
   render::WorkloadConfig config_;
   render::DeviceDescription device_;
   std::vector<std::string>& log_;
+  ValueOf valueOf_;
   uint32_t frame_ = 0;
 };
 
@@ -176,16 +262,19 @@ TEST(Sweep, MeasuresInterleavedRoundsAndFindsTheFront) {
     return std::make_unique<GridWorkload>(c, log);
   };
   const SweepResult result = runSweep(open, gridPlan());
-  // Three configurations, then one reference rendered twice.
-  ASSERT_EQ(opened.size(), 5u);
+  // Three configurations, then one reference rendered twice, then once one SSAA step down.
+  ASSERT_EQ(opened.size(), 6u);
   EXPECT_EQ(opened[3].msaa, 8u);
   EXPECT_EQ(opened[3].knobs.at("render.ssaa"), "4");
+  EXPECT_EQ(opened[5].knobs.at("render.ssaa"), "3");
+  ASSERT_TRUE(result.references[0].convergence);
+  EXPECT_EQ(result.references[0].convergence->label, "render.ssaa=3");
   ASSERT_EQ(result.references.size(), 1u);
   EXPECT_TRUE(result.references[0].identical);
   EXPECT_EQ(result.errorFloor, 0.0);
   EXPECT_EQ(result.rounds, 3u);  // 24 frames in rounds of 8
   // Rounds interleave: the log after warm-up holds 3 rounds x 3 blocks of 8 frames of one config.
-  const std::size_t warm = 3 * 3 + 2 * 2;  // 3 warm-up frames per config, 2 image frames per reference render
+  const std::size_t warm = 3 * 3 + 3 * 2;  // 3 warm-up frames per config, 2 image frames per reference render
   ASSERT_EQ(log.size(), warm + 3 * 24);
   for (int round = 0; round < 3; ++round) {
     std::vector<std::string> blocks;
@@ -213,7 +302,7 @@ TEST(Sweep, OrderOfEachRoundFollowsTheSeed) {
     plan.seed = seed;
     runSweep(open, plan);
     std::string order;
-    for (std::size_t i = 13; i < log.size(); i += 8) order += log[i];
+    for (std::size_t i = 15; i < log.size(); i += 8) order += log[i];
     return order;
   };
   EXPECT_EQ(firstBlocks(7), firstBlocks(7));
@@ -303,7 +392,7 @@ TEST(Sweep, OnACpuDeviceRendersNoFrameBeyondNeed) {
   };
   SweepResult trimmed, full;
   const std::size_t trimmedFrames = framesRendered(true, trimmed), fullFrames = framesRendered(false, full);
-  const std::size_t referenceFrames = 2 * 2;
+  const std::size_t referenceFrames = 3 * 2;  // two renders and the convergence step, 2 frames each
   // Trimmed: 2 warm-up frames (the compared frame is the second) and 12 measured, checked every 4.
   EXPECT_EQ(trimmed.warmupFrames, 2u);
   EXPECT_EQ(trimmed.rewarmFrames, 0u);
@@ -317,6 +406,82 @@ TEST(Sweep, OnACpuDeviceRendersNoFrameBeyondNeed) {
   }
   // The same front either way.
   EXPECT_EQ(frontByTime(trimmed), frontByTime(full));
+}
+
+// A converging renderer: the image approaches 0.5 with more SSAA (SSAA 3 is 0.01 short of SSAA 4:
+// the reference's convergence gap), and the visibility-buffer path is 0.08 off at any sampling (its
+// bias).
+float convergingValue(const render::WorkloadConfig& c) {
+  const int ssaa = c.knobs.count("render.ssaa") ? std::stoi(c.knobs.at("render.ssaa")) : 1;
+  const bool visbuffer = c.knobs.count("render.path") && c.knobs.at("render.path") == "visbuffer";
+  const float sampled = ssaa >= 4 ? 0.5f : (ssaa == 3 ? 0.49f : 0.40f);
+  return sampled + (visbuffer ? 0.08f : 0.0f);
+}
+
+TEST(Sweep, ChecksTheReferencesConvergenceAndEachPathsBias) {
+  const KnobRegistry registry = roleRegistry();
+  std::vector<std::string> log;
+  std::vector<render::WorkloadConfig> opened;
+  const WorkloadOpener open = [&](const render::WorkloadConfig& c) {
+    opened.push_back(c);
+    return std::make_unique<GridWorkload>(c, log, convergingValue);
+  };
+  render::WorkloadConfig base;
+  base.scenePath = "grid.json";
+  SweepPlan plan;
+  plan.scene = base.scenePath;
+  plan.configurations = expandGrid(base, {parseVary("render.path=forward,visbuffer"), parseVary("render.ssaa=1,3")});
+  plan.referenceRules = {&registry, 4, 8, {}};
+  plan.warmup = 2;
+  plan.frames = 8;
+  plan.roundFrames = 8;
+  SweepResult result = runSweep(open, plan);
+  result.axes = {parseVary("render.path=forward,visbuffer"), parseVary("render.ssaa=1,3")};
+  // One reference (path and SSAA share it): two renders, the convergence step, one bias render.
+  ASSERT_EQ(result.references.size(), 1u);
+  const ReferenceOutcome& ref = result.references[0];
+  ASSERT_EQ(opened.size(), 4u + 4u);
+  ASSERT_TRUE(ref.convergence);
+  EXPECT_GT(ref.convergenceGap(), 0.0);
+  ASSERT_EQ(ref.biases.size(), 1u);
+  EXPECT_EQ(ref.biases[0].label, "render.path=visbuffer");
+  EXPECT_TRUE(ref.biases[0].workload.clampMsaaToPath);
+  EXPECT_GT(ref.biases[0].gap(), ref.convergenceGap());
+  // forward ssaa=3 renders exactly the convergence step: within the gap, so unresolved; forward
+  // ssaa=1 is far off; the visbuffer configurations carry the path's bias.
+  const auto& c = result.configurations;
+  ASSERT_EQ(c.size(), 4u);
+  EXPECT_EQ(c[1].configuration.label, "render.path=forward render.ssaa=3");
+  EXPECT_TRUE(c[1].unresolved);
+  EXPECT_FALSE(c[0].unresolved);
+  EXPECT_FALSE(c[0].bias);
+  ASSERT_TRUE(c[2].bias);
+  EXPECT_EQ(*c[2].bias, 0u);
+  const nlohmann::json j = sweepJson(result);
+  EXPECT_TRUE(j["configurations"][1]["unresolved"].get<bool>());
+  EXPECT_EQ(j["configurations"][2]["bias"]["label"], "render.path=visbuffer");
+  EXPECT_EQ(j["references"][0]["convergence"]["label"], "render.ssaa=3");
+  EXPECT_EQ(j["method"]["roles"]["render.path"], "cost-only");
+  EXPECT_EQ(j["method"]["roles"]["render.ssaa"], "approximation");
+  const std::string html = sweepHtml(result);
+  EXPECT_NE(html.find("unresolved-band"), std::string::npos);
+  EXPECT_NE(html.find("bias of render.path=visbuffer"), std::string::npos);
+  EXPECT_NE(sweepTable(result).find("unresolved"), std::string::npos);
+}
+
+TEST(Sweep, AVariedLookKnobsColumnIsTheChangeFromTheScenesLook) {
+  const KnobRegistry registry = roleRegistry();
+  std::vector<std::string> log;
+  const WorkloadOpener open = [&](const render::WorkloadConfig& c) { return std::make_unique<GridWorkload>(c, log); };
+  SweepPlan plan = gridPlan();
+  plan.configurations = expandGrid(render::WorkloadConfig{}, {parseVary("bloom.mips=2,6")});
+  plan.referenceRules = {&registry, 4, 8, {}};
+  SweepResult result = runSweep(open, plan);
+  result.axes = {parseVary("bloom.mips=2,6")};
+  EXPECT_EQ(result.lookKeys, (std::vector<std::string>{"bloom.mips"}));
+  EXPECT_EQ(errorColumnName(result), "LDR-FLIP change from the scene's look");
+  EXPECT_NE(sweepMarkdown(result).find("change from the scene's look"), std::string::npos);
+  EXPECT_EQ(sweepJson(result)["method"]["roles"]["bloom.mips"], "look");
 }
 
 TEST(SweepHtml, TicksAreDecimalsAndDurationsHaveUnits) {

@@ -1,8 +1,9 @@
 #include "features/context/render_settings.hpp"
 
-#include <fgb/core/error.hpp>
-
 #include <gtest/gtest.h>
+
+#include <fgb/core/error.hpp>
+#include <fgb/scene/knobs.hpp>
 
 namespace fgb::features {
 namespace {
@@ -81,6 +82,24 @@ TEST(RenderSettings, VisBackingDefaultsToAutoAndRejectsOthers) {
   }
 }
 
+// Issue 30: the sweep's reference is made from each knob's role, so every knob fgbench registers
+// (the renderer's and the scene's) has one, and approximation knobs name their exact value.
+TEST(RenderSettings, EveryKnobHasAReferenceRole) {
+  std::vector<KnobSpec> specs = rendererKnobSpecs();
+  for (const KnobSpec& spec : scene::knobSpecs()) specs.push_back(spec);
+  for (const KnobSpec& spec : specs) {
+    EXPECT_NE(spec.role, ReferenceRole::Unset) << spec.key;
+    if (spec.role == ReferenceRole::Approximation) {
+      EXPECT_TRUE(knobValueValid(spec, spec.exact)) << spec.key;
+    }
+  }
+  KnobRegistry registry;
+  EXPECT_NO_THROW(registry.add(specs));
+  EXPECT_EQ(registry.find("bloom.mips")->role, ReferenceRole::Look);  // a wider bloom is another look
+  EXPECT_EQ(registry.find("render.ssaa")->exact, "4");
+  EXPECT_EQ(registry.find("render.path")->exact, "forward");
+}
+
 TEST(RenderSettings, KnowsItsKeys) {
   EXPECT_TRUE(isRendererKnob("debug.view"));
   EXPECT_TRUE(isRendererKnob("render.ssaa"));
@@ -98,7 +117,7 @@ TEST(RenderSettings, SupersamplingScalesTheScenePassesOnly) {
   EXPECT_EQ(settings.width, 320u);  // the output (bloom, tone mapping, frame.png) keeps its size
   EXPECT_EQ(settings.sceneWidth(), 960u);
   EXPECT_EQ(settings.sceneHeight(), 540u);
-  EXPECT_THROW(applyRendererKnobs(settings, {{"render.ssaa", "5"}}), InputError);
+  EXPECT_THROW(applyRendererKnobs(settings, {{"render.ssaa", "9"}}), InputError);
   EXPECT_THROW(applyRendererKnobs(settings, {{"render.ssaa", "0"}}), InputError);
 }
 

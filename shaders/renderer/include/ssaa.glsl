@@ -9,7 +9,7 @@
 
 layout(push_constant) uniform Push {
   uint source;  // sampled texture index of the supersampled HDR image
-  uint factor;  // render.ssaa, 2..4
+  uint factor;  // render.ssaa, 2..8
   uint target;  // ssaa_resolve.comp: storage-image index of the output HDR image
 } pc;
 

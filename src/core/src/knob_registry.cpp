@@ -4,6 +4,7 @@
 #include <fgb/core/error.hpp>
 #include <fgb/core/knob_registry.hpp>
 #include <stdexcept>
+#include <utility>
 
 namespace fgb {
 namespace {
@@ -110,9 +111,37 @@ bool knobValueValid(const KnobSpec& spec, std::string_view value) {
   return false;
 }
 
+KnobSpec withRole(KnobSpec spec, ReferenceRole role, std::string exact) {
+  spec.role = role;
+  spec.exact = std::move(exact);
+  return spec;
+}
+
+const char* referenceRoleName(ReferenceRole role) {
+  switch (role) {
+    case ReferenceRole::Approximation:
+      return "approximation";
+    case ReferenceRole::Look:
+      return "look";
+    case ReferenceRole::Content:
+      return "content";
+    case ReferenceRole::CostOnly:
+      return "cost-only";
+    case ReferenceRole::Unset:
+      break;
+  }
+  return "unset";
+}
+
 void KnobRegistry::add(const std::vector<KnobSpec>& specs) {
   for (const KnobSpec& spec : specs) {
     if (find(spec.key)) throw std::logic_error("knob '" + spec.key + "' registered twice");
+    if (spec.role == ReferenceRole::Unset)
+      throw std::logic_error("knob '" + spec.key + "' has no reference role (fgb/core/knob_registry.hpp)");
+    if (spec.role == ReferenceRole::Approximation && !knobValueValid(spec, spec.exact))
+      throw std::logic_error("knob '" + spec.key + "': its exact value '" + spec.exact + "' is out of its range");
+    if (spec.role == ReferenceRole::CostOnly && !spec.exact.empty() && !knobValueValid(spec, spec.exact))
+      throw std::logic_error("knob '" + spec.key + "': its pinned value '" + spec.exact + "' is out of its range");
     specs_.push_back(spec);
   }
   std::sort(specs_.begin(), specs_.end(), [](const KnobSpec& a, const KnobSpec& b) { return a.key < b.key; });

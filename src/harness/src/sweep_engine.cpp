@@ -7,6 +7,7 @@
 #include <fgb/core/stopwatch.hpp>
 #include <fgb/harness/run_outputs.hpp>
 #include <fgb/harness/sweep.hpp>
+#include <fgb/harness/sweep_report.hpp>
 #include <memory>
 #include <numeric>
 #include <random>
@@ -16,7 +17,8 @@ namespace {
 
 bool sameConfig(const render::WorkloadConfig& a, const render::WorkloadConfig& b) {
   return a.scenePath == b.scenePath && a.device == b.device && a.width == b.width && a.height == b.height &&
-         a.msaa == b.msaa && a.validation == b.validation && a.knobs == b.knobs && a.cacheDir == b.cacheDir;
+         a.msaa == b.msaa && a.clampMsaaToPath == b.clampMsaaToPath && a.validation == b.validation &&
+         a.knobs == b.knobs && a.cacheDir == b.cacheDir;
 }
 
 bool bitIdentical(const Image& a, const Image& b) {
@@ -35,6 +37,23 @@ RenderedImages renderImagesAfter(const WorkloadOpener& open, const render::Workl
   RenderedImages images = renderer.readImages();
   wall.readbackMs = timer.lap();
   return images;
+}
+
+// One render of `workload` compared with the reference's images.
+ReferenceCheck renderCheck(const WorkloadOpener& open, const ReferenceOutcome& reference, std::string label,
+                           const render::WorkloadConfig& workload, uint32_t frames) {
+  ReferenceCheck check;
+  check.label = std::move(label);
+  check.workload = workload;
+  const RenderedImages images = renderImagesAfter(open, workload, frames, check.wall);
+  if (images.display.width != reference.images.display.width ||
+      images.display.height != reference.images.display.height) {
+    throw DeviceError(fmt::format("{}: rendered {} but the reference {}", check.label, describeSize(images.display),
+                                  describeSize(reference.images.display)));
+  }
+  check.display = compareImages(quantizeToSrgb8(reference.images.display), quantizeToSrgb8(images.display)).metrics;
+  check.hdr = compareImages(reference.images.hdr, images.hdr).metrics;
+  return check;
 }
 
 std::size_t referenceIndex(std::vector<render::WorkloadConfig>& references, const render::WorkloadConfig& wanted) {
@@ -147,6 +166,25 @@ ReferenceOutcome renderReference(const WorkloadOpener& open, const render::Workl
   return ref;
 }
 
+void checkReference(const WorkloadOpener& open, ReferenceOutcome& reference, const SweepPlan& plan,
+                    const std::vector<const SweepConfiguration*>& configurations, uint32_t frames,
+                    const std::function<void(const std::string&)>& say) {
+  if (const auto step = convergenceStepOf(reference.workload)) {
+    const std::string label = "render.ssaa=" + step->knobs.at("render.ssaa");
+    if (say) say("convergence (" + label + ")");
+    reference.convergence = renderCheck(open, reference, label, *step, frames);
+  }
+  for (const SweepConfiguration* c : configurations) {
+    const std::string label = biasLabelOf(*c, plan.referenceRules);
+    const bool done = std::any_of(reference.biases.begin(), reference.biases.end(),
+                                  [&](const ReferenceCheck& b) { return b.label == label; });
+    if (label.empty() || done) continue;
+    if (say) say("bias of " + label);
+    reference.biases.push_back(
+        renderCheck(open, reference, label, *biasRenderOf(*c, reference.workload, plan.referenceRules), frames));
+  }
+}
+
 SweepResult runSweep(const WorkloadOpener& open, const SweepPlan& requested, const SweepProgress& progress) {
   Stopwatch sweepClock, phase;
   SweepPlan plan = requested;
@@ -173,14 +211,30 @@ SweepResult runSweep(const WorkloadOpener& open, const SweepPlan& requested, con
   if (!renderers.empty()) result.device = renderers.front()->result().device;
   const uint32_t checkEvery = adaptToDevice(plan, result);
 
+  result.referenceRules = plan.referenceRules;
+  result.lookKeys =
+      plan.referenceOverride ? std::vector<std::string>{} : variedLookKeys(plan.configurations, plan.referenceRules);
   std::vector<render::WorkloadConfig> referenceConfigs;
   for (auto& c : result.configurations) {
-    c.reference =
-        referenceIndex(referenceConfigs, plan.referenceOverride.value_or(referenceOf(c.configuration.workload)));
+    c.reference = referenceIndex(referenceConfigs,
+                                 plan.referenceOverride.value_or(referenceOf(c.configuration, plan.referenceRules)));
   }
   for (std::size_t r = 0; r < referenceConfigs.size(); ++r) {
     say(fmt::format("reference {}/{} (2 renders)", r + 1, referenceConfigs.size()));
     result.references.push_back(renderReference(open, referenceConfigs[r], plan.imageFrame));
+    if (plan.referenceOverride) continue;
+    std::vector<const SweepConfiguration*> sharing;
+    for (const auto& c : result.configurations)
+      if (c.reference == r) sharing.push_back(&c.configuration);
+    checkReference(open, result.references.back(), plan, sharing, plan.imageFrame, [&](const std::string& what) {
+      say(fmt::format("reference {}/{}: {}", r + 1, referenceConfigs.size(), what));
+    });
+  }
+  for (auto& c : result.configurations) {
+    const std::string label = biasLabelOf(c.configuration, plan.referenceRules);
+    const auto& biases = result.references[c.reference].biases;
+    const auto it = std::find_if(biases.begin(), biases.end(), [&](const auto& b) { return b.label == label; });
+    if (!label.empty() && it != biases.end()) c.bias = static_cast<std::size_t>(it - biases.begin());
   }
   result.overhead.referenceMs = phase.lap();
 
@@ -239,6 +293,7 @@ void compareWithReferences(SweepResult& result) {
     c.display = display.metrics;
     c.heatMap = heatMap(display.errorMap, display.nonFiniteMask, c.images.display.width, c.images.display.height);
     c.hdr = compareImages(ref.images.hdr, c.images.hdr).metrics;
+    c.unresolved = ref.convergence && sweepError(c) <= kUnresolvedGapFactor * ref.convergenceGap();
     c.wall.metricsMs = timer.elapsedMs();
   }
 }

@@ -6,6 +6,7 @@
 #include <fgb/core/error.hpp>
 #include <fgb/harness/json_io.hpp>
 #include <fgb/harness/sweep.hpp>
+#include <stdexcept>
 
 namespace fgb::harness {
 namespace {
@@ -160,17 +161,105 @@ std::vector<SweepConfiguration> expandGrid(const render::WorkloadConfig& base, c
   return grid;
 }
 
-render::WorkloadConfig referenceOf(const render::WorkloadConfig& configuration) {
-  render::WorkloadConfig reference = configuration;
-  reference.msaa = 8;
-  for (const char* speedOnly : {"lighting.max_per_cluster", "lighting.slices", "render.path", "render.depth_prepass"}) {
-    reference.knobs.erase(speedOnly);
+ReferenceRole roleOf(const ReferenceRules& rules, const std::string& key) {
+  if (!rules.knobs) return ReferenceRole::Content;
+  const KnobSpec* spec = rules.knobs->find(key);
+  if (!spec) throw std::logic_error("sweep: knob '" + key + "' is not in the knob registry");
+  return spec->role;
+}
+
+render::WorkloadConfig referenceOf(const SweepConfiguration& configuration, const ReferenceRules& rules) {
+  render::WorkloadConfig reference = configuration.workload;
+  reference.msaa = rules.msaa;
+  reference.clampMsaaToPath = true;
+  std::map<std::string, std::string> knobs;
+  for (const auto& [key, value] : configuration.workload.knobs) {
+    switch (roleOf(rules, key)) {
+      case ReferenceRole::Look: {
+        // A varied look knob is judged against the base's value (the scene's own where unset).
+        const bool varied = std::any_of(configuration.point.begin(), configuration.point.end(),
+                                        [&](const auto& axis) { return axis.first == key; });
+        const auto base = rules.baseKnobs.find(key);
+        if (!varied) {
+          knobs.insert_or_assign(key, value);
+        } else if (base != rules.baseKnobs.end()) {
+          knobs.insert_or_assign(key, base->second);
+        }
+        break;
+      }
+      case ReferenceRole::Content:
+        knobs.insert_or_assign(key, value);
+        break;
+      case ReferenceRole::Approximation:
+      case ReferenceRole::CostOnly:
+      case ReferenceRole::Unset:
+        break;  // set from the registry below
+    }
   }
-  // (insert_or_assign of std::string: assigning a literal to a map element trips GCC 12's -Wrestrict)
-  reference.knobs.insert_or_assign("render.ssaa", std::string("4"));
-  reference.knobs.insert_or_assign("lighting.mode", std::string("all"));
-  reference.knobs.insert_or_assign("bloom.mips", std::string("10"));
+  // Every approximation at its exact value and every cost-only knob at its pinned one, whether the
+  // configuration set it or not: so the reference does not depend on which of them a sweep varied.
+  if (rules.knobs) {
+    for (const KnobSpec& spec : rules.knobs->specs()) {
+      const bool pinned = spec.role == ReferenceRole::CostOnly && !spec.exact.empty();
+      if (spec.role == ReferenceRole::Approximation || pinned) knobs.insert_or_assign(spec.key, spec.exact);
+    }
+  }
+  knobs.insert_or_assign("render.ssaa", std::to_string(rules.ssaa));
+  reference.knobs = std::move(knobs);
   return reference;
+}
+
+std::optional<render::WorkloadConfig> convergenceStepOf(const render::WorkloadConfig& reference) {
+  const auto ssaa = reference.knobs.find("render.ssaa");
+  const std::optional<uint32_t> factor = ssaa == reference.knobs.end() ? std::nullopt : parsePositive(ssaa->second);
+  if (!factor || *factor < 2) return std::nullopt;
+  render::WorkloadConfig step = reference;
+  step.knobs.insert_or_assign("render.ssaa", std::to_string(*factor - 1));
+  return step;
+}
+
+namespace {
+
+// The configuration's varied cost-only knobs whose values differ from the reference's.
+std::vector<std::pair<std::string, std::string>> biasKnobs(const SweepConfiguration& configuration,
+                                                           const ReferenceRules& rules) {
+  std::vector<std::pair<std::string, std::string>> knobs;
+  if (!rules.knobs) return knobs;
+  for (const auto& [key, value] : configuration.point) {
+    const KnobSpec* spec = rules.knobs->find(key);
+    if (spec && spec->role == ReferenceRole::CostOnly && value != spec->exact) knobs.emplace_back(key, value);
+  }
+  return knobs;
+}
+
+}  // namespace
+
+std::optional<render::WorkloadConfig> biasRenderOf(const SweepConfiguration& configuration,
+                                                   const render::WorkloadConfig& reference,
+                                                   const ReferenceRules& rules) {
+  const auto knobs = biasKnobs(configuration, rules);
+  if (knobs.empty()) return std::nullopt;
+  render::WorkloadConfig bias = reference;
+  for (const auto& [key, value] : knobs) bias.knobs.insert_or_assign(key, value);
+  return bias;
+}
+
+std::string biasLabelOf(const SweepConfiguration& configuration, const ReferenceRules& rules) {
+  std::string label;
+  for (const auto& [key, value] : biasKnobs(configuration, rules))
+    label += (label.empty() ? "" : " ") + key + "=" + value;
+  return label;
+}
+
+std::vector<std::string> variedLookKeys(const std::vector<SweepConfiguration>& configurations,
+                                        const ReferenceRules& rules) {
+  std::vector<std::string> keys;
+  if (configurations.empty()) return keys;
+  for (const auto& [key, value] : configurations.front().point) {
+    const bool knob = key != "msaa" && key != "width" && key != "height" && key != "size";
+    if (knob && roleOf(rules, key) == ReferenceRole::Look) keys.push_back(key);
+  }
+  return keys;
 }
 
 }  // namespace fgb::harness

@@ -25,6 +25,7 @@ constexpr const char* kStyle =
     "td:first-child,th:first-child{position:sticky;left:0;z-index:1;text-align:left}th:first-child{z-index:2}"
     "td:nth-child(2),td.dominated{text-align:left}"
     ".front td{background:#fff3e0;font-weight:bold}"
+    ".unresolved{color:#3f6fb5;font-weight:normal;font-size:.85em}"
     ".note{color:#555}.pick{font-size:1.1em;background:#fff3e0;padding:.6em 1em;border-left:4px solid #e8710a}"
     ".gallery{display:flex;flex-wrap:wrap;gap:18px}.gallery figure{margin:0}.gallery img{display:block;"
     "image-rendering:pixelated;border:1px solid #ccc}.pair{display:flex;gap:4px}figcaption{font-size:.9em}"
@@ -45,6 +46,13 @@ std::string timeErrorSvg(const SweepResult& result) {
     const double e = sweepError(c);
     if (e > 0) eLo = std::min(eLo, std::max(e - result.errorFloor, e / 2));
     eHi = std::max(eHi, e + result.errorFloor);
+  }
+  // The unresolved band (errors within kUnresolvedGapFactor x the reference's convergence gap) is
+  // kept in view: a point inside it cannot be ranked by error.
+  const double band = kUnresolvedGapFactor * largestConvergenceGap(result);
+  if (band > 0) {
+    eHi = std::max(eHi, band * 1.5);
+    eLo = std::min(eLo, band / 2);
   }
   if (eHi <= 0) eHi = 1e-3;
   if (eLo > eHi) eLo = eHi / 10;
@@ -94,6 +102,15 @@ std::string timeErrorSvg(const SweepResult& result) {
         "\n",
         py(v), left, plotRight, left - 6, py(v) + 4, tickLabel(v));
   }
+  if (band > 0) {
+    const double bandTop = std::max(py(std::min(band, y.hi)), static_cast<double>(top));
+    svg += fmt::format(
+        R"(<rect class="unresolved-band" x="{}" y="{:.1f}" width="{}" height="{:.1f}" fill="#dfe9f5" opacity="0.7"><title>unresolved: error within {}x the reference's convergence gap ({:.4f})</title></rect>)"
+        R"(<text class="unresolved-label" x="{}" y="{:.1f}" fill="#3f6fb5" font-size="11">unresolved below {:.4f} ({}x the reference's convergence gap)</text>)"
+        "\n",
+        left, bandTop, plotRight - left, plotBottom - bandTop, kUnresolvedGapFactor, band / kUnresolvedGapFactor,
+        left + 6, std::min(bandTop + 13, plotBottom - 4), band, kUnresolvedGapFactor);
+  }
   svg += fmt::format(R"(<rect x="{}" y="{}" width="{}" height="{}" fill="none" stroke="#999"/>)"
                      "\n",
                      left, top, plotRight - left, plotBottom - top);
@@ -101,9 +118,9 @@ std::string timeErrorSvg(const SweepResult& result) {
                      "\n",
                      (left + plotRight) / 2, plotBottom + 40);
   svg += fmt::format(
-      R"svg(<text transform="translate(18 {}) rotate(-90)" text-anchor="middle">LDR-FLIP vs reference (± noise floor; log)</text>)svg"
+      R"svg(<text transform="translate(18 {}) rotate(-90)" text-anchor="middle">{} vs reference (± noise floor; log)</text>)svg"
       "\n",
-      (top + plotBottom) / 2);
+      (top + plotBottom) / 2, escapeXml(errorColumnName(result)));
 
   // The front as a line, fastest to slowest.
   std::string line;
@@ -128,11 +145,12 @@ std::string timeErrorSvg(const SweepResult& result) {
                          cx, py(std::max(e - result.errorFloor, y.lo)), cx, py(e + result.errorFloor), colour);
     }
     svg += fmt::format(
-        R"(<circle class="point{}" cx="{:.1f}" cy="{:.1f}" r="5" fill="{}" stroke="{}" stroke-width="1.5"><title>{}: {} [{}, {}], LDR-FLIP {:.5f}{}</title></circle>)"
+        R"(<circle class="point{}" cx="{:.1f}" cy="{:.1f}" r="5" fill="{}" stroke="{}" stroke-width="1.5"><title>{}: {} [{}, {}], LDR-FLIP {:.5f}{}{}</title></circle>)"
         "\n",
         c.onFront ? " front" : "", cx, cy, c.onFront ? colour : "white", colour, escapeXml(c.configuration.label),
         escapeXml(durationLabel(c.frameGpu.median, 4)), escapeXml(durationLabel(c.frameGpu.lower, 4)),
-        escapeXml(durationLabel(c.frameGpu.upper, 4)), e, c.onFront ? " (front)" : "");
+        escapeXml(durationLabel(c.frameGpu.upper, 4)), e, c.onFront ? " (front)" : "",
+        c.unresolved ? " (unresolved)" : "");
   }
   for (std::size_t i = 0; i < labels.size(); ++i) {
     const PlacedLabel& l = labels[i];
@@ -248,8 +266,9 @@ std::string sweepHtml(const SweepResult& result) {
   bool first = true;
   for (std::size_t i : frontByTime(result)) {
     const auto& c = result.configurations[i];
-    html += fmt::format("{}<b>{}</b> ({}, LDR-FLIP {:.4f})", first ? "" : " &rarr; ", escapeXml(c.configuration.label),
-                        escapeXml(durationLabel(c.frameGpu.median, 3)), sweepError(c));
+    html +=
+        fmt::format("{}<b>{}</b> ({}, LDR-FLIP {:.4f}{})", first ? "" : " &rarr; ", escapeXml(c.configuration.label),
+                    escapeXml(durationLabel(c.frameGpu.median, 3)), sweepError(c), c.unresolved ? ", unresolved" : "");
     first = false;
   }
   html +=
@@ -257,11 +276,15 @@ std::string sweepHtml(const SweepResult& result) {
       "without being more accurate, or less accurate without being faster.</p>\n";
 
   html += "<h2>Time against error</h2>\n" + timeErrorSvg(result);
-  html +=
+  html += "<ul class=\"note references\">\n";
+  for (const std::string& line : referenceLines(result)) html += "<li>" + escapeXml(line) + "</li>\n";
+  html += "</ul>\n";
+  html += fmt::format(
       "<h2>Configurations</h2>\n<div class=\"table-scroll\"><table><tr><th># configuration</th><th>front</th><th>GPU "
       "frame ms</th><th>95% CI</th>"
-      "<th>frames</th><th>LDR-FLIP</th><th>HDR-FLIP</th><th>RMSE</th><th>PSNR dB</th><th>NaN/Inf</th><th>dominated "
-      "by</th></tr>\n";
+      "<th>frames</th><th>{}</th><th>HDR-FLIP</th><th>RMSE</th><th>PSNR dB</th><th>NaN/Inf</th><th>bias</th>"
+      "<th>dominated by</th></tr>\n",
+      escapeXml(errorColumnName(result)));
   for (std::size_t i = 0; i < result.configurations.size(); ++i) {
     const auto& c = result.configurations[i];
     // Dominating configurations by number (their labels on hover): a list of long labels made the
@@ -273,14 +296,21 @@ std::string sweepHtml(const SweepResult& result) {
     }
     html += fmt::format(
         "<tr{}><td>#{} {}</td><td>{}</td><td>{:.4f}</td><td>[{:.4f}, "
-        "{:.4f}]</td><td>{}</td><td>{}</td><td>{}</td><td>{:.5f}</td>"
-        "<td>{}</td><td>{}</td><td class=\"dominated\">{}</td></tr>\n",
+        "{:.4f}]</td><td>{}</td><td>{}{}</td><td>{}</td><td>{:.5f}</td>"
+        "<td>{}</td><td>{}</td><td>{}</td><td class=\"dominated\">{}</td></tr>\n",
         c.onFront ? " class=\"front\"" : "", i + 1, escapeXml(c.configuration.label), c.onFront ? "front" : "",
         c.frameGpu.median, c.frameGpu.lower, c.frameGpu.upper, c.frameGpu.n,
         c.display.flip ? fmt::format("{:.5f}", c.display.flip->mean) : "-",
+        c.unresolved ? R"( <span class="unresolved" title="within the reference's convergence gap">unresolved</span>)"
+                     : "",
         c.hdr.flip ? fmt::format("{:.5f}", c.hdr.flip->mean) : "-", c.display.rmse,
         std::isfinite(c.display.psnr) ? fmt::format("{:.2f}", c.display.psnr) : "&infin;",
-        c.display.nonFiniteTest + c.hdr.nonFiniteTest, dominatedBy);
+        c.display.nonFiniteTest + c.hdr.nonFiniteTest,
+        c.bias ? fmt::format(R"(<span title="{}">{:.4f}</span>)",
+                             escapeXml(result.references[c.reference].biases[*c.bias].label),
+                             result.references[c.reference].biases[*c.bias].gap())
+               : "-",
+        dominatedBy);
   }
   html += "</table></div>\n<h2>Per-pass GPU time</h2>\n" + passStackSvg(result);
 

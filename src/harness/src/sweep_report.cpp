@@ -52,6 +52,23 @@ nlohmann::json passesJson(const RunResult& run) {
   return passes;
 }
 
+nlohmann::json checkJson(const ReferenceCheck& check) {
+  return {
+      {"label", check.label},
+      {"config", {{"msaa_requested", check.workload.msaa}, {"knobs", knobsJson(check.workload.knobs)}}},
+      {"gap", check.gap()},
+      {"display", toJson(check.display)},
+      {"hdr", toJson(check.hdr)},
+      {"wall_ms", {{"open", check.wall.openMs}, {"frames", check.wall.framesMs}, {"readback", check.wall.readbackMs}}}};
+}
+
+// The configuration's cost-only knobs' bias: their converged render against the reference.
+nlohmann::json biasJson(const SweepResult& result, const ConfigurationOutcome& c) {
+  if (!c.bias) return nullptr;
+  const ReferenceCheck& b = result.references[c.reference].biases[*c.bias];
+  return {{"label", b.label}, {"ldr_flip_mean", b.gap()}};
+}
+
 nlohmann::json configurationJson(const SweepResult& result, const ConfigurationOutcome& c) {
   nlohmann::json point = nlohmann::json::object();
   for (const auto& [k, v] : c.configuration.point) point[k] = v;
@@ -69,6 +86,8 @@ nlohmann::json configurationJson(const SweepResult& result, const ConfigurationO
           {"passes", passesJson(c.run)},
           {"error", {{"display", toJson(c.display)}, {"hdr", toJson(c.hdr)}}},
           {"front", c.onFront},
+          {"unresolved", c.unresolved},
+          {"bias", biasJson(result, c)},
           {"dominated_by", dominatedBy},
           {"wall_ms",
            {{"open", c.wall.openMs},
@@ -86,8 +105,13 @@ nlohmann::json referenceJson(const ReferenceOutcome& r) {
   nlohmann::json renders = nlohmann::json::array();
   for (const auto& w : r.renders)
     renders.push_back({{"open", w.openMs}, {"frames", w.framesMs}, {"readback", w.readbackMs}});
+  nlohmann::json biases = nlohmann::json::array();
+  for (const auto& b : r.biases) biases.push_back(checkJson(b));
   return {{"config", configJson(r.workload, r.images)},
           {"repeat_identical", r.identical},
+          {"convergence", r.convergence ? checkJson(*r.convergence) : nlohmann::json(nullptr)},
+          {"unresolved_below", kUnresolvedGapFactor * r.convergenceGap()},
+          {"biases", biases},
           {"noise", {{"display", toJson(r.repeatDisplay)}, {"hdr", toJson(r.repeatHdr)}}},
           {"render_ms", r.renderMs},
           {"renders_ms", renders}};
@@ -101,8 +125,22 @@ nlohmann::json methodJson(const SweepResult& result) {
               {"batch_frames", result.untilStable->batchFrames},
               {"check_frames", result.stableCheckFrames}};
   }
+  nlohmann::json roles = nlohmann::json::object();
+  for (const auto& axis : result.axes) {
+    const bool knob = axis.key != "msaa" && axis.key != "width" && axis.key != "height" && axis.key != "size";
+    roles[axis.key] = knob ? referenceRoleName(roleOf(result.referenceRules, axis.key))
+                           : (axis.key == "msaa" ? "approximation" : "content");
+  }
   return {{"time", "median GPU frame time; 95% distribution-free order-statistic interval (exact binomial)"},
-          {"error", "LDR-FLIP mean of the tone-mapped frame against the reference"},
+          {"error", result.lookKeys.empty()
+                        ? "LDR-FLIP mean of the tone-mapped frame against the reference"
+                        : "LDR-FLIP mean of the tone-mapped frame against the reference, which keeps the scene's own "
+                          "value of the varied look knob(s): the change from the scene's look"},
+          {"error_column", errorColumnName(result)},
+          {"look_knobs", result.lookKeys},
+          {"roles", roles},
+          {"reference_ssaa", result.referenceRules.ssaa},
+          {"unresolved_factor", kUnresolvedGapFactor},
           {"dominance",
            "significantly faster or equal (one-sided Mann-Whitney U, alpha) and error <= other's + "
            "error_floor, strictly better in one"},
@@ -132,6 +170,10 @@ std::string psnrText(const ImageMetrics& m) {
   return std::isfinite(m.psnr) ? fmt::format("{:.2f}", m.psnr) : "inf";
 }
 
+std::string biasText(const SweepResult& result, const ConfigurationOutcome& c) {
+  return c.bias ? fmt::format("{:.4f}", result.references[c.reference].biases[*c.bias].gap()) : "";
+}
+
 uint64_t nonFinite(const ConfigurationOutcome& c) {
   return c.display.nonFiniteTest + c.hdr.nonFiniteTest;
 }
@@ -140,8 +182,8 @@ std::string frontSentence(const SweepResult& result) {
   std::string text;
   for (std::size_t i : frontByTime(result)) {
     const auto& c = result.configurations[i];
-    text += fmt::format("{}{} ({:.3f} ms, FLIP {:.4f})", text.empty() ? "" : " → ", c.configuration.label,
-                        c.frameGpu.median, sweepError(c));
+    text += fmt::format("{}{} ({:.3f} ms, FLIP {:.4f}{})", text.empty() ? "" : " → ", c.configuration.label,
+                        c.frameGpu.median, sweepError(c), c.unresolved ? ", unresolved" : "");
   }
   return text;
 }
@@ -150,6 +192,45 @@ std::string frontSentence(const SweepResult& result) {
 
 double sweepError(const ConfigurationOutcome& c) {
   return c.display.flip ? c.display.flip->mean : c.display.rmse;
+}
+
+std::string errorColumnName(const SweepResult& result) {
+  return result.lookKeys.empty() ? "LDR-FLIP" : "LDR-FLIP change from the scene's look";
+}
+
+double largestConvergenceGap(const SweepResult& result) {
+  double gap = 0.0;
+  for (const auto& r : result.references) gap = std::max(gap, r.convergenceGap());
+  return gap;
+}
+
+std::vector<std::string> referenceLines(const SweepResult& result) {
+  std::vector<std::string> lines;
+  for (std::size_t i = 0; i < result.references.size(); ++i) {
+    const ReferenceOutcome& r = result.references[i];
+    std::string knobs;
+    for (const auto& [k, v] : r.workload.knobs) knobs += " " + k + "=" + v;
+    std::string line =
+        fmt::format("reference {}: {} msaa={}{}; two renders {} (floor {:.5f})", i + 1, describeSize(r.images.display),
+                    r.workload.msaa, knobs, r.identical ? "bit-identical" : "differ",
+                    r.repeatDisplay.flip ? r.repeatDisplay.flip->mean : 0.0);
+    if (r.convergence) {
+      line += fmt::format("; convergence gap {:.4f} (against {}): errors up to {:.4f} are unresolved",
+                          r.convergenceGap(), r.convergence->label, kUnresolvedGapFactor * r.convergenceGap());
+    }
+    lines.push_back(line);
+    for (const auto& b : r.biases) {
+      lines.push_back(fmt::format("reference {}: bias of {} (its converged render against the reference): {:.4f}",
+                                  i + 1, b.label, b.gap()));
+    }
+  }
+  if (!result.lookKeys.empty()) {
+    std::string keys;
+    for (const auto& k : result.lookKeys) keys += (keys.empty() ? "" : ", ") + k;
+    lines.push_back("varied look knob(s) " + keys +
+                    ": judged against the scene's own value, so their column is the change from the scene's look");
+  }
+  return lines;
 }
 
 std::vector<std::size_t> frontByTime(const SweepResult& result) {
@@ -175,12 +256,17 @@ std::string sweepMethodNote(const SweepResult& result) {
       "Times are medians of the GPU frame time with a 95% distribution-free confidence interval (order statistics "
       "x(l), x(n+1-l) from the exact binomial distribution). Configurations were measured in {} interleaved rounds in "
       "a random order (seed {}), after {} warm-up frame(s), dropping {} re-warm frame(s) at the start of each visit; "
-      "{}{}. Error is the LDR-FLIP mean of the tone-mapped frame against the reference; its "
-      "noise floor ({:.5f}) is the LDR-FLIP mean between two renders of the reference. A configuration is dominated "
+      "{}{}. Error is the LDR-FLIP mean of the tone-mapped frame against the reference (approximation knobs at "
+      "their exact values, render.ssaa={}, the most MSAA the device has; look and content knobs as configured, a "
+      "varied look knob at the scene's own value; cost-only knobs pinned); its "
+      "noise floor ({:.5f}) is the LDR-FLIP mean between two renders of the reference, and its convergence gap "
+      "(largest {:.5f}) the LDR-FLIP mean between it and the same reference one SSAA step down: an error within {}x "
+      "that gap is unresolved, since the reference itself is not that converged. A configuration is dominated "
       "when another is significantly faster (one-sided Mann–Whitney U, α = {}) or equal in time, lower or equal in "
       "error beyond the floor, and strictly better in one; the front is the configurations no other dominates.",
       result.rounds, result.seed, result.warmupFrames, result.rewarmFrames, stop,
-      result.stopReason == "time limit" ? " (stopped by --max-minutes)" : "", result.errorFloor, result.alpha);
+      result.stopReason == "time limit" ? " (stopped by --max-minutes)" : "", result.referenceRules.ssaa,
+      result.errorFloor, largestConvergenceGap(result), kUnresolvedGapFactor, result.alpha);
 }
 
 nlohmann::json sweepJson(const SweepResult& result) {
@@ -228,7 +314,7 @@ std::string sweepCsv(const SweepResult& result) {
   }
   csv +=
       ",width,height,msaa,frame_gpu_median_ms,ci_low_ms,ci_high_ms,frames,stable,ldr_flip_mean,hdr_flip_mean,"
-      "rmse,psnr_db,hdr_rmse,nonfinite,front,dominated_by\n";
+      "rmse,psnr_db,hdr_rmse,nonfinite,front,unresolved,bias_ldr_flip_mean,dominated_by\n";
   for (const auto& c : result.configurations) {
     csv += csvField(c.configuration.label);
     for (const auto& [key, value] : c.configuration.point) {
@@ -238,10 +324,11 @@ std::string sweepCsv(const SweepResult& result) {
     std::string dominatedBy;
     for (std::size_t d : c.dominatedBy)
       dominatedBy += (dominatedBy.empty() ? "" : ";") + result.configurations[d].configuration.label;
-    csv += fmt::format(",{},{},{},{:.6f},{:.6f},{:.6f},{},{},{},{},{:.6f},{},{:.6f},{},{},{}\n", c.images.display.width,
-                       c.images.display.height, msaaUsed(c), c.frameGpu.median, c.frameGpu.lower, c.frameGpu.upper,
-                       c.frameGpu.n, c.stable ? 1 : 0, flipText(c.display), flipText(c.hdr), c.display.rmse,
-                       psnrText(c.display), c.hdr.rmse, nonFinite(c), c.onFront ? 1 : 0, csvField(dominatedBy));
+    csv += fmt::format(",{},{},{},{:.6f},{:.6f},{:.6f},{},{},{},{},{:.6f},{},{:.6f},{},{},{},{},{}\n",
+                       c.images.display.width, c.images.display.height, msaaUsed(c), c.frameGpu.median,
+                       c.frameGpu.lower, c.frameGpu.upper, c.frameGpu.n, c.stable ? 1 : 0, flipText(c.display),
+                       flipText(c.hdr), c.display.rmse, psnrText(c.display), c.hdr.rmse, nonFinite(c),
+                       c.onFront ? 1 : 0, c.unresolved ? 1 : 0, biasText(result, c), csvField(dominatedBy));
   }
   return csv;
 }
@@ -249,18 +336,25 @@ std::string sweepCsv(const SweepResult& result) {
 std::string sweepTable(const SweepResult& result) {
   std::size_t width = 13;
   for (const auto& c : result.configurations) width = std::max(width, c.configuration.label.size());
-  std::string out = fmt::format("  {:<{}}  {:>27}  {:>8}  {:>8}  {:>7}  {}\n", "configuration", width,
-                                "GPU frame ms (95% CI)", "LDR-FLIP", "HDR-FLIP", "PSNR", "front");
+  const bool look = !result.lookKeys.empty();
+  std::string out;
+  if (look) out += "  LDR-FLIP is the change from the scene's look (a look knob is varied)\n";
+  out += fmt::format("  {:<{}}  {:>27}  {:>8}  {:>8}  {:>7}  {:>6}  {}\n", "configuration", width,
+                     "GPU frame ms (95% CI)", look ? "Δlook" : "LDR-FLIP", "HDR-FLIP", "PSNR", "bias", "front");
   for (const auto& c : result.configurations) {
     const std::string time =
         fmt::format("{:.3f} [{:.3f}, {:.3f}]", c.frameGpu.median, c.frameGpu.lower, c.frameGpu.upper);
-    out += fmt::format("{} {:<{}}  {:>27}  {:>8}  {:>8}  {:>7}  {}{}\n", c.onFront ? '*' : ' ', c.configuration.label,
-                       width, time, flipText(c.display), flipText(c.hdr), psnrText(c.display), c.onFront ? "front" : "",
-                       nonFinite(c) ? fmt::format("  {} NaN/Inf", nonFinite(c)) : "");
+    std::string notes = c.onFront ? "front" : "";
+    if (c.unresolved) notes += notes.empty() ? "unresolved" : ", unresolved";
+    if (nonFinite(c)) notes += fmt::format("  {} NaN/Inf", nonFinite(c));
+    out += fmt::format("{} {:<{}}  {:>27}  {:>8}  {:>8}  {:>7}  {:>6}  {}\n", c.onFront ? '*' : ' ',
+                       c.configuration.label, width, time, flipText(c.display), flipText(c.hdr), psnrText(c.display),
+                       c.bias ? biasText(result, c) : "-", notes);
   }
   out += "  front (fastest first): " + frontSentence(result) + "\n";
   out += fmt::format("  error floor (reference vs itself): {:.5f}; {} round(s), stop: {}\n", result.errorFloor,
                      result.rounds, result.stopReason);
+  for (const std::string& line : referenceLines(result)) out += "  " + line + "\n";
   return out;
 }
 
@@ -269,28 +363,23 @@ std::string sweepMarkdown(const SweepResult& result) {
       fmt::format("# Sweep: {}\n\nDevice: {} ({}). ", result.scene, result.device.name, result.device.driver);
   if (result.device.hostTimestamps) md += timestampSourceNote(result.device) + " ";
   md += "\n\n**Front (fastest first):** " + frontSentence(result) + "\n\n";
-  md +=
-      "| | configuration | GPU frame ms | 95% CI | frames | LDR-FLIP | HDR-FLIP | RMSE | PSNR dB | NaN/Inf | dominated "
-      "by |\n"
-      "|---|---|---:|---|---:|---:|---:|---:|---:|---:|---|\n";
+  md += fmt::format(
+      "| | configuration | GPU frame ms | 95% CI | frames | {} | HDR-FLIP | RMSE | PSNR dB | NaN/Inf | bias | "
+      "dominated by |\n"
+      "|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---|\n",
+      errorColumnName(result));
   for (const auto& c : result.configurations) {
     std::string dominatedBy;
     for (std::size_t d : c.dominatedBy)
       dominatedBy += (dominatedBy.empty() ? "" : ", ") + result.configurations[d].configuration.label;
-    md += fmt::format("| {} | {} | {:.4f} | [{:.4f}, {:.4f}] | {} | {} | {} | {:.5f} | {} | {} | {} |\n",
+    md += fmt::format("| {} | {} | {:.4f} | [{:.4f}, {:.4f}] | {} | {}{} | {} | {:.5f} | {} | {} | {} | {} |\n",
                       c.onFront ? "**front**" : "", c.configuration.label, c.frameGpu.median, c.frameGpu.lower,
-                      c.frameGpu.upper, c.frameGpu.n, flipText(c.display), flipText(c.hdr), c.display.rmse,
-                      psnrText(c.display), nonFinite(c), dominatedBy);
+                      c.frameGpu.upper, c.frameGpu.n, flipText(c.display), c.unresolved ? " (unresolved)" : "",
+                      flipText(c.hdr), c.display.rmse, psnrText(c.display), nonFinite(c),
+                      c.bias ? biasText(result, c) : "-", dominatedBy);
   }
   md += "\n## References\n\n";
-  for (const auto& r : result.references) {
-    std::string knobs;
-    for (const auto& [k, v] : r.workload.knobs) knobs += " " + k + "=" + v;
-    md += fmt::format("- {}x{} msaa={}{}: two renders {} (LDR-FLIP {:.5f} between them), {:.1f} s\n",
-                      r.images.display.width, r.images.display.height, r.workload.msaa, knobs,
-                      r.identical ? "bit-identical" : "differ", r.repeatDisplay.flip ? r.repeatDisplay.flip->mean : 0.0,
-                      r.renderMs / 1000.0);
-  }
+  for (const std::string& line : referenceLines(result)) md += "- " + line + "\n";
   md += "\n## Method\n\n" + sweepMethodNote(result) + "\n";
   return md;
 }
@@ -315,7 +404,8 @@ std::string sweepWallSummary(const SweepResult& result) {
   const SweepOverhead& o = result.overhead;
   const auto s = [](double ms) { return fmt::format("{:.1f} s", ms / 1000.0); };
   uint32_t renders = 0;
-  for (const auto& r : result.references) renders += static_cast<uint32_t>(r.renders.size());
+  for (const auto& r : result.references)
+    renders += static_cast<uint32_t>(r.renders.size() + r.biases.size() + (r.convergence ? 1 : 0));
   std::string text = fmt::format(
       "sweep: wall {}: open {}, references {} ({} render(s)), warm-up {}, measuring {}, closing {}, metrics {}, "
       "report {}\n",
@@ -327,6 +417,13 @@ std::string sweepWallSummary(const SweepResult& result) {
     for (const auto& w : r.renders) {
       text += fmt::format(" [open {}, frames {}, readback {}]", s(w.openMs), s(w.framesMs), s(w.readbackMs));
     }
+    if (r.convergence) {
+      const ReferenceRenderWall& w = r.convergence->wall;
+      text += fmt::format(" convergence {} [open {}, frames {}, readback {}]", r.convergence->label, s(w.openMs),
+                          s(w.framesMs), s(w.readbackMs));
+    }
+    for (const auto& b : r.biases)
+      text += fmt::format(" bias {} [open {}, frames {}]", b.label, s(b.wall.openMs), s(b.wall.framesMs));
     text += "\n";
   }
   for (const auto& c : result.configurations) {

@@ -40,8 +40,12 @@ RenderPathPlan planRenderPath(const features::RenderSettings& settings) {
   return plan;
 }
 
+uint32_t maxMsaaOf(const features::RenderSettings& settings) {
+  return settings.renderPath == features::RenderPath::VisBuffer ? 1 : 8;
+}
+
 void checkRenderPathSettings(const features::RenderSettings& settings, uint32_t requestedMsaa) {
-  if (settings.renderPath == features::RenderPath::VisBuffer && requestedMsaa > 1) {
+  if (requestedMsaa > maxMsaaOf(settings)) {
     throw InputError("--msaa " + std::to_string(requestedMsaa) +
                      ": render.path=visbuffer has no MSAA (one visibility sample per pixel); use --set render.ssaa=N "
                      "for anti-aliasing");

@@ -26,6 +26,9 @@ struct RenderPathPlan {
 
 RenderPathPlan planRenderPath(const features::RenderSettings& settings);
 
+// The most MSAA samples the path draws with (visbuffer: 1, one visibility sample per pixel).
+uint32_t maxMsaaOf(const features::RenderSettings& settings);
+
 // The path's constraints on the run's settings; throws InputError naming the option.
 void checkRenderPathSettings(const features::RenderSettings& settings, uint32_t requestedMsaa);
 

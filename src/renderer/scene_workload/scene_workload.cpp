@@ -93,7 +93,8 @@ features::RenderSettings makeSettings(const WorkloadConfig& config, const scene:
   settings.msaa = msaa;
   features::applyRendererKnobs(settings, config.knobs);
   settings.checkFinite = config.checkFinite;
-  checkRenderPathSettings(settings, requestedMsaa);
+  if (config.clampMsaaToPath) settings.msaa = std::min(settings.msaa, maxMsaaOf(settings));
+  checkRenderPathSettings(settings, config.clampMsaaToPath ? settings.msaa : requestedMsaa);
   return settings;
 }
 

@@ -24,11 +24,12 @@ std::optional<double> parseNumber(std::string_view text) {
 }
 
 KnobSpec number(std::string key, double min, double max, bool minExclusive, std::string help) {
-  KnobSpec spec{std::move(key), KnobType::Number, min, max, minExclusive, false, {}, "scene", std::move(help)};
-  return spec;
+  return {std::move(key),  KnobType::Number,     min, max, minExclusive, false, {}, "scene",
+          std::move(help), ReferenceRole::Unset, {}};
 }
 KnobSpec integer(std::string key, double min, double max, std::string help) {
-  return {std::move(key), KnobType::Integer, min, max, false, false, {}, "scene", std::move(help)};
+  return {std::move(key),  KnobType::Integer,    min, max, false, false, {}, "scene",
+          std::move(help), ReferenceRole::Unset, {}};
 }
 KnobSpec typed(std::string key, KnobType type, std::string help) {
   KnobSpec spec;
@@ -58,9 +59,11 @@ const KnobRegistry& sceneRegistry() {
 }  // namespace
 
 std::vector<KnobSpec> knobSpecs() {
+  using enum ReferenceRole;
   KnobSpec fov = number("camera.fov", 0.0, 179.0, true, "vertical field of view, degrees");
   fov.maxExclusive = true;
-  return {
+  // What is drawn and from where: each value its own reference.
+  std::vector<KnobSpec> content = {
       number("atrium.scale", 0.0, 1000.0, true, "geometry density multiplier"),
       integer("atrium.seed", 0, 1000000, "atrium layout seed"),
       integer("atrium.texture_size", 4, 4096, "procedural texture size (a power of two)"),
@@ -71,12 +74,6 @@ std::vector<KnobSpec> knobSpecs() {
       withWords(number("camera.far", 0.0, kInf, true, "far plane, m (inf: infinite, reversed-Z)"), {"inf"}),
       typed("camera.position", KnobType::Vec3, "camera position x,y,z"),
       typed("camera.target", KnobType::Vec3, "camera target x,y,z"),
-      withWords(number("post.exposure", 0.0, kInf, true, "tone-mapping exposure (auto: metered)"), {"auto"}),
-      typed("post.bloom", KnobType::Flag, "bloom on/off"),
-      number("post.bloom_threshold", 0.0, kInf, false, "bloom threshold"),
-      number("post.bloom_knee", 0.0, kInf, false, "bloom soft knee"),
-      number("post.bloom_intensity", 0.0, kInf, false, "bloom intensity"),
-      number("post.bloom_radius", 0.0, kInf, true, "bloom upsample radius"),
       typed("scene.lights", KnobType::Flag, "0 drops the point lights"),
       typed("scene.particles", KnobType::Flag, "0 drops the particle emitters"),
       typed("scene.sun", KnobType::Flag, "sun on/off"),
@@ -84,6 +81,19 @@ std::vector<KnobSpec> knobSpecs() {
       number("scene.emissive_scale", 1e-12, 1e12, false, "factor on emissive materials and particles"),
       number("scene.offset", -1e9, 1e9, false, "whole scene and camera moved by (d, 0, d) m"),
   };
+  // The intended image's post-processing: copied, and judged against the scene's own when varied.
+  std::vector<KnobSpec> look = {
+      withWords(number("post.exposure", 0.0, kInf, true, "tone-mapping exposure (auto: metered)"), {"auto"}),
+      typed("post.bloom", KnobType::Flag, "bloom on/off"),
+      number("post.bloom_threshold", 0.0, kInf, false, "bloom threshold"),
+      number("post.bloom_knee", 0.0, kInf, false, "bloom soft knee"),
+      number("post.bloom_intensity", 0.0, kInf, false, "bloom intensity"),
+      number("post.bloom_radius", 0.0, kInf, true, "bloom upsample radius"),
+  };
+  std::vector<KnobSpec> specs;
+  for (KnobSpec& spec : content) specs.push_back(withRole(std::move(spec), Content));
+  for (KnobSpec& spec : look) specs.push_back(withRole(std::move(spec), Look));
+  return specs;
 }
 
 const std::vector<std::string>& Knobs::knownKeys() {

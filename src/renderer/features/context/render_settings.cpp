@@ -7,11 +7,21 @@
 namespace fgb::features {
 namespace {
 
-KnobSpec integer(std::string key, double min, double max, std::string help) {
-  return {std::move(key), KnobType::Integer, min, max, false, false, {}, "renderer", std::move(help)};
+// Each knob with its reference role (fgb/core/knob_registry.hpp) and, for approximation and
+// cost-only knobs, the value the sweep's reference uses.
+KnobSpec integer(std::string key, double min, double max, std::string help, ReferenceRole role,
+                 std::string exact = {}) {
+  return {std::move(key), KnobType::Integer, min, max, false, false, {}, "renderer", std::move(help),
+          role,           std::move(exact)};
 }
-KnobSpec word(std::string key, std::vector<std::string> words, std::string help) {
-  return {std::move(key), KnobType::Word, 0.0, 0.0, false, false, std::move(words), "renderer", std::move(help)};
+KnobSpec word(std::string key, std::vector<std::string> words, std::string help, ReferenceRole role,
+              std::string exact = {}) {
+  return {std::move(key), KnobType::Word,  0.0, 0.0, false, false, std::move(words), "renderer", std::move(help),
+          role,           std::move(exact)};
+}
+KnobSpec flag(std::string key, std::string help, ReferenceRole role, std::string exact = {}) {
+  return {std::move(key), KnobType::Flag,  0.0, 0.0, false, false, {}, "renderer", std::move(help),
+          role,           std::move(exact)};
 }
 
 const KnobRegistry& rendererRegistry() {
@@ -61,26 +71,37 @@ void applyOne(RenderSettings& settings, const std::string& key, const std::strin
 }  // namespace
 
 const std::vector<KnobSpec>& rendererKnobSpecs() {
+  using enum ReferenceRole;
   static const std::vector<KnobSpec> specs = {
-      word("debug.view", {"none", "off", "light-complexity"}, "debug visualisation"),
-      {"render.depth_prepass", KnobType::Flag, 0, 0, false, false, {}, "renderer", "depth-only pass before shading"},
-      integer("render.ssaa", 1, 4, "supersampling: scene passes at S*W x S*H, box-filtered to W x H"),
-      word("render.path", {"forward", "visbuffer"}, "what draws the opaque scene: forward raster or compute visibility buffer"),
+      word("debug.view", {"none", "off", "light-complexity"}, "debug visualisation", Look),
+      flag("render.depth_prepass", "depth-only pass before shading", CostOnly, "0"),
+      // The sweep's reference raises it to 4 (`fgbench sweep --reference-ssaa` up to 8).
+      integer("render.ssaa", 1, 8, "supersampling: scene passes at S*W x S*H, box-filtered to W x H", Approximation,
+              "4"),
+      // The reference path is the thesis' forward raster; another path's difference from it at
+      // convergence is its bias, which the sweep reports apart from its error.
+      word("render.path", {"forward", "visbuffer"},
+           "what draws the opaque scene: forward raster or compute visibility buffer", CostOnly, "forward"),
       word("render.vis_backing", {"auto", "buffer", "image"},
-           "visbuffer words: R64 image atomics or a storage buffer (auto: image where the device has them)"),
-      {"render.occlusion", KnobType::Flag, 0, 0, false, false, {}, "renderer",
-       "visbuffer: two-phase HiZ occlusion culling of clusters (no effect on render.path=forward)"},
-      word("lighting.mode", {"clustered", "all"}, "clustered light lists, or every light for every pixel"),
-      integer("lighting.slices", 1, 64, "cluster depth slices"),
-      integer("lighting.max_per_cluster", 1, 1024, "lights kept per cluster (overflow guard)"),
-      integer("bloom.mips", 1, 10, "bloom chain levels (clamped to what the size allows)"),
-      integer("particles.seed", 0, 1 << 30, "added to every emitter's seed"),
+           "visbuffer words: R64 image atomics or a storage buffer (auto: image where the device has them)", CostOnly,
+           "auto"),
+      flag("render.occlusion",
+           "visbuffer: two-phase HiZ occlusion culling of clusters (no effect on render.path=forward)", CostOnly, "0"),
+      word("lighting.mode", {"clustered", "all"}, "clustered light lists, or every light for every pixel",
+           Approximation, "all"),
+      // Unused by lighting.mode=all; the largest values make the reference's exactness explicit.
+      integer("lighting.slices", 1, 64, "cluster depth slices", Approximation, "64"),
+      integer("lighting.max_per_cluster", 1, 1024, "lights kept per cluster (overflow guard)", Approximation, "1024"),
+      // A wider bloom is another look, not an approximation that converges (issue 30).
+      integer("bloom.mips", 1, 10, "bloom chain levels (clamped to what the size allows)", Look),
+      integer("particles.seed", 0, 1 << 30, "added to every emitter's seed", Content),
       // Phase 2 of render.occlusion has nothing to recover while the camera stands still (phase 1
       // tests against the same depths); this makes it recover clusters (tests: same image).
-      {"debug.occlusion_hold_back", KnobType::Flag, 0, 0, false, false, {}, "renderer",
-       "render.occlusion: phase 1 also holds back every other cluster for phase 2 (tests)"},
+      flag("debug.occlusion_hold_back",
+           "render.occlusion: phase 1 also holds back every other cluster for phase 2 (tests)", CostOnly, "0"),
       // The passes whose shaders can write a NaN on request (tests of --check-finite).
-      word("debug.inject_nan", {"none", "Mesh Render", "Bloom"}, "pass that writes a NaN (tests of --check-finite)"),
+      word("debug.inject_nan", {"none", "Mesh Render", "Bloom"}, "pass that writes a NaN (tests of --check-finite)",
+           Content),
   };
   return specs;
 }

@@ -22,6 +22,26 @@ enum class KnobType {
   Text,     // any non-empty text (checked by its owner when used, e.g. a pass name)
 };
 
+// What a knob does to a sweep's reference image (docs/sweep.md, "The reference"). Every knob has
+// one; KnobRegistry::add refuses a spec without it, so a new knob cannot be added unclassified.
+enum class ReferenceRole {
+  Unset,
+  // Trades accuracy for speed (sampling, light caps, cluster slices, LOD error): the reference sets
+  // it to `exact`, the value at which the approximation is exact (or converged).
+  Approximation,
+  // Part of the intended image (bloom, exposure, tone mapping, debug views): copied from the
+  // configuration. A look knob that a sweep varies is judged against the scene's own value of it,
+  // and the error column then reads "change from the scene's look".
+  Look,
+  // What is rendered (scene, camera, geometry, lights): copied from the configuration; each value of
+  // a varied content knob gets a reference of its own.
+  Content,
+  // Changes the cost and at most the path's bias, not what is approximated (render path, depth
+  // prepass, backing, occlusion, debug timing): pinned to `exact` (empty: dropped, the scene's
+  // own), so configurations that differ only in these share one reference.
+  CostOnly,
+};
+
 struct KnobSpec {
   std::string key;
   KnobType type = KnobType::Number;
@@ -33,11 +53,20 @@ struct KnobSpec {
   std::vector<std::string> words;
   std::string owner;  // "scene" | "renderer" | ...: the layer that applies it
   std::string help;   // one short phrase
+  ReferenceRole role = ReferenceRole::Unset;
+  std::string exact;  // Approximation: the reference's value; CostOnly: the pinned value ("" = dropped)
 };
+
+// `spec` with its reference role (and the reference's value for Approximation / CostOnly knobs).
+KnobSpec withRole(KnobSpec spec, ReferenceRole role, std::string exact = {});
+
+// "approximation", "look", "content", "cost-only" (sweep.json, docs).
+const char* referenceRoleName(ReferenceRole role);
 
 class KnobRegistry {
  public:
-  // Adds a layer's keys; a key registered twice is a programming error (std::logic_error).
+  // Adds a layer's keys; a key registered twice, one without a reference role, or an Approximation
+  // knob without its exact value is a programming error (std::logic_error).
   void add(const std::vector<KnobSpec>& specs);
 
   [[nodiscard]] const KnobSpec* find(std::string_view key) const;

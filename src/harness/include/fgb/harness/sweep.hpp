@@ -1,8 +1,11 @@
 // `fgbench sweep`: run time against error over a grid of configurations.
 //
 //   SweepGrid        the axes (--vary KEY=V1,V2 and bench/sweeps/*.json) and their full grid;
-//   referenceOf      the reference configuration each grid point is compared with;
-//   runSweep         renders the references (twice: their noise floor), opens every configuration,
+//   referenceOf      the reference configuration each grid point is compared with, from each knob's
+//                    reference role in the knob registry (docs/sweep.md, "The reference");
+//   runSweep         renders the references (twice: their noise floor; once more one SSAA step
+//                    down: their convergence gap; and the cost-only knobs' converged renders: their
+//                    bias), opens every configuration,
 //                    measures them in interleaved rounds in a seeded random order, compares their
 //                    frames with the reference and marks the Pareto front;
 //   sweep outputs    sweep.json / .csv / .md / .html and the terminal table (sweep_report.hpp).
@@ -11,6 +14,7 @@
 // is its baseline rung (SweepPlan::referenceOverride).
 #pragma once
 
+#include <fgb/core/knob_registry.hpp>
 #include <fgb/harness/metrics.hpp>
 #include <fgb/harness/pareto.hpp>
 #include <fgb/harness/render_path.hpp>
@@ -61,20 +65,60 @@ struct SweepConfiguration {
 // combinations or no axis at all is InputError.
 std::vector<SweepConfiguration> expandGrid(const render::WorkloadConfig& base, const std::vector<SweepAxis>& axes);
 
-// The reference a configuration is compared with (interfaces.md): the same scene, size and content
-// knobs, rendered at the renderer's highest quality: render.ssaa=4, the device's largest MSAA
-// (8, clamped by the device), lighting.mode=all (every light for every pixel, no per-cluster cap),
-// bloom.mips=10 (the full chain; the renderer clamps it to the size). Knobs that only trade speed
-// (lighting.max_per_cluster, lighting.slices, render.path, render.depth_prepass) are dropped, so
-// configurations that differ only in those share one reference.
-render::WorkloadConfig referenceOf(const render::WorkloadConfig& configuration);
+// How a sweep makes each configuration's reference from the knobs' roles (ReferenceRole):
+//   approximation knobs are set to their exact value (render.ssaa to `ssaa`, lighting.mode=all, ...)
+//   and MSAA to `msaa` (clamped by the device and the render path);
+//   look knobs are copied, except a varied one, which takes the sweep's base value (the scene's own
+//   look, or the --set value);
+//   content knobs are copied;
+//   cost-only knobs are pinned to their registry value (render.path=forward, ...) or dropped.
+struct ReferenceRules {
+  const KnobRegistry* knobs = nullptr;  // the roles; null: every knob counts as content (tests)
+  uint32_t ssaa = 4;                    // --reference-ssaa
+  uint32_t msaa = 8;
+  std::map<std::string, std::string> baseKnobs;  // the knobs before the grid's axes (--set, sweep file)
+};
+
+// The role of `key` under `rules` (Content without a registry). A key the registry lacks is a
+// programming error: every knob was checked against it before the sweep started.
+ReferenceRole roleOf(const ReferenceRules& rules, const std::string& key);
+
+// The reference of one configuration. Configurations that differ only in approximation and
+// cost-only knobs, or in a varied look knob, share it.
+render::WorkloadConfig referenceOf(const SweepConfiguration& configuration, const ReferenceRules& rules = {});
+
+// The reference rendered one SSAA step down (render.ssaa = S - 1): its difference from the
+// reference is the reference's convergence gap. None for a reference at SSAA 1.
+std::optional<render::WorkloadConfig> convergenceStepOf(const render::WorkloadConfig& reference);
+
+// The configuration's bias render: its reference with the configuration's varied cost-only knobs
+// (e.g. render.path=visbuffer) at their values, with the highest MSAA the path allows. None when
+// those knobs all hold the reference's pinned values. Its difference from the reference is the
+// path's bias: what no amount of sampling removes.
+std::optional<render::WorkloadConfig> biasRenderOf(const SweepConfiguration& configuration,
+                                                   const render::WorkloadConfig& reference,
+                                                   const ReferenceRules& rules = {});
+
+// "render.path=visbuffer": the varied cost-only knobs of `configuration` that differ from the
+// reference's pinned values ("" when none do).
+std::string biasLabelOf(const SweepConfiguration& configuration, const ReferenceRules& rules = {});
+
+// The varied keys (of the configurations' points) whose role is Look: a sweep varying one judges
+// "change from the scene's look".
+std::vector<std::string> variedLookKeys(const std::vector<SweepConfiguration>& configurations,
+                                        const ReferenceRules& rules);
+
+// A configuration whose error is within this factor of its reference's convergence gap cannot be
+// told apart from the reference's own residual error: "unresolved".
+inline constexpr double kUnresolvedGapFactor = 2.0;
 
 struct SweepPlan {
   std::string scene;
   std::vector<SweepConfiguration> configurations;
-  // Default: referenceOf(each configuration). Set to use one fixed configuration instead (stress:
-  // the baseline rung).
+  // Default: referenceOf(each configuration, referenceRules). Set to use one fixed configuration
+  // instead (stress: the baseline rung; no convergence check or bias renders then).
   std::optional<render::WorkloadConfig> referenceOverride;
+  ReferenceRules referenceRules;
   uint32_t warmup = 8;  // frames rendered before measuring
   // The compared images are of this frame (1-based) of every configuration and reference: animated
   // content (particles) depends on the frame number, and the reference renders only this many
@@ -107,6 +151,15 @@ struct ReferenceRenderWall {
   double openMs = 0.0, framesMs = 0.0, readbackMs = 0.0;
 };
 
+// A render compared with the reference: the convergence step, or a cost-only knob's bias render.
+struct ReferenceCheck {
+  std::string label;  // "render.ssaa=3", "render.path=visbuffer"
+  render::WorkloadConfig workload;
+  ImageMetrics display, hdr;  // against the reference: LDR-FLIP on the display image, HDR-FLIP on the HDR
+  ReferenceRenderWall wall;
+  [[nodiscard]] double gap() const { return display.flip ? display.flip->mean : display.rmse; }
+};
+
 struct ReferenceOutcome {
   render::WorkloadConfig workload;
   RenderedImages images;                  // first render
@@ -114,6 +167,10 @@ struct ReferenceOutcome {
   bool identical = false;                 // the two renders are bit-identical
   double renderMs = 0.0;                  // wall time of both renders and their comparison
   std::vector<ReferenceRenderWall> renders;  // each render's wall time, in order
+  // The same reference one SSAA step down, against it: how converged the reference is.
+  std::optional<ReferenceCheck> convergence;
+  std::vector<ReferenceCheck> biases;  // converged renders of the varied cost-only knobs' values
+  [[nodiscard]] double convergenceGap() const { return convergence ? convergence->gap() : 0.0; }
 };
 
 // Wall time one configuration cost the sweep (ms): where a sweep's time goes, per configuration.
@@ -136,6 +193,9 @@ struct ConfigurationOutcome {
   Image heatMap;              // LDR-FLIP map against the reference
   bool onFront = false;
   std::vector<std::size_t> dominatedBy;
+  // Error within kUnresolvedGapFactor x its reference's convergence gap: it cannot be ranked by error.
+  bool unresolved = false;
+  std::optional<std::size_t> bias;  // index into its reference's biases (its cost-only knobs' bias)
   ConfigurationWall wall;
 };
 
@@ -154,6 +214,9 @@ struct SweepResult {
   std::string sceneHash;
   render::DeviceDescription device;
   std::vector<SweepAxis> axes;
+  ReferenceRules referenceRules;
+  // Varied look knobs: the error column is then the change from the scene's look, not only error.
+  std::vector<std::string> lookKeys;
   std::vector<ReferenceOutcome> references;
   std::vector<ConfigurationOutcome> configurations;
   double errorFloor = 0.0;  // max LDR-FLIP mean between repeated reference renders
@@ -183,8 +246,14 @@ SweepResult runSweep(const WorkloadOpener& open, const SweepPlan& plan, const Sw
 // exposed for the overhead benchmark.
 ReferenceOutcome renderReference(const WorkloadOpener& open, const render::WorkloadConfig& config, uint32_t frames);
 
-// Compares every configuration with its reference and marks the front (runSweep's last step;
-// exposed for the overhead benchmark and tests).
+// Renders the reference's convergence step and the bias renders its configurations need.
+// `say` hears each render before it starts ("convergence (render.ssaa=3)", "bias of render.path=visbuffer").
+void checkReference(const WorkloadOpener& open, ReferenceOutcome& reference, const SweepPlan& plan,
+                    const std::vector<const SweepConfiguration*>& configurations, uint32_t frames,
+                    const std::function<void(const std::string&)>& say = {});
+
+// Compares every configuration with its reference, marks the unresolved ones and the front
+// (runSweep's last step; exposed for the overhead benchmark and tests).
 void compareWithReferences(SweepResult& result);
 void markFront(SweepResult& result);
 

@@ -28,6 +28,15 @@ double sweepError(const ConfigurationOutcome& c);
 // How the sweep measured and decided, in one paragraph (reports and --help say the same).
 std::string sweepMethodNote(const SweepResult& result);
 
+// The error column's name: "LDR-FLIP", or "LDR-FLIP change from the scene's look" where the sweep
+// varies a look knob (bloom.mips, post.*), whose reference keeps the scene's own value.
+std::string errorColumnName(const SweepResult& result);
+// The largest convergence gap of the sweep's references (0 when none was checked).
+double largestConvergenceGap(const SweepResult& result);
+// The references in words: how each was made, its convergence gap, the unresolved band and each
+// cost-only value's bias, one line each.
+std::vector<std::string> referenceLines(const SweepResult& result);
+
 // Creates DIR if needed (InputError when impossible) and writes sweep.csv, sweep.md, sweep.html and
 // sweep.json, each atomically; fills result.overhead.reportMs (sweep.json, written last, holds the
 // time of writing the others).

@@ -30,6 +30,9 @@ struct WorkloadConfig {
   uint32_t width = 0;         // 0: scene default
   uint32_t height = 0;
   uint32_t msaa = 0;          // 0: scene default; clamped to the device (warning on stderr)
+  // The sweep's references: MSAA above what the render path draws with is lowered to it (the
+  // visibility buffer's 1) instead of refused, so one reference MSAA serves every path.
+  bool clampMsaaToPath = false;
   bool validation = false;    // validation + synchronization validation; messages are errors
   std::map<std::string, std::string> knobs;  // --set key=value
   std::string cacheDir;       // cooked-asset cache ("" = default)

@@ -33,6 +33,7 @@ struct SweepOptions {
   double maxMinutes = 0.0;
   uint64_t seed = 1;
   uint32_t referenceSsaa = 4;
+  std::string shard;  // "K/N"
 };
 
 // Axes from the sweep file, then --vary (a --vary of a key the file also varies replaces it).
@@ -64,7 +65,8 @@ void checkAxisKnob(const harness::SweepAxis& axis) {
   }
 }
 
-harness::SweepPlan makePlan(const CLI::App& command, SweepOptions& o, std::vector<harness::SweepAxis>& axes) {
+harness::SweepPlan makePlan(const CLI::App& command, SweepOptions& o, std::vector<harness::SweepAxis>& axes,
+                            std::optional<harness::ShardInfo>& shardInfo) {
   std::optional<harness::SweepFile> file;
   if (!o.sweepFile.empty()) file = harness::loadSweepFile(o.sweepFile);
   auto knobs = file ? file->knobs : std::map<std::string, std::string>{};
@@ -92,6 +94,15 @@ harness::SweepPlan makePlan(const CLI::App& command, SweepOptions& o, std::vecto
   plan.referenceRules.knobs = &knobRegistry();
   plan.referenceRules.ssaa = o.referenceSsaa;
   plan.referenceRules.baseKnobs = knobs;
+  if (!o.shard.empty()) {
+    const harness::ShardSpec spec = harness::parseShard(o.shard);
+    harness::ShardInfo shard{spec.index, spec.count, plan.configurations.size(),
+                             harness::shardConfigurations(plan.configurations, plan.referenceRules, spec)};
+    std::vector<harness::SweepConfiguration> mine;
+    for (std::size_t i : shard.gridIndices) mine.push_back(plan.configurations[i]);
+    plan.configurations = std::move(mine);
+    shardInfo = std::move(shard);
+  }
   plan.warmup = o.common.warmup;
   plan.frames = o.common.frames;
   plan.stableFrameCap = o.maxFrames;
@@ -111,7 +122,8 @@ harness::SweepPlan makePlan(const CLI::App& command, SweepOptions& o, std::vecto
 
 int sweepVerb(const CLI::App& command, SweepOptions o) {
   std::vector<harness::SweepAxis> axes;
-  harness::SweepPlan plan = makePlan(command, o, axes);
+  std::optional<harness::ShardInfo> shard;
+  harness::SweepPlan plan = makePlan(command, o, axes, shard);
   if (o.out.empty()) o.out = "out/" + harness::sceneName(o.scene) + "-sweep";
   const bool chatty = !o.common.quiet && !o.common.json;
 
@@ -121,7 +133,9 @@ int sweepVerb(const CLI::App& command, SweepOptions o) {
   progress.phase = [&](const std::string& phase) {
     if (!chatty) return;
     if (!opened)
-      std::cerr << fmt::format("sweep: {} configuration(s) of {} opened\n", plan.configurations.size(), o.scene);
+      std::cerr << fmt::format(
+          "sweep: {} configuration(s) of {} opened{}\n", plan.configurations.size(), o.scene,
+          shard ? fmt::format(" (shard {}/{} of a grid of {})", shard->index, shard->count, shard->gridSize) : "");
     opened = true;
     std::cerr << "sweep: " << phase << "\n";
   };
@@ -131,6 +145,7 @@ int sweepVerb(const CLI::App& command, SweepOptions o) {
   bar.finish();
   result.toolVersion = FGBENCH_VERSION;
   result.axes = axes;
+  result.shard = shard;
   harness::writeSweepOutputs(o.out, result);
   if (chatty) std::cerr << harness::sweepWallSummary(result);
 
@@ -177,6 +192,9 @@ static VerbRegistrar reg(30, [](CLI::App& app) {
                   "marked unresolved): raise it when the gap is too large, up to what the device can hold")
       ->capture_default_str()
       ->check(CLI::Range(2u, 8u));
+  sub->add_option("--shard", o->shard,
+                  "K/N: measure only shard K of N of the grid, cut along reference groups (no reference is rendered "
+                  "twice); run the N shards on N devices or machines, then `fgbench sweep-merge DIR...`");
   return Verb{sub, [sub, o] { return sweepVerb(*sub, *o); }};
 });
 

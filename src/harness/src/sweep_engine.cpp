@@ -15,12 +15,6 @@
 namespace fgb::harness {
 namespace {
 
-bool sameConfig(const render::WorkloadConfig& a, const render::WorkloadConfig& b) {
-  return a.scenePath == b.scenePath && a.device == b.device && a.width == b.width && a.height == b.height &&
-         a.msaa == b.msaa && a.clampMsaaToPath == b.clampMsaaToPath && a.validation == b.validation &&
-         a.knobs == b.knobs && a.cacheDir == b.cacheDir;
-}
-
 bool bitIdentical(const Image& a, const Image& b) {
   return a.width == b.width && a.height == b.height &&
          std::memcmp(a.rgba.data(), b.rgba.data(), a.rgba.size() * sizeof(float)) == 0;
@@ -58,7 +52,7 @@ ReferenceCheck renderCheck(const WorkloadOpener& open, const ReferenceOutcome& r
 
 std::size_t referenceIndex(std::vector<render::WorkloadConfig>& references, const render::WorkloadConfig& wanted) {
   for (std::size_t i = 0; i < references.size(); ++i) {
-    if (sameConfig(references[i], wanted)) return i;
+    if (sameWorkload(references[i], wanted)) return i;
   }
   references.push_back(wanted);
   return references.size() - 1;
@@ -148,6 +142,12 @@ uint32_t adaptToDevice(SweepPlan& plan, SweepResult& result) {
 
 }  // namespace
 
+bool sameWorkload(const render::WorkloadConfig& a, const render::WorkloadConfig& b) {
+  return a.scenePath == b.scenePath && a.device == b.device && a.width == b.width && a.height == b.height &&
+         a.msaa == b.msaa && a.clampMsaaToPath == b.clampMsaaToPath && a.validation == b.validation &&
+         a.knobs == b.knobs && a.cacheDir == b.cacheDir;
+}
+
 ReferenceOutcome renderReference(const WorkloadOpener& open, const render::WorkloadConfig& config, uint32_t frames) {
   Stopwatch timer;
   ReferenceOutcome ref;
@@ -212,6 +212,13 @@ SweepResult runSweep(const WorkloadOpener& open, const SweepPlan& requested, con
   const uint32_t checkEvery = adaptToDevice(plan, result);
 
   result.referenceRules = plan.referenceRules;
+  if (!plan.configurations.empty()) {
+    for (const auto& [key, value] : plan.configurations.front().point) {
+      const bool knob = key != "msaa" && key != "width" && key != "height" && key != "size";
+      result.roles[key] =
+          knob ? referenceRoleName(roleOf(plan.referenceRules, key)) : (key == "msaa" ? "approximation" : "content");
+    }
+  }
   result.lookKeys =
       plan.referenceOverride ? std::vector<std::string>{} : variedLookKeys(plan.configurations, plan.referenceRules);
   std::vector<render::WorkloadConfig> referenceConfigs;

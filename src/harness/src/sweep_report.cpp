@@ -6,6 +6,7 @@
 #include <fgb/core/atomic_file.hpp>
 #include <fgb/core/error.hpp>
 #include <fgb/core/stopwatch.hpp>
+#include <fgb/harness/image_io.hpp>
 #include <fgb/harness/json_io.hpp>
 #include <fgb/harness/report.hpp>
 #include <fgb/harness/run_outputs.hpp>
@@ -117,6 +118,32 @@ nlohmann::json referenceJson(const ReferenceOutcome& r) {
           {"renders_ms", renders}};
 }
 
+nlohmann::json shardJson(const SweepResult& result) {
+  if (!result.shard) return nullptr;
+  return {{"index", result.shard->index},
+          {"count", result.shard->count},
+          {"grid_size", result.shard->gridSize},
+          {"grid_indices", result.shard->gridIndices}};
+}
+
+// A shard's images, for sweep-merge's page (written atomically, as PNG: the page shows 8-bit
+// images anyway): images/config-G.png and heat-G.png by grid place G, images/reference-R.png by
+// the shard's reference R (1-based).
+void writeShardImages(const std::filesystem::path& dir, const SweepResult& result) {
+  const auto images = dir / "images";
+  std::error_code ec;
+  std::filesystem::create_directories(images, ec);
+  if (ec) throw InputError(images.string() + ": cannot create (" + ec.message() + ")");
+  for (std::size_t r = 0; r < result.references.size(); ++r)
+    writePng(images / fmt::format("reference-{}.png", r + 1), result.references[r].images.display);
+  for (std::size_t i = 0; i < result.configurations.size(); ++i) {
+    const std::size_t g = result.shard->gridIndices[i] + 1;
+    const auto& c = result.configurations[i];
+    writePng(images / fmt::format("config-{}.png", g), c.images.display);
+    writePng(images / fmt::format("heat-{}.png", g), c.heatMap);
+  }
+}
+
 nlohmann::json methodJson(const SweepResult& result) {
   nlohmann::json stable = nullptr;
   if (result.untilStable) {
@@ -126,11 +153,7 @@ nlohmann::json methodJson(const SweepResult& result) {
               {"check_frames", result.stableCheckFrames}};
   }
   nlohmann::json roles = nlohmann::json::object();
-  for (const auto& axis : result.axes) {
-    const bool knob = axis.key != "msaa" && axis.key != "width" && axis.key != "height" && axis.key != "size";
-    roles[axis.key] = knob ? referenceRoleName(roleOf(result.referenceRules, axis.key))
-                           : (axis.key == "msaa" ? "approximation" : "content");
-  }
+  for (const auto& [key, role] : result.roles) roles[key] = role;
   return {{"time", "median GPU frame time; 95% distribution-free order-statistic interval (exact binomial)"},
           {"error", result.lookKeys.empty()
                         ? "LDR-FLIP mean of the tone-mapped frame against the reference"
@@ -294,6 +317,8 @@ nlohmann::json sweepJson(const SweepResult& result) {
           {"references", references},
           {"configurations", configurations},
           {"front", front},
+          {"shard", shardJson(result)},
+          {"merged_shards", result.mergedShards},
           {"wall_ms",
            {{"open", o.openMs},
             {"references", o.referenceMs},
@@ -391,6 +416,7 @@ void writeSweepOutputs(const std::filesystem::path& dir, SweepResult& result) {
   if (ec || !std::filesystem::is_directory(dir)) {
     throw InputError(dir.string() + ": cannot create the output directory (" + ec.message() + ")");
   }
+  if (result.shard) writeShardImages(dir, result);
   writeFileAtomic(dir / "sweep.csv", sweepCsv(result));
   writeFileAtomic(dir / "sweep.md", sweepMarkdown(result));
   writeFileAtomic(dir / "sweep.html", sweepHtml(result));

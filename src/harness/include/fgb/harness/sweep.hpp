@@ -208,6 +208,13 @@ struct SweepOverhead {
          reportMs = 0.0, totalMs = 0.0;
 };
 
+// A shard of a sweep (`--shard K/N`): which configurations of the whole grid it measured.
+struct ShardInfo {
+  uint32_t index = 1, count = 1;         // K of N, 1-based
+  std::size_t gridSize = 0;              // configurations in the whole grid
+  std::vector<std::size_t> gridIndices;  // this shard's configurations' places in the grid, in order
+};
+
 struct SweepResult {
   std::string toolVersion;
   std::string scene;
@@ -215,6 +222,8 @@ struct SweepResult {
   render::DeviceDescription device;
   std::vector<SweepAxis> axes;
   ReferenceRules referenceRules;
+  // Each varied key's reference role ("approximation", "look", "content", "cost-only").
+  std::map<std::string, std::string> roles;
   // Varied look knobs: the error column is then the change from the scene's look, not only error.
   std::vector<std::string> lookKeys;
   std::vector<ReferenceOutcome> references;
@@ -230,6 +239,8 @@ struct SweepResult {
   uint32_t rewarmFrames = 0;       // dropped at the start of each visit
   uint32_t stableCheckFrames = 0;  // measured frames between stability checks (0: not until stable)
   SweepOverhead overhead;
+  std::optional<ShardInfo> shard;  // set on a shard's result (its outputs then carry its images)
+  std::size_t mergedShards = 0;    // sweep-merge: how many shards this result joins
 };
 
 struct SweepProgress {
@@ -240,6 +251,28 @@ struct SweepProgress {
 // Runs the plan. InputError from opening a configuration (bad knob) surfaces before any reference
 // is rendered.
 SweepResult runSweep(const WorkloadOpener& open, const SweepPlan& plan, const SweepProgress& progress = {});
+
+// Two configurations that render the same (they share a reference).
+bool sameWorkload(const render::WorkloadConfig& a, const render::WorkloadConfig& b);
+
+// `--shard K/N` (1 <= K <= N <= 64); InputError naming the option otherwise.
+struct ShardSpec {
+  uint32_t index = 1, count = 1;
+};
+ShardSpec parseShard(const std::string& text);
+
+// The grid indices shard `spec` measures. Shards are cut along reference groups (configurations
+// sharing a reference stay in one shard, so no reference is rendered twice: the reference is a
+// sweep's costliest render), each group to the shard with the fewest configurations so far, in the
+// grid's order. InputError when the grid has fewer groups than shards.
+std::vector<std::size_t> shardConfigurations(const std::vector<SweepConfiguration>& grid, const ReferenceRules& rules,
+                                             ShardSpec spec);
+
+// `fgbench sweep-merge`: the shards' sweep.json (and images/) joined into one result, the
+// configurations back in grid order and the front marked over all of them. InputError (exit 2)
+// naming the directory when a shard is missing, given twice, or of another scene, build, device
+// model or grid.
+SweepResult mergeSweepShards(const std::vector<std::filesystem::path>& directories);
 
 // Renders `config` twice, each in a freshly opened workload, up to frame `frames`: the reference
 // images (the first render) and its noise floor (the second against the first). A step of runSweep,

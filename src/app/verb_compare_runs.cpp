@@ -111,6 +111,10 @@ static VerbRegistrar reg(70, [](CLI::App& app) {
   sub->add_option("--noise-class", o->test.deviceClass,
                   "Run-to-run noise model: cpu | discrete | integrated (default: the runs' device type)")
       ->check(CLI::IsMember({"cpu", "discrete", "integrated"}));
+  sub->add_option("--run-noise", o->test.runNoise,
+                  "Run-to-run relative noise of this machine (0.05 = 5%), measured e.g. with bench/ab-runs.sh, "
+                  "instead of the device class's")
+      ->check(CLI::Range(0.0, 10.0));
   sub->add_flag("--json", o->json, "Machine-readable output on stdout");
   sub->add_flag("--quiet", o->quiet, "No table");
   return Verb{sub, [o] { return compareRunsVerb(*o); }};

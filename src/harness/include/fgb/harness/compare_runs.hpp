@@ -51,6 +51,7 @@ struct CompareRunsOptions {
   double minAbsMs = 0.01;   // and in absolute terms: smaller shifts are timer and scheduling noise
   double power = 0.8;       // of the "detectable" column: the change found with this probability
   std::string deviceClass;  // noise model to use; empty: the runs' device.type
+  double runNoise = -1.0;   // >= 0: the model's relative term instead of the table's (a measured machine)
 };
 
 // Fewer runs a side than this and the verdicts lean on the device class's noise model (LLVM LNT

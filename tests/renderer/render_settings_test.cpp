@@ -131,5 +131,34 @@ TEST(RenderSettings, LightingMode) {
   EXPECT_THROW(applyRendererKnobs(settings, {{"lighting.mode", "every"}}), InputError);
 }
 
+// debug.slow_pass=PASS:PERCENT: a Text knob, checked against the frame's passes when they are known.
+TEST(RenderSettings, SlowPassNamesAPassAndAPercentage) {
+  RenderSettings settings;
+  applyRendererKnobs(settings, {{"debug.slow_pass", "Cluster Cull (late):200"}});
+  EXPECT_EQ(settings.slowPass, "Cluster Cull (late):200");
+  const std::vector<std::string> passes{"Cluster Cull", "Cluster Cull (late)", "Bloom", "Bloom"};
+  const SlowPass slow = slowPassOf(settings.slowPass, passes);
+  EXPECT_EQ(slow.pass, "Cluster Cull (late)");
+  EXPECT_DOUBLE_EQ(slow.fraction, 2.0);
+  EXPECT_DOUBLE_EQ(slowPassOf("Bloom:12.5", passes).fraction, 0.125);
+  for (const char* bad : {"Bloom", "Bloom:", ":50", "Bloom:0", "Bloom:-5", "Bloom:20000", "Bloom:5x", "Bloom:nan"}) {
+    try {
+      slowPassOf(bad, passes);
+      ADD_FAILURE() << bad;
+    } catch (const InputError& e) {
+      const std::string expected = ": expected PASS:PERCENT with PERCENT a number in (0, 10000], e.g. \"Bloom:50\"";
+      EXPECT_EQ(std::string(e.what()), "--set debug.slow_pass=" + std::string(bad) + expected);
+    }
+  }
+  try {
+    slowPassOf("Blom:50", passes);
+    ADD_FAILURE();
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "--set debug.slow_pass=Blom:50: no pass 'Blom' in this frame (passes: Cluster Cull, Cluster Cull (late), "
+              "Bloom)");
+  }
+}
+
 }  // namespace
 }  // namespace fgb::features

@@ -163,7 +163,10 @@ LoadedTimings loadTimings(const std::filesystem::path& path) {
                      std::to_string(kTimingsSchema));
   }
   t.scene = optionalString(j, "scene", "", path);
-  if (j.contains("device")) t.deviceName = optionalString(j["device"], "name", "", path, "device");
+  if (j.contains("device")) {
+    t.deviceName = optionalString(j["device"], "name", "", path, "device");
+    t.deviceType = optionalString(j["device"], "type", "", path, "device");
+  }
   const auto& passes = requireField(j, "passes", path);
   if (!passes.is_array()) throw InputError(path.string() + ": field 'passes' must be an array");
   for (std::size_t i = 0; i < passes.size(); ++i) {

@@ -245,6 +245,13 @@ class SceneWorkload final : public Workload {
       if (feature->enabled()) feature->declare(graph, board);
     rhi::GraphOptions options;
     options.name = "frame";
+    if (!settings_.slowPass.empty()) {
+      std::vector<std::string> passes;
+      for (const auto& node : graph.nodes()) passes.push_back(node.name);
+      const features::SlowPass slow = features::slowPassOf(settings_.slowPass, passes);
+      options.slowNode = slow.pass;
+      options.slowFraction = slow.fraction;
+    }
     graph::CompileProfile profile;
     options.compileProfile = &profile;
     graph_ = device_->compile(std::move(graph), options);

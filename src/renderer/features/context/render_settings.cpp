@@ -66,6 +66,7 @@ void applyOne(RenderSettings& settings, const std::string& key, const std::strin
   else if (key == "bloom.mips") settings.bloomMips = count(value);
   else if (key == "particles.seed") settings.particleSeedOffset = count(value);
   else if (key == "debug.inject_nan") settings.injectNanPass = value == "none" ? "" : value;
+  else if (key == "debug.slow_pass") settings.slowPass = value == "none" ? "" : value;
 }
 
 }  // namespace
@@ -102,6 +103,10 @@ const std::vector<KnobSpec>& rendererKnobSpecs() {
       // The passes whose shaders can write a NaN on request (tests of --check-finite).
       word("debug.inject_nan", {"none", "Mesh Render", "Bloom"}, "pass that writes a NaN (tests of --check-finite)",
            Content),
+      // NAME:PERCENT, checked against the frame's passes once the graph is declared (slowPassOf).
+      // Slower, not different: pinned off in the sweep's reference.
+      {"debug.slow_pass", KnobType::Text, 0, 0, false, false, {}, "renderer",
+       "NAME:PERCENT: that pass also spins on the GPU for PERCENT% of its own time (timing tests)", CostOnly, ""},
   };
   return specs;
 }

@@ -45,6 +45,7 @@ struct RenderSettings {
   uint32_t particleSeedOffset = 0;    // particles.seed (added to every emitter's seed)
   bool checkFinite = false;           // --check-finite (not a knob: a run option)
   std::string injectNanPass;          // debug.inject_nan: the pass whose shader writes a NaN ("": none)
+  std::string slowPass;               // debug.slow_pass: "NAME:PERCENT" as given ("": none)
 
   // Size the scene passes (meshes, lights, particles) render at: the output size times render.ssaa.
   [[nodiscard]] uint32_t sceneWidth() const { return width * ssaa; }
@@ -53,6 +54,15 @@ struct RenderSettings {
 
 // The renderer's entries of the knob registry (every key below, with its type and range).
 const std::vector<KnobSpec>& rendererKnobSpecs();
+
+// debug.slow_pass=NAME:PERCENT, checked against the names of the frame's declared passes: the
+// pass and PERCENT / 100 (0 < PERCENT <= 10000). InputError (one line naming the knob, and the
+// known passes when the name is not one) otherwise.
+struct SlowPass {
+  std::string pass;
+  double fraction = 0.0;
+};
+SlowPass slowPassOf(const std::string& value, const std::vector<std::string>& passes);
 
 // Keys of the renderer knobs.
 bool isRendererKnob(const std::string& key);

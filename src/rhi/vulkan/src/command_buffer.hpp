@@ -19,6 +19,8 @@ class VulkanCommandBuffer final : public rhi::CommandBuffer {
   [[nodiscard]] VkCommandBuffer get() const { return cmd_; }
   // The descriptor set the next pipelines see (a node's scoped set); null: the shared set.
   void useSet(VkDescriptorSet set) { set_ = set; }
+  // Something else bound a descriptor set at the compute bind point: bind the node's again.
+  void forgetComputeSet() { computeSetBound_ = VK_NULL_HANDLE; }
 
   using Prologue = void (*)(void* context);
   // A node starts: `prologue(context)` runs before its first command (or at once via start()).

@@ -170,6 +170,7 @@ class VulkanDevice final : public rhi::Device {
   bool submittedWork_ = false;
 
   friend class VulkanGraph;
+  friend class SpinWork;
   VkShaderModule shaderModule(const std::string& path);
   // Names the pipeline and keeps it; its id is its index.
   rhi::PipelineId addPipeline(VkPipeline pipeline, VkPipelineBindPoint bindPoint, const std::string& name);

@@ -49,6 +49,7 @@ VulkanGraph::VulkanGraph(VulkanDevice& device, graph::FrameGraph&& graph, const 
     translateBarriers();
     translateRendering();
     orderSubmits();
+    createSpin();
     createSyncAndSlots();
     createScopedSets();
   } catch (...) {
@@ -473,13 +474,35 @@ void VulkanGraph::createSyncAndSlots() {
     if (options_.timestamps && !steps_.empty()) {
       auto info = vkStruct<VkQueryPoolCreateInfo>(VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO);
       info.queryType = VK_QUERY_TYPE_TIMESTAMP;
-      info.queryCount = static_cast<uint32_t>(steps_.size() * 2);
+      info.queryCount = queryCount_ = static_cast<uint32_t>(steps_.size() * 2 + (spin_ ? 1 : 0));
       VkQueryPool pool = VK_NULL_HANDLE;
       check(vkCreateQueryPool(device, &info, nullptr, &pool), "vkCreateQueryPool");
       slot.queries = Owned<VkQueryPool>(device, pool, vkDestroyQueryPool);
       vkResetQueryPool(device, pool, 0, info.queryCount);
     }
   }
+}
+
+// debug.slow_pass: the step of the node named options_.slowNode gets a spin at its end.
+void VulkanGraph::createSpin() {
+  if (options_.slowNode.empty() || options_.slowFraction <= 0.0) return;
+  for (uint32_t s = 0; s < steps_.size(); ++s) {
+    if (declaration_.nodes()[steps_[s].node].name == options_.slowNode) slowStep_ = s;
+  }
+  if (slowStep_ == graph::kInvalidIndex) {
+    throw InputError("slow pass '" + options_.slowNode + "': no node of that name runs in graph '" + options_.name +
+                     "'");
+  }
+  uint32_t familyCount = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(device_.physical(), &familyCount, nullptr);
+  std::vector<VkQueueFamilyProperties> families(familyCount);
+  vkGetPhysicalDeviceQueueFamilyProperties(device_.physical(), &familyCount, families.data());
+  const uint32_t family = device_.queues()[deviceQueueOf_[steps_[slowStep_].logicalQueue]].family;
+  if ((families[family].queueFlags & VK_QUEUE_COMPUTE_BIT) == 0) {
+    throw InputError("slow pass '" + options_.slowNode +
+                     "': it runs on a queue without compute work (a transfer queue)");
+  }
+  spin_ = std::make_unique<SpinWork>(device_, options_.slowFraction);
 }
 
 rhi::BufferId VulkanGraph::bufferOf(graph::BufferHandle handle) const {

@@ -8,6 +8,7 @@
 #include "barrier_batch.hpp"
 #include "command_buffer.hpp"
 #include "device.hpp"
+#include "spin.hpp"
 
 #include <fgb/graph/compiler.hpp>
 #include <fgb/rhi/device.hpp>
@@ -77,6 +78,7 @@ class VulkanGraph final : public rhi::ExecutableGraph {
     uint64_t execution = 0;
     bool pending = false;
     bool timed = false;  // timings not yet read
+    uint32_t spinIterations = 0;  // debug.slow_pass: what this execution's spin ran
   };
 
   // executable_graph.cpp
@@ -92,6 +94,7 @@ class VulkanGraph final : public rhi::ExecutableGraph {
   void orderSubmits();
   void createSyncAndSlots();
   void createScopedSets();
+  void createSpin();
   // executor.cpp
   void recordSubmit(Slot& slot, uint32_t submitIndex, uint64_t execution);
   void recordStep(uint32_t stepIndex, uint64_t execution);
@@ -132,6 +135,9 @@ class VulkanGraph final : public rhi::ExecutableGraph {
   std::vector<Owned<VkSemaphore>> timelines_;  // per logical queue
   uint64_t valuesPerExecution_ = 1;
   std::vector<Slot> slots_;
+  uint32_t queryCount_ = 0;         // per slot: two per step, plus where the slow node's own work ends
+  std::unique_ptr<SpinWork> spin_;  // debug.slow_pass
+  uint32_t slowStep_ = graph::kInvalidIndex;
   uint64_t executions_ = 0;
   HostTimes hostTimes_;
   std::vector<TimelinePoint> lastPoints_;  // completion points of the latest execution

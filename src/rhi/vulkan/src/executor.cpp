@@ -73,7 +73,7 @@ uint64_t VulkanGraph::submit(rhi::RunMode mode) {
   // runs the previous frame), so that counts as throttling, not as the frame's recording.
   const auto unblocked = Clock::now();
   for (const auto& pool : slot.pools) check(vkResetCommandPool(device_.device(), pool.get(), 0), "vkResetCommandPool");
-  if (slot.queries) vkResetQueryPool(device_.device(), slot.queries.get(), 0, static_cast<uint32_t>(steps_.size() * 2));
+  if (slot.queries) vkResetQueryPool(device_.device(), slot.queries.get(), 0, queryCount_);
 
   std::fill(heapTouched_.begin(), heapTouched_.end(), 0);
   for (uint32_t s = 0; s < compiled_.submits.size(); ++s) recordSubmit(slot, s, execution);
@@ -168,6 +168,16 @@ void VulkanGraph::endStep(bool recorded) {
   const Step& step = steps_[recording_.step];
   const VkCommandBuffer cmd = recording_.cmd;
   if (step.rendering) vkCmdEndRendering(cmd);
+  if (recording_.step == slowStep_) {
+    // debug.slow_pass: the node's own work ends here (third timestamp), then the spin.
+    if (recording_.queries != VK_NULL_HANDLE && timestampMask_[step.logicalQueue] != 0) {
+      vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, recording_.queries,
+                           static_cast<uint32_t>(steps_.size() * 2));
+    }
+    spin_->record(cmd);
+    commandBuffer_.forgetComputeSet();
+    recording_.slot->spinIterations = spin_->iterations();
+  }
   if (recording_.queries != VK_NULL_HANDLE && timestampMask_[step.logicalQueue] != 0) {
     vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, recording_.queries, recording_.step * 2 + 1);
   }

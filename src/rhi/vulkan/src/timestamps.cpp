@@ -12,7 +12,7 @@ namespace fgb::vulkan {
 void VulkanGraph::collectTimings(Slot& slot) {
   if (!slot.timed) return;
   slot.timed = false;
-  const auto queryCount = static_cast<uint32_t>(steps_.size() * 2);
+  const uint32_t queryCount = queryCount_;
   std::vector<uint64_t> results(static_cast<size_t>(queryCount) * 2);  // value, availability
   const VkResult result = vkGetQueryPoolResults(device_.device(), slot.queries.get(), 0, queryCount,
                                                 results.size() * sizeof(uint64_t), results.data(), 2 * sizeof(uint64_t),
@@ -52,6 +52,15 @@ void VulkanGraph::collectTimings(Slot& slot) {
     latestEnd = std::max(latestEnd, (end - reference) & mask);
   }
   timings.gpuMs = static_cast<double>(latestEnd) * periodMs;
+  if (spin_ && available(slowStep_) && results[static_cast<size_t>(steps_.size()) * 4 + 1] != 0) {
+    // debug.slow_pass: begin .. own end .. end (after the spin).
+    const uint64_t mask = timestampMask_[steps_[slowStep_].logicalQueue];
+    const uint64_t begin = results[static_cast<size_t>(slowStep_) * 4];
+    const uint64_t own = results[static_cast<size_t>(steps_.size()) * 4];
+    const uint64_t end = results[static_cast<size_t>(slowStep_) * 4 + 2];
+    spin_->observe(slot.execution, static_cast<double>((own - begin) & mask) * periodMs,
+                   static_cast<double>((end - own) & mask) * periodMs, slot.spinIterations);
+  }
   timings_.push_back(std::move(timings));
 }
 

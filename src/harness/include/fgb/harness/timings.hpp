@@ -84,6 +84,7 @@ struct LoadedTimings {
   std::string file;
   std::string scene;
   std::string deviceName;
+  std::string deviceType;  // "cpu", "discrete", "integrated", ... ("" when the file has none)
   std::vector<PassRecord> passes;  // with samples
   std::vector<double> frameGpuMs;
 };

@@ -69,6 +69,13 @@ struct GraphOptions {
   bool timestamps = true;
   // When set, graph::compile() adds its stages' times to it (CompileOptions::profile).
   graph::CompileProfile* compileProfile = nullptr;
+  // Test aid (debug.slow_pass): the alive node named `slowNode` also runs, inside its timestamps and
+  // after its own work, a compute dispatch that costs `slowFraction` times the node's own GPU time
+  // (calibrated over the first executions, then fixed; see src/rhi/vulkan/src/spin.hpp). It
+  // touches no graph resource. InputError when no alive node has that name or its queue cannot
+  // run compute work.
+  std::string slowNode{};
+  double slowFraction = 0.0;
   // Test only: drop every barrier that keeps the layout (same-layout RAW/WAW/WAR), to prove that
   // synchronization validation catches the hazards they prevent.
   bool testDropSameLayoutBarriers = false;

@@ -1,5 +1,5 @@
 // The device-wide descriptor set (set 0) every pipeline shares; resources are addressed by index
-// (push constants carry the indices). Capacities must match src/rhi/vulkan/src/descriptors.hpp.
+// (push constants carry the indices); binding numbers and capacities: fgb/rhi/shared/bindless.h.
 // Storage buffers are declared per use (many block types): FGB_READONLY_STORAGE_BUFFER for blocks
 // the shader only reads (binding 0), FGB_STORAGE_BUFFER for blocks it may write (binding 4). Both
 // bindings hold the same buffers at the same indices; per graph node the RHI exposes a buffer in
@@ -10,21 +10,7 @@
 
 #extension GL_EXT_samplerless_texture_functions : require
 
-#define FGB_MAX_STORAGE_BUFFERS 16384
-#define FGB_MAX_SAMPLED_TEXTURES 4096
-#define FGB_MAX_STORAGE_TEXTURES 1024
-#define FGB_MAX_SAMPLERS 64
-#define FGB_MAX_INT64_STORAGE_TEXTURES 64
-
-#define FGB_BINDING_STORAGE_BUFFERS 0
-#define FGB_BINDING_SAMPLED_TEXTURES 1
-#define FGB_BINDING_STORAGE_TEXTURES 2
-#define FGB_BINDING_SAMPLERS 3
-#define FGB_BINDING_WRITABLE_STORAGE_BUFFERS 4
-// R64Uint storage textures (u64image2D, 64-bit image atomics) have a binding of their own, so no
-// shader aliases them with another format on binding 2 (validation would count each variable as
-// accessing every descriptor of the binding).
-#define FGB_BINDING_INT64_STORAGE_TEXTURES 5
+#include "fgb/rhi/shared/bindless.h"  // binding numbers and capacities, shared with the Vulkan backend
 
 // FGB_STORAGE_BUFFER(Name, array, access) { members } array[...] -> writable blocks Name.
 #define FGB_STORAGE_BUFFER(BlockName, arrayName, qualifiers) \

@@ -5,22 +5,11 @@
 // the previous level (a storage image) with the same bilinear taps.
 #extension GL_GOOGLE_include_directive : require
 #include "include/bloom.glsl"
+#include "renderer/shared/post.h"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+layout(local_size_x = FGB_BLOOM_GROUP_SIZE, local_size_y = FGB_BLOOM_GROUP_SIZE) in;
 
-layout(push_constant) uniform Push {
-  uint source;          // sampled texture index (first level) or storage image index
-  uint sourceIsStorage;
-  uint linearSampler;
-  uint target;          // storage image index
-  ivec2 sourceSize;
-  ivec2 targetSize;
-  uint firstMip;
-  float threshold;      // radiance; applied in the HDR image's pre-exposed units
-  float knee;
-  uint exposure;        // storage-buffer index of the exposure state
-  uint injectNan;       // debug.inject_nan=Bloom: the centre texel of the first level is a NaN
-} pc;
+layout(push_constant) uniform Push { BloomDownPush pc; };
 
 vec2 gUv;  // centre of this invocation's target texel
 vec2 gSourceTexel;

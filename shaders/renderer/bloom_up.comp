@@ -4,17 +4,11 @@
 // its own texel of the target).
 #extension GL_GOOGLE_include_directive : require
 #include "include/bloom.glsl"
+#include "renderer/shared/post.h"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+layout(local_size_x = FGB_BLOOM_GROUP_SIZE, local_size_y = FGB_BLOOM_GROUP_SIZE) in;
 
-layout(push_constant) uniform Push {
-  uint source;  // storage image index (smaller level)
-  uint target;  // storage image index (larger level)
-  ivec2 sourceSize;
-  ivec2 targetSize;
-  float radius;  // in source texels
-  uint injectNan;  // debug.inject_nan=Bloom: the centre texel of this (the first) level is a NaN
-} pc;
+layout(push_constant) uniform Push { BloomUpPush pc; };
 
 vec2 gUv;
 

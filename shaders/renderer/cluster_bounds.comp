@@ -3,14 +3,11 @@
 // slice z = near * (far/near)^(slice/slices)). The job dispatches only when the projection changed.
 #extension GL_GOOGLE_include_directive : require
 #include "include/common.glsl"
+#include "renderer/shared/lighting.h"
 
-layout(local_size_x = 64) in;
+layout(local_size_x = FGB_CLUSTER_BOUNDS_GROUP_SIZE) in;
 
-layout(push_constant) uniform Push {
-  uint frame;
-  uint bounds;  // vec4 pairs: min, max per cluster
-  uint clusterCount;
-} pc;
+layout(push_constant) uniform Push { ClusterBoundsPush pc; };
 
 // View-space point on the ray through a pixel, at view depth `depth` (positive distance).
 vec3 pointAtDepth(FrameConstants frame, vec2 pixel, float depth) {

@@ -7,15 +7,11 @@
 #extension GL_GOOGLE_include_directive : require
 #include "include/common.glsl"
 #include "include/exposure.glsl"
+#include "renderer/shared/post.h"
 
-layout(local_size_x = 256) in;
+layout(local_size_x = FGB_EXPOSURE_UPDATE_GROUP_SIZE) in;
 
-layout(push_constant) uniform Push {
-  uint partials;
-  uint partialCount;
-  uint state;  // the exposure state (written through the writable binding)
-  float key;   // display value the log-average luminance maps to (0.18: middle grey)
-} pc;
+layout(push_constant) uniform Push { ExposureUpdatePush pc; };
 
 FGB_STORAGE_BUFFER(ExposureWriteBlock, fgbExposuresWrite, ) { Exposure state; } fgbExposuresWrite[FGB_MAX_STORAGE_BUFFERS];
 

@@ -17,20 +17,14 @@
 // 64 clusters.
 #extension GL_GOOGLE_include_directive : require
 #include "include/common.glsl"
+#include "renderer/shared/lighting.h"
 
-#define BLOCK 8
+#define BLOCK FGB_LIGHT_CULL_BLOCK
 #define GROUP_SIZE (BLOCK * BLOCK)
 #define MASK_WORDS (GROUP_SIZE / 32)
-#define MAX_LIGHTS_PER_CLUSTER 1024
 layout(local_size_x = BLOCK, local_size_y = BLOCK) in;
 
-layout(push_constant) uniform Push {
-  uint frame;
-  uint bounds;
-  uint lights;
-  uint counts;   // per cluster: lights found (may exceed the capacity: overflow is visible)
-  uint indices;  // cluster c's lights at [c * capacity, c * capacity + min(count, capacity))
-} pc;
+layout(push_constant) uniform Push { LightCullPush pc; };
 
 shared vec3 sharedMin[GROUP_SIZE];  // reduced to the block's union box in [0]
 shared vec3 sharedMax[GROUP_SIZE];
@@ -78,7 +72,7 @@ void main() {
   bool inGrid = all(lessThan(tile, grid.xy));
   uint cluster = (gl_WorkGroupID.z * grid.y + tile.y) * grid.x + tile.x;
   uint lane = gl_LocalInvocationIndex;
-  uint capacity = min(frame.counts.z, uint(MAX_LIGHTS_PER_CLUSTER));
+  uint capacity = min(frame.counts.z, uint(FGB_MAX_LIGHTS_PER_CLUSTER));
   uint lightCount = frame.counts.x;
 
   vec3 boxMin = vec3(1e30);

@@ -6,14 +6,11 @@
 #extension GL_GOOGLE_include_directive : require
 #include "include/common.glsl"
 #include "include/exposure.glsl"
+#include "renderer/shared/post.h"
 
-layout(local_size_x = 16, local_size_y = 16) in;
+layout(local_size_x = FGB_LUMINANCE_GROUP_SIZE, local_size_y = FGB_LUMINANCE_GROUP_SIZE) in;
 
-layout(push_constant) uniform Push {
-  uint hdr;       // sampled texture index
-  uint partials;  // vec4 per workgroup: x = sum of log2(luminance), y = pixels measured
-  ivec2 size;
-} pc;
+layout(push_constant) uniform Push { LuminanceReducePush pc; };
 
 shared vec2 sharedSums[256];
 

@@ -7,17 +7,12 @@
 // the same on every run. One workgroup per batch.
 #extension GL_GOOGLE_include_directive : require
 #include "include/common.glsl"
+#include "renderer/shared/meshes.h"
 
-#define WIDTH 256
+#define WIDTH FGB_MESH_COMPACT_GROUP_SIZE
 layout(local_size_x = WIDTH) in;
 
-layout(push_constant) uniform Push {
-  uint commands;    // per draw group, instance counts filled by the cull dispatch
-  uint drawList;    // packed commands: batch b's start at its first group's index
-  uint drawCounts;  // [b]: commands of batch b in drawList
-  uint stats;       // [2]: draws issued (all batches)
-  uvec4 batches[3];  // x: first group, y: group count
-} pc;
+layout(push_constant) uniform Push { MeshCompactPush pc; };
 
 shared uint inclusive[WIDTH];
 

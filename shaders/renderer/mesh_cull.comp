@@ -4,17 +4,11 @@
 // indirect command. The commands' instance counts and the stats were reset by an earlier node.
 #extension GL_GOOGLE_include_directive : require
 #include "include/common.glsl"
+#include "renderer/shared/meshes.h"
 
-layout(local_size_x = 64) in;
+layout(local_size_x = FGB_MESH_CULL_GROUP_SIZE) in;
 
-layout(push_constant) uniform Push {
-  vec4 planes[6];  // inside: dot(n, p) + d >= 0
-  uint instances;
-  uint commands;
-  uint visible;    // visible-instance list, grouped by draw group (firstInstance = group start)
-  uint stats;      // [0] visible instances, [1] visible triangles
-  uint instanceCount;
-} pc;
+layout(push_constant) uniform Push { MeshCullPush pc; };
 
 bool insideFrustum(vec3 boxMin, vec3 boxMax) {
   if (boxMin.x > boxMax.x) return false;  // empty box

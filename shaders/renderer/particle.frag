@@ -5,15 +5,9 @@
 #extension GL_GOOGLE_include_directive : require
 #include "include/common.glsl"
 #include "include/opaque_depth.glsl"
+#include "renderer/shared/particles.h"
 
-// Mirrors RenderPush in particles/particle_feature.cpp (and particle.vert's block).
-layout(push_constant) uniform Push {
-  uint frame;
-  uint particles;
-  uint emitters;
-  uint aliveList;
-  OpaqueDepthTest opaqueDepth;
-} pc;
+layout(push_constant) uniform Push { ParticleRenderPush pc; };
 
 layout(location = 0) in vec4 inColor;
 layout(location = 1) in vec2 inCorner;

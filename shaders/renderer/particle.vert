@@ -5,14 +5,7 @@
 #include "include/opaque_depth.glsl"
 #include "include/particles.glsl"
 
-// Mirrors RenderPush in particles/particle_feature.cpp (and particle.frag's block).
-layout(push_constant) uniform Push {
-  uint frame;
-  uint particles;
-  uint emitters;
-  uint aliveList;
-  OpaqueDepthTest opaqueDepth;  // read by particle.frag
-} pc;
+layout(push_constant) uniform Push { ParticleRenderPush pc; };
 
 layout(location = 0) out vec4 outColor;
 layout(location = 1) out vec2 outCorner;

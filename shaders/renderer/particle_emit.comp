@@ -5,14 +5,9 @@
 #include "include/common.glsl"
 #include "include/particles.glsl"
 
-layout(local_size_x = 64) in;
+layout(local_size_x = FGB_PARTICLE_GROUP_SIZE) in;
 
-layout(push_constant) uniform Push {
-  uint emitters;
-  uint particles;
-  uint freeList;  // [0] count, [1..] free slots
-  uint frameIndex;
-} pc;
+layout(push_constant) uniform Push { ParticleEmitPush pc; };
 
 void main() {
   Emitter e = fgbEmitters[pc.emitters].emitters[gl_WorkGroupID.x];

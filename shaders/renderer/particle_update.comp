@@ -6,15 +6,9 @@
 #include "include/common.glsl"
 #include "include/particles.glsl"
 
-layout(local_size_x = 64) in;
+layout(local_size_x = FGB_PARTICLE_GROUP_SIZE) in;
 
-layout(push_constant) uniform Push {
-  uint particles;
-  uint freeList;
-  uint drawArgs;   // DrawCommand: instanceCount counts alive particles
-  uint aliveList;
-  uint poolSize;
-} pc;
+layout(push_constant) uniform Push { ParticleUpdatePush pc; };
 
 void main() {
   uint slot = gl_GlobalInvocationID.x;

@@ -4,7 +4,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "include/ssaa.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+layout(local_size_x = FGB_POST_GROUP_SIZE, local_size_y = FGB_POST_GROUP_SIZE) in;
 
 layout(set = 0, binding = FGB_BINDING_STORAGE_TEXTURES, rgba16f) uniform writeonly image2D fgbImagesRgba16f[FGB_MAX_STORAGE_TEXTURES];
 

@@ -1,75 +1,14 @@
-// Shared declarations of the renderer's shaders. Structs mirror
-// src/renderer/features/context/gpu_types.hpp (std430); keep them in sync.
+// Shared declarations of the renderer's shaders: the scene's buffers, whose structs are declared
+// once for C++ and GLSL in renderer/shared/scene.h, and common functions.
 #ifndef FGB_RENDERER_COMMON_GLSL
 #define FGB_RENDERER_COMMON_GLSL
 
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_nonuniform_qualifier : require
 #include "bindless.glsl"
+#include "renderer/shared/scene.h"
 
-#define FGB_NONE 0xffffffffu
 const float PI = 3.14159265358979;
-
-struct FrameConstants {
-  mat4 view;
-  mat4 proj;
-  mat4 viewProj;
-  mat4 invProj;
-  vec4 cameraPosition;
-  vec4 sunDirection;  // w: 1 when enabled
-  vec4 sunColor;
-  vec4 viewport;      // w, h, 1/w, 1/h
-  vec4 depthRange;    // near, cluster far (finite), slice scale, slice bias
-  uvec4 clusterGrid;  // tiles x, tiles y, slices, tile size
-  uvec4 counts;       // lights, instances, max lights per cluster, debug view
-  vec4 ambient;
-  uvec4 buffers;      // x: exposure state (Exposure)
-};
-
-// Pre-exposure state (mirrors ExposureGpu in gpu_types.hpp; see there).
-struct Exposure {
-  float preExposure;
-  float tonemapScale;
-  float exposure;
-  float averageLuminance;
-};
-
-struct Instance {
-  mat4 model;
-  mat4 normalMatrix;
-  vec4 boundsMin;
-  vec4 boundsMax;
-  uint material;
-  uint drawGroup;
-  uint triangles;
-  uint pad;
-};
-
-struct Material {
-  vec4 baseColor;
-  vec4 emissive;  // w: normal scale
-  float metallic;
-  float roughness;
-  float alphaCutoff;
-  uint alphaMode;
-  int baseColorTexture;
-  int normalTexture;
-  int metallicRoughnessTexture;
-  int emissiveTexture;
-};
-
-struct PointLight {
-  vec4 positionRadius;
-  vec4 color;  // rgb * intensity, w: 1 / radius
-};
-
-struct DrawCommand {
-  uint indexCount;
-  uint instanceCount;
-  uint firstIndex;
-  int vertexOffset;
-  uint firstInstance;
-};
 
 FGB_READONLY_STORAGE_BUFFER(FrameBlock, fgbFrames) { FrameConstants frame; } fgbFrames[FGB_MAX_STORAGE_BUFFERS];
 FGB_READONLY_STORAGE_BUFFER(InstanceBlock, fgbInstances) { Instance instances[]; } fgbInstances[FGB_MAX_STORAGE_BUFFERS];

@@ -7,16 +7,11 @@
 
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
+#include "renderer/shared/post.h"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+layout(local_size_x = FGB_FINITE_CHECK_GROUP_SIZE, local_size_y = FGB_FINITE_CHECK_GROUP_SIZE) in;
 
-layout(push_constant) uniform Push {
-  uint source;    // sampled texture index
-  uint counters;  // storage buffer: uvec4 per checked pass (nan, inf, over half max, -)
-  uint slot;
-  uint samples;
-  ivec2 size;
-} pc;
+layout(push_constant) uniform Push { FiniteCheckPush pc; };
 
 #ifdef FGB_MULTISAMPLE
 layout(set = 0, binding = FGB_BINDING_SAMPLED_TEXTURES) uniform texture2DMS fgbTexturesMs[FGB_MAX_SAMPLED_TEXTURES];
@@ -53,7 +48,7 @@ void main() {
   }
   barrier();
   if (gl_LocalInvocationIndex == 0u) {
-    const uint base = pc.slot * 4u;
+    const uint base = pc.slot * (kFiniteCheckSlotBytes / 4u);
     if (sharedNan != 0u) atomicAdd(fgbUints[pc.counters].values[base + 0u], sharedNan);
     if (sharedInf != 0u) atomicAdd(fgbUints[pc.counters].values[base + 1u], sharedInf);
     if (sharedLarge != 0u) atomicAdd(fgbUints[pc.counters].values[base + 2u], sharedLarge);

@@ -5,13 +5,7 @@
 #ifndef FGB_RENDERER_OPAQUE_DEPTH_GLSL
 #define FGB_RENDERER_OPAQUE_DEPTH_GLSL
 #include "common.glsl"
-
-// Mirrors OpaqueDepthTestGpu in features/context/render_feature.hpp (a push-constant member).
-struct OpaqueDepthTest {
-  uint depths;     // float per pixel; FGB_NONE: nothing to test against (forward, or nothing opaque)
-  uint rowStride;  // pixels per row (the scene passes' width)
-  uint compareOp;  // VkCompareOp: bit 0 passes less, bit 1 equal, bit 2 greater
-};
+#include "renderer/shared/opaque_depth.h"  // OpaqueDepthTest, a push-constant member
 
 // Whether a fragment at `fragCoord` (gl_FragCoord, single-sampled) passes: its depth compared with
 // the stored one, like the fixed-function test (a NaN on either side compares as nothing).

@@ -1,27 +1,11 @@
-// GPU particles: pool, emitters and the shared random function (mirrors particles/particle_feature.cpp).
+// GPU particles: pool and emitter buffers (structs and push blocks: renderer/shared/particles.h)
+// and the shared random function.
 #ifndef FGB_RENDERER_PARTICLES_GLSL
 #define FGB_RENDERER_PARTICLES_GLSL
 
+#include "renderer/shared/particles.h"
+
 #define PARTICLE_DT (1.0 / 60.0)
-
-struct Particle {
-  vec4 positionAge;       // xyz, age in seconds
-  vec4 velocityLifetime;  // xyz, lifetime (0: dead)
-  uint emitter;
-  uint alive;
-  uint pad0;
-  uint pad1;
-};
-
-struct Emitter {
-  vec4 positionRate;    // xyz, particles per second
-  vec4 directionCone;   // xyz unit, cos(cone half-angle)
-  vec4 colorStart;
-  vec4 colorEnd;
-  vec4 speedSize;       // speed min, speed max, size start, size end
-  vec4 lifetime;        // x: seconds
-  uvec4 seed;           // x: seed
-};
 
 FGB_STORAGE_BUFFER(ParticleBlock, fgbParticles, ) { Particle particles[]; } fgbParticles[FGB_MAX_STORAGE_BUFFERS];
 FGB_READONLY_STORAGE_BUFFER(ParticleReadBlock, fgbParticlesRead) { Particle particles[]; } fgbParticlesRead[FGB_MAX_STORAGE_BUFFERS];

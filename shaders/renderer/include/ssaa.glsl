@@ -6,12 +6,9 @@
 #define FGB_SSAA_GLSL
 
 #include "common.glsl"
+#include "renderer/shared/post.h"
 
-layout(push_constant) uniform Push {
-  uint source;  // sampled texture index of the supersampled HDR image
-  uint factor;  // render.ssaa, 2..8
-  uint target;  // ssaa_resolve.comp: storage-image index of the output HDR image
-} pc;
+layout(push_constant) uniform Push { SsaaResolvePush pc; };
 
 vec4 ssaaBoxMean(ivec2 outputPixel) {
   const ivec2 base = outputPixel * int(pc.factor);

@@ -7,15 +7,9 @@
 #define FGB_TONEMAP_GLSL
 
 #include "common.glsl"
+#include "renderer/shared/post.h"
 
-layout(push_constant) uniform Push {
-  uint hdrTexture;
-  uint bloomTexture;  // FGB_NONE: no bloom
-  uint linearSampler;
-  uint exposure;  // storage-buffer index of the exposure state
-  float bloomIntensity;
-  uint display;   // tonemap.comp: storage-image index of the display image
-} pc;
+layout(push_constant) uniform Push { TonemapPush pc; };
 
 // The display value (linear, before the sRGB curve) of output pixel `pixel`, whose centre is at
 // `uv` in the bloom texture (the bloom texture has one mip level).

@@ -1,5 +1,5 @@
-// Shared by the visibility-buffer shaders (shaders/renderer/visbuffer/*.comp). Structs mirror
-// src/renderer/features/visbuffer/visbuffer_types.hpp (std430); keep them in sync.
+// Shared by the visibility-buffer shaders (shaders/renderer/visbuffer/*.comp). Their structs, push
+// blocks and flags are declared once for C++ and GLSL in renderer/shared/visbuffer.h.
 //
 // The visibility buffer holds one 64-bit word per pixel: a depth key in the high 32 bits and the
 // pixel's id in the low 32 bits, written with a 64-bit atomic max. Its backing
@@ -14,58 +14,15 @@
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_shader_atomic_int64 : require
 #include "common.glsl"
+#include "renderer/shared/visbuffer.h"
 
 const uint kClusterTriangleBits = 7u;  // 128 triangles per cluster
 const uint kTileSize = 8u;             // large triangles are rasterised in 8x8-pixel tiles
 const uint kDispatchWidth = 32768u;    // indirect dispatches are (min(n, W), ceil(n / W)) groups
 
-// Cluster draw flags (ClusterDraw::flags).
-const uint kDrawSingleSided = 1u;  // back faces are culled (glTF: not double-sided)
-const uint kDrawMirrored = 2u;     // negative determinant: front faces wind the other way
-const uint kDrawConeUsable = 4u;   // near-uniform scale: the cluster's normal cone stays valid
-const uint kDrawAlphaMasked = 8u;  // alpha-tested during raster
-
-// Mirrors scene::Cluster. A cluster's triangles are packed words (scene::packClusterTriangle: three
-// 8-bit indices into the cluster's vertex list); its vertices are firstVertex + those indices in
-// the scene-wide cluster vertex stream (ClusterGeometry::vertices: position, attribute vertex).
-struct ClusterData {
-  vec4 sphere;  // mesh-local centre, radius
-  vec4 cone;    // mesh-local axis, cutoff
-  uint firstTriangle;
-  uint triangleCount;
-  uint firstVertex;
-  uint vertexCount;
-};
-
 uvec3 clusterTriangleVertices(uint packed, uint firstVertex) {
   return uvec3(packed & 0xffu, (packed >> 8) & 0xffu, packed >> 16) + firstVertex;
 }
-
-// One cluster of one instance (what "Cluster Cull" tests).
-struct ClusterDraw {
-  uint instance;
-  uint cluster;
-  uint firstVertex;
-  uint flags;
-};
-
-// Counters and indirect dispatch arguments written by the culling nodes (VisCounters in C++).
-struct VisCounters {
-  uint visibleClusters;
-  uint filterGroups[3];   // "Triangle Filter": one workgroup per visible cluster
-  uint smallTriangles;
-  uint smallGroups[3];    // "Visibility Raster", small triangles: one thread each
-  uint64_t largeTotals;   // high 24 bits: large triangles, low 40 bits: their tile jobs
-  uint largeTriangles;
-  uint tileJobs;          // jobs of at most 16 8x8 tiles of one large triangle (capped by the list)
-  uint tileGroups[3];     // "Visibility Raster", large triangles: one workgroup per tile job
-  uint overflow;          // large triangles dropped for lack of list space (should stay 0)
-  // render.occlusion=1 (two-phase HiZ culling). The phase-2 ("late") nodes count in counters of
-  // their own, whose visible clusters follow phase 1's in the visible-cluster list:
-  uint firstCluster;      // the list slot of this phase's first cluster (0 in phase 1)
-  uint occluded;          // phase 1: clusters held back by last frame's HiZ (phase 2 re-tests them)
-  uint reserved[2];
-};
 
 FGB_READONLY_STORAGE_BUFFER(ClusterBlock, visClusters) { ClusterData clusters[]; } visClusters[FGB_MAX_STORAGE_BUFFERS];
 FGB_READONLY_STORAGE_BUFFER(ClusterDrawBlock, visDraws) { ClusterDraw draws[]; } visDraws[FGB_MAX_STORAGE_BUFFERS];

@@ -1,48 +1,14 @@
 // Triangle setup shared by "Triangle Filter", "Visibility Raster" and "Material Shade" (they must
-// agree bit for bit on which pixels a triangle covers), and their common push block (mirrors
-// VisPush in src/renderer/features/visbuffer/visbuffer_feature.cpp).
+// agree bit for bit on which pixels a triangle covers); their common push block is VisPush
+// (renderer/shared/visbuffer.h).
 #ifndef FGB_RENDERER_VISBUFFER_TRIANGLE_GLSL
 #define FGB_RENDERER_VISBUFFER_TRIANGLE_GLSL
 
 #extension GL_KHR_shader_subgroup_vote : require
 #include "visbuffer.glsl"
 
-layout(push_constant) uniform Push {
-  uint frame;
-  uint instances;
-  uint materials;
-  uint draws;
-  uint clusters;
-  uint indices;         // cluster triangles (packed 8-bit cluster-local indices, ClusterData)
-  uint vertices;        // the scene's vertex buffer (streams at the float offsets below)
-  uint positions;       // cluster vertices (uvec4: position as float bits, w: its vertex in `vertices`)
-  uint normals;
-  uint tangents;
-  uint uvs;
-  uint counters;       // VisCounters the culling nodes add to
-  uint args;           // VisCounters snapshot with the indirect arguments of this node
-  uint visible;         // visible-cluster list
-  uint smallList;       // ids of small triangles
-  uint largeList;       // 4 uvec4 per large triangle, set up by "Triangle Filter" (packLargeTriangle)
-  uint largeCapacity;
-  uint words;           // the visibility buffer (uint64 per pixel)
-  uint depthOut;        // float per pixel, the later colour passes' depth test (opaque_depth.glsl)
-  uint hdr;             // storage image index of the HDR target
-  uint materialSampler;
-  uint lights;
-  uint clusterCounts;   // FGB_NONE: no clustered lighting
-  uint clusterIndices;
-  uint flags;           // bit 0: reversed Z; bit 1: raster the large-triangle tiles (else small);
-                        // bit 2: serial subgroups (Triangle Filter)
-  uint tileJobs;        // uvec2 per tile job: large-list slot, job index within the triangle
-  uint tileJobCapacity;
-  uint pad;
-  vec4 background;      // (at byte 112) HDR clear of pixels no triangle covers (pre-exposed, alpha 0)
-} pc;
+layout(push_constant) uniform Push { VisPush pc; };
 
-const uint kFlagReversedZ = 1u;
-const uint kFlagLargeTiles = 2u;
-const uint kFlagSerialSubgroups = 4u;  // a CPU device: a workgroup's subgroups run one after another
 bool reversedZ() { return (pc.flags & kFlagReversedZ) != 0u; }
 
 const float kMinW = 1e-5;        // vertices closer to the eye plane use homogeneous rasterisation

@@ -11,25 +11,9 @@
 #include "../include/visbuffer.glsl"
 #include "hiz_occlusion.glsl"
 
-layout(local_size_x = 64) in;
+layout(local_size_x = FGB_VIS_CULL_GROUP_SIZE) in;
 
-// drawCount's top bits (render.occlusion):
-const uint kCullOcclusion = 0x80000000u;  // test against last frame's HiZ pyramid (not on the first frame)
-const uint kCullReversedZ = 0x40000000u;
-const uint kCullHoldBackOdd = 0x20000000u;  // debug.occlusion_hold_back: odd clusters are candidates too
-const uint kCullDrawCountMask = 0x1fffffffu;
-
-layout(push_constant) uniform Push {
-  vec4 planes[6];  // inside: dot(n, p) + d >= 0
-  uint frame;
-  uint instances;
-  uint draws;
-  uint clusters;
-  uint counters;
-  uint visible;    // visible-cluster list: ClusterDraw indices
-  uint occlusion;  // render.occlusion: HiZ pyramid (low 16 bits), occlusion candidates (high 16 bits)
-  uint drawCount;  // kCullDrawCountMask; kCullOcclusion, kCullReversedZ, kCullHoldBackOdd
-} pc;
+layout(push_constant) uniform Push { ClusterCullPush pc; };
 
 bool boxInside(vec3 boxMin, vec3 boxMax) {
   for (int i = 0; i < 6; ++i) {
@@ -56,7 +40,7 @@ void main() {
   vec3 center = (inst.model * vec4(cluster.sphere.xyz, 1.0)).xyz;
   float radius = cluster.sphere.w * maxScale(inst.model);
   if (!sphereInside(center, radius)) return;
-  if ((draw.flags & (kDrawSingleSided | kDrawConeUsable)) == (kDrawSingleSided | kDrawConeUsable) &&
+  if ((draw.flags & (kClusterSingleSided | kClusterConeUsable)) == (kClusterSingleSided | kClusterConeUsable) &&
       cluster.cone.w < 1.0) {
     // Front is defined in object space (glTF), so the axis transforms as a normal.
     vec3 axis = normalize(mat3(inst.normalMatrix) * cluster.cone.xyz);

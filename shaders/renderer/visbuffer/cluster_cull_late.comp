@@ -9,20 +9,9 @@
 #include "../include/visbuffer.glsl"
 #include "hiz_occlusion.glsl"
 
-layout(local_size_x = 64) in;
+layout(local_size_x = FGB_VIS_CULL_GROUP_SIZE) in;
 
-layout(push_constant) uniform Push {
-  uint frame;
-  uint instances;
-  uint draws;
-  uint clusters;
-  uint hiz;          // this frame's pyramid so far (read)
-  uint candidates;   // ClusterDraw indices held back by phase 1 (read)
-  uint earlyArgs;    // phase 1's counters (read): candidates, phase-1 visible clusters
-  uint counters;     // the late counters (read-write)
-  uint visible;      // the visible-cluster list (appended to)
-  uint reversedZ;
-} pc;
+layout(push_constant) uniform Push { LateCullPush pc; };
 
 void main() {
   uint id = gl_GlobalInvocationID.x;

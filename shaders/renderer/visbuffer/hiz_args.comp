@@ -11,14 +11,7 @@
 
 layout(local_size_x = 1) in;
 
-layout(push_constant) uniform Push {
-  uint rasterArgs;  // "Triangle Filter (late)"'s snapshot (read)
-  uint args;        // written: uvec3 per level from level 1
-  uint width;       // the viewport
-  uint height;
-} pc;
-
-const uint kHizGroupSize = 8u;  // hiz_build.comp's local size
+layout(push_constant) uniform Push { HizArgsPush pc; };
 
 void main() {
   VisCounters c = visCountersRead[pc.rasterArgs].c;
@@ -26,7 +19,7 @@ void main() {
   uvec2 viewport = uvec2(pc.width, pc.height);
   uint levels = hizLevels(viewport);
   for (uint level = 1u; level <= levels; ++level) {
-    uvec2 groups = drew ? (hizLevelSize(viewport, level) + kHizGroupSize - 1u) / kHizGroupSize : uvec2(0u);
+    uvec2 groups = drew ? (hizLevelSize(viewport, level) + FGB_HIZ_GROUP_SIZE - 1u) / FGB_HIZ_GROUP_SIZE : uvec2(0u);
     uint at = 3u * (level - 1u);
     fgbUints[pc.args].values[at] = groups.x;
     fgbUints[pc.args].values[at + 1u] = groups.y;

@@ -9,15 +9,9 @@
 #define FGB_HIZ_BUILD_ONLY
 #include "hiz_occlusion.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+layout(local_size_x = FGB_HIZ_GROUP_SIZE, local_size_y = FGB_HIZ_GROUP_SIZE) in;
 
-layout(push_constant) uniform Push {
-  uint words;  // level 1: the visibility buffer (storage buffer, or R64 image: render.vis_backing)
-  uint hiz;    // the pyramid (read-write)
-  uint width;  // the viewport
-  uint height;
-  uint level;  // the level written (>= 1)
-} pc;
+layout(push_constant) uniform Push { HizPush pc; };
 
 uint childKey(uvec2 viewport, uvec2 child, uint childBase, uvec2 childSize) {
   if (pc.level == 1u) return uint(visWordAt(pc.words, ivec2(child), viewport.x) >> 32);

@@ -80,12 +80,12 @@ void filterTriangle(ClusterSetup c, uint clusterSlot, uint triangle) {
   if (outsideFrustum(t.clip)) return;
   if (t.pixels.x > t.pixels.z || t.pixels.y > t.pixels.w) return;  // covers no pixel centre
   if (t.projected && t.area == 0) return;
-  if ((flags & kDrawSingleSided) != 0u) {
-    bool front = framebufferFront(t) != ((flags & kDrawMirrored) != 0u);
+  if ((flags & kClusterSingleSided) != 0u) {
+    bool front = framebufferFront(t) != ((flags & kClusterMirrored) != 0u);
     if (!front) return;
   }
   uint id = (clusterSlot << kClusterTriangleBits) | triangle;
-  bool masked = (flags & kDrawAlphaMasked) != 0u;
+  bool masked = (flags & kClusterAlphaMasked) != 0u;
   ivec2 span = t.pixels.zw - t.pixels.xy + 1;
   if (t.projected && span.x <= kSmallPixels && span.y <= kSmallPixels && packable(t)) {
     uint slot = atomicAdd(visCounters[pc.counters].c.smallTriangles, 1u);

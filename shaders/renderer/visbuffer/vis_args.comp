@@ -8,12 +8,7 @@
 
 layout(local_size_x = 1) in;
 
-layout(push_constant) uniform Push {
-  uint counters;       // read
-  uint args;           // written: the counters with the arguments filled in
-  uint smallPerGroup;  // small triangles per raster workgroup
-  uint tileJobCapacity;
-} pc;
+layout(push_constant) uniform Push { ArgsPush pc; };
 
 void main() {
   VisCounters c = visCountersRead[pc.counters].c;

@@ -8,13 +8,9 @@
 #define FGB_VIS_BACKING_IMAGE
 #include "../include/visbuffer.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+layout(local_size_x = FGB_VIS_CLEAR_GROUP_SIZE, local_size_y = FGB_VIS_CLEAR_GROUP_SIZE) in;
 
-layout(push_constant) uniform Push {
-  uint words;  // storage-texture index of the visibility image
-  uint width;
-  uint height;
-} pc;
+layout(push_constant) uniform Push { ClearPush pc; };
 
 void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;

@@ -11,7 +11,7 @@
 #extension GL_EXT_nonuniform_qualifier : require
 #include "../include/visbuffer_material.glsl"
 
-layout(local_size_x = 64) in;
+layout(local_size_x = FGB_VIS_RASTER_GROUP_SIZE) in;
 
 // What the alpha test needs of a triangle.
 struct AlphaTest {
@@ -38,7 +38,7 @@ RasterTriangle loadTriangle(uint id) {
   r.vertices = tri.vertices;
   r.screen = setupTriangle(modelViewProj(fgbInstances[pc.instances].instances[tri.instance].model), tri.vertices);
   if (r.screen.projected) r.edges = edgeSetup(r.screen);
-  r.masked = (tri.flags & kDrawAlphaMasked) != 0u;
+  r.masked = (tri.flags & kClusterAlphaMasked) != 0u;
   if (r.masked)
     r.material = fgbMaterials[pc.materials].materials[fgbInstances[pc.instances].instances[tri.instance].material];
   if (r.masked || !r.screen.projected)

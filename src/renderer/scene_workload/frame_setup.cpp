@@ -42,10 +42,10 @@ float clusterFar(const scene::Scene& scene) {
 
 }  // namespace
 
-features::FrameConstantsGpu makeFrameConstants(const scene::Scene& scene, const features::RenderSettings& settings) {
+gpu::FrameConstants makeFrameConstants(const scene::Scene& scene, const features::RenderSettings& settings) {
   const scene::Camera& camera = scene.camera;
   const float aspect = float(settings.width) / float(settings.height);
-  features::FrameConstantsGpu c;
+  gpu::FrameConstants c{};
   c.view = scene::viewMatrix(camera);
   c.proj = scene::projectionMatrix(camera, aspect);
   c.proj[1][1] = -c.proj[1][1];  // Vulkan's framebuffer Y points down; keep images upright
@@ -77,8 +77,8 @@ features::FrameConstantsGpu makeFrameConstants(const scene::Scene& scene, const 
   return c;
 }
 
-features::ExposureGpu initialExposure(const scene::PostSettings& post) {
-  features::ExposureGpu state;
+gpu::Exposure initialExposure(const scene::PostSettings& post) {
+  gpu::Exposure state{};
   // Auto exposure starts from the scene's exposure, as if the light scale had been compensated;
   // the first frame's measurement replaces it.
   state.preExposure = post.autoExposure ? post.exposure / post.lightScale : post.exposure;

@@ -1,5 +1,7 @@
 #include "gpu_upload.hpp"
 
+#include "renderer/shared/visbuffer.h"
+
 #include <fgb/core/error.hpp>
 #include <fgb/rhi/job_context.hpp>
 
@@ -9,6 +11,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cstddef>
 #include <cmath>
 #include <cstring>
 #include <tuple>
@@ -16,6 +19,17 @@
 
 namespace fgb::render {
 namespace {
+
+// The scene's clusters are uploaded as they are: their layout is gpu::ClusterData's.
+static_assert(sizeof(scene::Cluster) == sizeof(gpu::ClusterData));
+static_assert(offsetof(scene::Cluster, center) == offsetof(gpu::ClusterData, sphere) &&
+              offsetof(scene::Cluster, radius) == offsetof(gpu::ClusterData, sphere) + 12);
+static_assert(offsetof(scene::Cluster, coneAxis) == offsetof(gpu::ClusterData, cone) &&
+              offsetof(scene::Cluster, coneCutoff) == offsetof(gpu::ClusterData, cone) + 12);
+static_assert(offsetof(scene::Cluster, firstTriangle) == offsetof(gpu::ClusterData, firstTriangle) &&
+              offsetof(scene::Cluster, triangleCount) == offsetof(gpu::ClusterData, triangleCount) &&
+              offsetof(scene::Cluster, firstVertex) == offsetof(gpu::ClusterData, firstVertex) &&
+              offsetof(scene::Cluster, vertexCount) == offsetof(gpu::ClusterData, vertexCount));
 
 using features::GpuScene;
 
@@ -145,10 +159,10 @@ std::pair<glm::vec4, glm::vec4> renderSpaceBounds(const scene::Aabb& box, const 
   return {lo, hi};
 }
 
-std::vector<features::InstanceGpu> gpuInstances(const scene::Scene& scene, const GpuScene& gpu) {
+std::vector<gpu::Instance> gpuInstances(const scene::Scene& scene, const GpuScene& gpu) {
   const glm::dvec3 origin = scene.camera.position;
   const glm::dmat4 toRenderSpace = glm::translate(glm::dmat4(1.0), -origin);
-  std::vector<features::InstanceGpu> result(gpu.instanceOrder.size());
+  std::vector<gpu::Instance> result(gpu.instanceOrder.size());
   for (uint32_t group = 0; group < gpu.groups.size(); ++group) {
     const auto& g = gpu.groups[group];
     for (uint32_t slot = g.firstSlot; slot < g.firstSlot + g.capacity; ++slot) {
@@ -166,11 +180,11 @@ std::vector<features::InstanceGpu> gpuInstances(const scene::Scene& scene, const
   return result;
 }
 
-std::vector<features::MaterialGpu> gpuMaterials(const scene::Scene& scene, const std::vector<uint32_t>& textureIndices) {
+std::vector<gpu::Material> gpuMaterials(const scene::Scene& scene, const std::vector<uint32_t>& textureIndices) {
   auto texture = [&](int32_t index) { return index < 0 ? -1 : int32_t(textureIndices.at(uint32_t(index))); };
-  std::vector<features::MaterialGpu> result;
+  std::vector<gpu::Material> result;
   for (const auto& m : scene.materials) {
-    features::MaterialGpu out;
+    gpu::Material out{};
     out.baseColor = m.baseColorFactor;
     out.emissive = glm::vec4(m.emissiveFactor * m.emissiveStrength, m.normalScale);
     out.metallic = m.metallicFactor;
@@ -186,8 +200,8 @@ std::vector<features::MaterialGpu> gpuMaterials(const scene::Scene& scene, const
   return result;
 }
 
-std::vector<features::DrawIndexedCommand> commandTemplate(const scene::Scene& scene, const GpuScene& gpu) {
-  std::vector<features::DrawIndexedCommand> result;
+std::vector<gpu::DrawCommand> commandTemplate(const scene::Scene& scene, const GpuScene& gpu) {
+  std::vector<gpu::DrawCommand> result;
   for (const auto& group : gpu.groups) {
     const auto& mesh = scene.meshes[group.mesh];
     result.push_back({mesh.indexCount, 0, mesh.firstIndex, int32_t(mesh.firstVertex), group.firstSlot});
@@ -195,8 +209,8 @@ std::vector<features::DrawIndexedCommand> commandTemplate(const scene::Scene& sc
   return result;
 }
 
-std::vector<features::PointLightGpu> gpuLights(const scene::Scene& scene) {
-  std::vector<features::PointLightGpu> result;
+std::vector<gpu::PointLight> gpuLights(const scene::Scene& scene) {
+  std::vector<gpu::PointLight> result;
   for (const auto& light : scene.lights) {
     // Shading divides by neither the radius nor the distance: 1/R travels in color.w. A radius that
     // is not a positive finite number (scene files refuse it) uploads a light that adds nothing.
@@ -215,16 +229,16 @@ uint32_t clusterDrawFlags(const scene::Scene& scene, const scene::Instance& inst
   const float sx = glm::length(linear[0]), sy = glm::length(linear[1]), sz = glm::length(linear[2]);
   const float largest = std::max({sx, sy, sz}), smallest = std::min({sx, sy, sz});
   uint32_t flags = 0;
-  if (!material.doubleSided) flags |= features::kClusterSingleSided;
-  if (glm::determinant(linear) < 0.0f) flags |= features::kClusterMirrored;
-  if (smallest > 0.99f * largest) flags |= features::kClusterConeUsable;
-  if (material.alphaMode == scene::AlphaMode::Mask) flags |= features::kClusterAlphaMasked;
+  if (!material.doubleSided) flags |= gpu::kClusterSingleSided;
+  if (glm::determinant(linear) < 0.0f) flags |= gpu::kClusterMirrored;
+  if (smallest > 0.99f * largest) flags |= gpu::kClusterConeUsable;
+  if (material.alphaMode == scene::AlphaMode::Mask) flags |= gpu::kClusterAlphaMasked;
   return flags;
 }
 
 // Every cluster of every opaque and alpha-masked GPU instance, in instance order.
-std::vector<features::ClusterDrawGpu> clusterDraws(const scene::Scene& scene, const GpuScene& gpu, uint64_t& triangles) {
-  std::vector<features::ClusterDrawGpu> draws;
+std::vector<gpu::ClusterDraw> clusterDraws(const scene::Scene& scene, const GpuScene& gpu, uint64_t& triangles) {
+  std::vector<gpu::ClusterDraw> draws;
   triangles = 0;
   for (const auto& group : gpu.groups) {
     if (group.drawClass == features::DrawClass::Transparent) continue;
@@ -299,7 +313,7 @@ GpuScene uploadScene(rhi::Device& device, const scene::Scene& scene, const featu
   gpu.instances = uploader.buffer("scene instances", bytesOf(gpuInstances(scene, gpu)), rhi::kBufferStorage);
   gpu.materials = uploader.buffer("scene materials", bytesOf(gpuMaterials(scene, textureIndices)), rhi::kBufferStorage);
   gpu.lights = uploader.buffer("scene lights", bytesOf(gpuLights(scene)), rhi::kBufferStorage);
-  const features::ExposureGpu exposure = initialExposure(scene.post);
+  const gpu::Exposure exposure = initialExposure(scene.post);
   gpu.exposure = uploader.buffer("exposure", std::as_bytes(std::span(&exposure, 1)), rhi::kBufferStorage);
   gpu.constants.buffers.x = device.storageBufferIndex(gpu.exposure);
   gpu.frameConstants = uploader.buffer("frame constants", std::as_bytes(std::span(&gpu.constants, 1)), rhi::kBufferStorage);

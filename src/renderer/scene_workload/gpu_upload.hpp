@@ -12,10 +12,10 @@
 namespace fgb::render {
 
 // Camera, sun and cluster parameters for the scene's camera at the run's resolution.
-features::FrameConstantsGpu makeFrameConstants(const scene::Scene& scene, const features::RenderSettings& settings);
+gpu::FrameConstants makeFrameConstants(const scene::Scene& scene, const features::RenderSettings& settings);
 
-// The exposure state before the first frame: pre-exposed with post.exposure (see ExposureGpu).
-features::ExposureGpu initialExposure(const scene::PostSettings& post);
+// The exposure state before the first frame: pre-exposed with post.exposure (see gpu::Exposure).
+gpu::Exposure initialExposure(const scene::PostSettings& post);
 
 // Instances grouped into indirect draw groups (opaque, masked, transparent back to front).
 void buildDrawGroups(const scene::Scene& scene, const glm::dvec3& cameraPosition, features::GpuScene& gpu);

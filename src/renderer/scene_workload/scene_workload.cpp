@@ -217,7 +217,7 @@ class SceneWorkload final : public Workload {
     if (loaded_.scene.post.autoExposure) {
       // Written by the "Exposure" node, read by the next frame's colour passes: the state carries
       // over between frames, all on the graphics queue.
-      targets.exposure = graph.importBuffer("exposure", {sizeof(features::ExposureGpu), {}}, rhi::external(gpu_.exposure),
+      targets.exposure = graph.importBuffer("exposure", {sizeof(gpu::Exposure), {}}, rhi::external(gpu_.exposure),
                                             kExposureState, kExposureState);
     }
     const graph::TextureHandle hdr = graph.importTexture("hdr", {features::kHdrFormat, extent, 1, 1, 1, {}, 0},

@@ -1,6 +1,7 @@
 #include "bloom_feature.hpp"
 
 #include "../context/handles.hpp"
+#include "renderer/shared/post.h"
 
 #include <fgb/rhi/job_context.hpp>
 
@@ -12,38 +13,14 @@
 namespace fgb::features {
 namespace {
 
-// Mirror the push blocks of shaders/renderer/bloom_down.comp and bloom_up.comp.
-struct DownPush {
-  uint32_t source;
-  uint32_t sourceIsStorage;
-  uint32_t linearSampler;
-  uint32_t target;
-  int32_t sourceSize[2];
-  int32_t targetSize[2];
-  uint32_t firstMip;
-  float threshold;
-  float knee;
-  uint32_t exposure;
-  uint32_t injectNan;
-};
-struct UpPush {
-  uint32_t source;
-  uint32_t target;
-  int32_t sourceSize[2];
-  int32_t targetSize[2];
-  float radius;
-  uint32_t injectNan;
-};
-
-constexpr uint32_t kGroupSize = 8;  // local size of both shaders (8 x 8)
-
 // Size of level `level` of the chain (level 0 = the HDR image), as the graph resolves it.
 graph::Extent levelExtent(const graph::Extent& full, uint32_t level) {
   return {std::max(1u, full.width >> level), std::max(1u, full.height >> level), 1};
 }
 
 void dispatchOver(rhi::CommandBuffer& cmd, const graph::Extent& size) {
-  cmd.dispatch((size.width + kGroupSize - 1) / kGroupSize, (size.height + kGroupSize - 1) / kGroupSize);
+  cmd.dispatch((size.width + FGB_BLOOM_GROUP_SIZE - 1) / FGB_BLOOM_GROUP_SIZE,
+               (size.height + FGB_BLOOM_GROUP_SIZE - 1) / FGB_BLOOM_GROUP_SIZE);
 }
 
 }  // namespace
@@ -85,16 +62,22 @@ void BloomFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
                levels, sizes, exposure = exposureIndex_, injectNan = injectNan_](graph::JobContext& context) {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
-    const auto xy = [](const graph::Extent& e) { return std::array{int32_t(e.width), int32_t(e.height)}; };
+    const auto xy = [](const graph::Extent& e) { return glm::ivec2(int32_t(e.width), int32_t(e.height)); };
     cmd.bindPipeline(down);
     for (uint32_t level = 1; level <= mips; ++level) {
       if (level > 1) cmd.computeBarrier();  // reads the level the previous dispatch wrote
       const bool first = level == 1;
-      DownPush push{first ? ctx.sampledTextureIndex(hdr) : ctx.storageTextureIndex(levels[level - 1]),
-                    first ? 0u : 1u, sampler, ctx.storageTextureIndex(levels[level]), {}, {},
-                    first ? 1u : 0u, bloom.threshold, bloom.knee, exposure, first && injectNan ? 1u : 0u};
-      std::ranges::copy(xy(sizes[level - 1]), push.sourceSize);
-      std::ranges::copy(xy(sizes[level]), push.targetSize);
+      const gpu::BloomDownPush push{first ? ctx.sampledTextureIndex(hdr) : ctx.storageTextureIndex(levels[level - 1]),
+                                    first ? 0u : 1u,
+                                    sampler,
+                                    ctx.storageTextureIndex(levels[level]),
+                                    xy(sizes[level - 1]),
+                                    xy(sizes[level]),
+                                    first ? 1u : 0u,
+                                    bloom.threshold,
+                                    bloom.knee,
+                                    exposure,
+                                    first && injectNan ? 1u : 0u};
       cmd.push(push);
       dispatchOver(cmd, sizes[level]);
     }
@@ -102,10 +85,12 @@ void BloomFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
     for (uint32_t level = mips; level >= 2; --level) {
       cmd.computeBarrier();
       // debug.inject_nan=Bloom: the last write of level 1 (the level tone mapping reads) holds the NaN.
-      UpPush push{ctx.storageTextureIndex(levels[level]), ctx.storageTextureIndex(levels[level - 1]), {}, {},
-                  bloom.radius, level == 2 && injectNan ? 1u : 0u};
-      std::ranges::copy(xy(sizes[level]), push.sourceSize);
-      std::ranges::copy(xy(sizes[level - 1]), push.targetSize);
+      const gpu::BloomUpPush push{ctx.storageTextureIndex(levels[level]),
+                                  ctx.storageTextureIndex(levels[level - 1]),
+                                  xy(sizes[level]),
+                                  xy(sizes[level - 1]),
+                                  bloom.radius,
+                                  level == 2 && injectNan ? 1u : 0u};
       cmd.push(push);
       dispatchOver(cmd, sizes[level - 1]);
     }

@@ -2,8 +2,8 @@
 // per-frame render targets. Both travel through the blackboard.
 #pragma once
 
-#include "gpu_types.hpp"
 #include "render_settings.hpp"
+#include "renderer/shared/scene.h"
 
 #include <fgb/graph/frame_graph.hpp>
 #include <fgb/rhi/types.hpp>
@@ -36,7 +36,7 @@ struct DrawGroup {
 };
 
 // The cooked clusters, uploaded for the visibility-buffer path only (render.path=visbuffer), and
-// one ClusterDrawGpu per cluster of every opaque or alpha-masked instance ("Cluster Cull" tests
+// one gpu::ClusterDraw per cluster of every opaque or alpha-masked instance ("Cluster Cull" tests
 // each). Transparent instances stay with the forward "Mesh Render Transparent".
 // Cluster vertices are numbered across the scene (cluster.firstVertex + local index): a vertex
 // shared by several clusters has a copy in each, so a triangle's corners are found from its one
@@ -45,7 +45,7 @@ struct ClusterGeometry {
   rhi::BufferId clusters;         // scene::Cluster[] (mesh-local bounds, cones, triangle and vertex ranges)
   rhi::BufferId packedTriangles;  // uint32 per triangle: scene::packClusterTriangle (cluster-local)
   rhi::BufferId vertices;         // uvec4 per cluster vertex: position (float bits), its vertex in GpuScene::vertices
-  rhi::BufferId draws;            // ClusterDrawGpu[]
+  rhi::BufferId draws;            // gpu::ClusterDraw[]
   uint32_t drawCount = 0;
   uint64_t triangles = 0;  // triangles of all draws: the most "Triangle Filter" can keep
 };
@@ -55,18 +55,18 @@ struct GpuScene {
   rhi::BufferId vertices;          // all attribute streams (vertex + storage usage)
   VertexStreams streams;
   rhi::BufferId indices;           // uint32, mesh-local
-  rhi::BufferId instances;         // InstanceGpu[], ordered by draw group
-  rhi::BufferId materials;         // MaterialGpu[]
-  rhi::BufferId lights;            // PointLightGpu[] (at least one entry)
-  rhi::BufferId frameConstants;    // FrameConstantsGpu
-  rhi::BufferId exposure;          // ExposureGpu (written by the "Exposure" node with auto exposure)
-  rhi::BufferId commandTemplate;   // DrawIndexedCommand[] with instanceCount 0 (reset source)
+  rhi::BufferId instances;         // gpu::Instance[], ordered by draw group
+  rhi::BufferId materials;         // gpu::Material[]
+  rhi::BufferId lights;            // gpu::PointLight[] (at least one entry)
+  rhi::BufferId frameConstants;    // gpu::FrameConstants
+  rhi::BufferId exposure;          // gpu::Exposure (written by the "Exposure" node with auto exposure)
+  rhi::BufferId commandTemplate;   // gpu::DrawCommand[] with instanceCount 0 (reset source)
   rhi::SamplerId materialSampler;
   rhi::SamplerId linearClampSampler;
   std::vector<rhi::TextureId> textures;
   std::vector<DrawGroup> groups;   // in command order: opaque, masked, transparent
   std::vector<uint32_t> instanceOrder;  // GPU instance i is scene instance instanceOrder[i]
-  FrameConstantsGpu constants;     // what frameConstants holds
+  gpu::FrameConstants constants{};   // what frameConstants holds
   ClusterGeometry clusterGeometry; // visibility-buffer path only
   uint32_t instanceCount = 0;
   uint32_t lightCount = 0;

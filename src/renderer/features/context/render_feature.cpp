@@ -4,6 +4,8 @@
 #include <fgb/rhi/job_context.hpp>
 #include <fgb/shaders/registry.hpp>
 
+#include "renderer/shared/post.h"
+
 namespace fgb::features {
 
 rhi::PipelineId createPostPassPipeline(rhi::Device& device, PostPassForm form, const std::string& name,
@@ -32,9 +34,9 @@ graph::TextureHandle writePostPassOutput(graph::NodeBuilder& node, PostPassForm 
 }
 
 void recordPostPass(rhi::CommandBuffer& cmd, PostPassForm form, const graph::Extent& extent) {
-  constexpr uint32_t kGroupSize = 8;  // tonemap.comp's and ssaa_resolve.comp's local size (8 x 8)
   if (form == PostPassForm::Compute) {
-    cmd.dispatch((extent.width + kGroupSize - 1) / kGroupSize, (extent.height + kGroupSize - 1) / kGroupSize);
+    cmd.dispatch((extent.width + FGB_POST_GROUP_SIZE - 1) / FGB_POST_GROUP_SIZE,
+                 (extent.height + FGB_POST_GROUP_SIZE - 1) / FGB_POST_GROUP_SIZE);
   } else {
     cmd.draw(3);
   }
@@ -66,8 +68,8 @@ void setDepthState(rhi::GraphicsPipelineDesc& desc, DepthTest form, bool writesD
   desc.depthCompare = kDepthCompare;
 }
 
-OpaqueDepthTestGpu OpaqueDepthSource::push(rhi::JobContext& ctx) const {
-  OpaqueDepthTestGpu test;
+gpu::OpaqueDepthTest OpaqueDepthSource::push(rhi::JobContext& ctx) const {
+  gpu::OpaqueDepthTest test{FGB_NONE, 0, 0};  // nothing to test against: every fragment passes
   if (!buffer.valid()) return test;
   test.depths = ctx.storageBufferIndex(buffer);
   test.rowStride = rowStride;

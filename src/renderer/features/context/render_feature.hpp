@@ -6,6 +6,7 @@
 #include "blackboard.hpp"
 #include "gpu_scene.hpp"
 #include "render_settings.hpp"
+#include "renderer/shared/opaque_depth.h"
 
 #include <fgb/graph/frame_graph.hpp>
 #include <fgb/rhi/command_buffer.hpp>
@@ -70,20 +71,13 @@ enum class DepthTest : uint8_t { Attachment, OpaqueDepthBuffer };
 // none for OpaqueDepthBuffer (which cannot write depth: std::logic_error).
 void setDepthState(rhi::GraphicsPipelineDesc& desc, DepthTest form, bool writesDepth);
 
-// Mirrors OpaqueDepthTest in shaders/renderer/include/opaque_depth.glsl (push constants).
-struct OpaqueDepthTestGpu {
-  uint32_t depths = rhi::kInvalidId;  // float per pixel; kInvalidId: nothing to test against
-  uint32_t rowStride = 0;             // pixels per row of the buffer (the scene passes' width)
-  uint32_t compareOp = 0;             // rhi::CompareOp = VkCompareOp: bit 0 less, 1 equal, 2 greater
-};
-
-// What a colour pass's job needs to fill OpaqueDepthTestGpu: the opaque depth buffer of the
+// What a colour pass's job needs to fill gpu::OpaqueDepthTest (a push-constant member): the opaque depth buffer of the
 // visibility-buffer path (invalid with the Attachment form, or when nothing opaque was drawn: every
 // fragment then passes, as against a cleared attachment) and its row stride.
 struct OpaqueDepthSource {
   graph::BufferHandle buffer;
   uint32_t rowStride = 0;
-  [[nodiscard]] OpaqueDepthTestGpu push(rhi::JobContext& ctx) const;
+  [[nodiscard]] gpu::OpaqueDepthTest push(rhi::JobContext& ctx) const;
 };
 
 // Convenience: one forward colour pass over FrameTargets::color (the first clears, later ones

@@ -2,23 +2,12 @@
 
 #include <fgb/rhi/job_context.hpp>
 
+#include "renderer/shared/post.h"
+
 namespace fgb::features {
 namespace {
 
-// Mirror the push blocks of shaders/renderer/luminance_reduce.comp and exposure_update.comp.
-struct ReducePush {
-  uint32_t hdr;
-  uint32_t partials;
-  int32_t size[2];
-};
-struct UpdatePush {
-  uint32_t partials;
-  uint32_t partialCount;
-  uint32_t state;
-  float key;
-};
-
-constexpr uint32_t kBlock = 32;  // pixels per reduce workgroup side (16x16 invocations, 2x2 each)
+constexpr uint32_t kBlock = 2 * FGB_LUMINANCE_GROUP_SIZE;  // pixels per reduce workgroup side (2x2 per invocation)
 
 }  // namespace
 
@@ -41,8 +30,8 @@ void ExposureFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
   auto partials = graph.createBuffer("luminance partials", {uint64_t{16} * groupsX * groupsY, {}});
   partials = node.write(partials, graph::Access::StorageWrite);  // then read back in the job, after a barrier
   targets.exposure = node.write(targets.exposure, graph::Access::StorageReadWrite);
-  ReducePush reduce{0, 0, {int32_t(targets.extent.width), int32_t(targets.extent.height)}};
-  UpdatePush update{0, groupsX * groupsY, stateIndex_, kKey};
+  gpu::LuminanceReducePush reduce{0, 0, {int32_t(targets.extent.width), int32_t(targets.extent.height)}};
+  gpu::ExposureUpdatePush update{0, groupsX * groupsY, stateIndex_, kKey};
   node.setJob([reduce, update, groupsX, groupsY, hdr, partials, reducePipeline = reducePipeline_,
                updatePipeline = updatePipeline_](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);

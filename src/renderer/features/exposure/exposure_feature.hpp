@@ -1,6 +1,6 @@
 // "Exposure" (post.exposure=auto): measures the frame's log-average luminance on the GPU (a
 // two-dispatch compute reduction over the pre-exposed HDR image) and updates the exposure state
-// (ExposureGpu): exposure = key / L_avg with key 0.18, applied by this frame's tone mapping and used
+// (gpu::Exposure): exposure = key / L_avg with key 0.18, applied by this frame's tone mapping and used
 // as the next frame's pre-exposure. No temporal adaptation: the exposure follows the current frame,
 // so every frame of a static scene is the same (deterministic goldens). Declared after bloom
 // (which reads this frame's pre-exposure) and before tone mapping.

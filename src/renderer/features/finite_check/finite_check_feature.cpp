@@ -4,22 +4,12 @@
 #include <cstring>
 #include <fgb/rhi/job_context.hpp>
 
+#include "renderer/shared/post.h"
+
 namespace fgb::features {
 namespace {
 
 using graph::Access;
-
-// Mirrors the push block of shaders/renderer/include/finite_check.glsl.
-struct CheckPush {
-  uint32_t source;
-  uint32_t counters;
-  uint32_t slot;
-  uint32_t samples;
-  int32_t size[2];
-};
-
-constexpr uint64_t kSlotBytes = 16;  // uvec4: nan, inf, over half max, unused
-constexpr uint32_t kGroupSize = 8;
 
 bool isFloatColor(graph::Format format) {
   switch (format) {
@@ -76,15 +66,15 @@ void FiniteCheckFeature::declareCheck(graph::FrameGraph& graph, const Checked& c
                multi = multiSample_](graph::JobContext& context) {
     auto& ctx = rhi::rhiContext(context);
     for (const Written& written : textures) {
-      const CheckPush push{ctx.sampledTextureIndex(written.texture),
-                           ctx.storageBufferIndex(counters),
-                           slot,
-                           written.samples,
-                           {int32_t(written.extent.width), int32_t(written.extent.height)}};
+      const gpu::FiniteCheckPush push{ctx.sampledTextureIndex(written.texture),
+                                      ctx.storageBufferIndex(counters),
+                                      slot,
+                                      written.samples,
+                                      {int32_t(written.extent.width), int32_t(written.extent.height)}};
       ctx.cmd().bindPipeline(written.samples > 1 ? multi : single);
       ctx.cmd().push(push);
-      ctx.cmd().dispatch((written.extent.width + kGroupSize - 1) / kGroupSize,
-                         (written.extent.height + kGroupSize - 1) / kGroupSize);
+      ctx.cmd().dispatch((written.extent.width + FGB_FINITE_CHECK_GROUP_SIZE - 1) / FGB_FINITE_CHECK_GROUP_SIZE,
+                         (written.extent.height + FGB_FINITE_CHECK_GROUP_SIZE - 1) / FGB_FINITE_CHECK_GROUP_SIZE);
     }
   });
 }
@@ -93,7 +83,7 @@ void FiniteCheckFeature::declare(graph::FrameGraph& graph, Blackboard& /*board*/
   if (!enabled_) return;
   checked_ = findCheckedPasses(graph);
   if (checked_.empty()) return;
-  const uint64_t bytes = kSlotBytes * checked_.size();
+  const uint64_t bytes = uint64_t{gpu::kFiniteCheckSlotBytes} * checked_.size();
   graph::BufferHandle counters = graph.createBuffer("finite check counters", {bytes, {}});
   auto reset = graph.addNode("Finite Check Reset", graph::NodeType::Transfer, graph::QueueClass::Graphics);
   counters = reset.write(counters, Access::TransferDst);

@@ -1,6 +1,7 @@
 #include "clustered_lighting.hpp"
 
 #include "../context/handles.hpp"
+#include "renderer/shared/lighting.h"
 
 #include <fgb/rhi/job_context.hpp>
 
@@ -12,23 +13,6 @@ namespace fgb::features {
 namespace {
 
 using graph::Access;
-
-struct BoundsPush {
-  uint32_t frame;
-  uint32_t bounds;
-  uint32_t clusterCount;
-};
-
-struct CullPush {
-  uint32_t frame;
-  uint32_t bounds;
-  uint32_t lights;
-  uint32_t counts;
-  uint32_t indices;
-};
-
-constexpr uint32_t kMaxCapacity = 1024;  // MAX_LIGHTS_PER_CLUSTER in light_cull.comp
-constexpr uint32_t kCullBlock = 8;       // BLOCK in light_cull.comp: one workgroup per 8x8 tiles of a slice
 
 // The bounds buffer is written by compute and read by compute, frame after frame: it stays on the
 // compute queue (no ownership transfer in or out of the graph).
@@ -46,7 +30,7 @@ void ClusteredLighting::initialize(FeatureInit& init) {
   if (!enabled()) return;
   const auto& grid = init.scene.constants.clusterGrid;
   clusterCount_ = grid.x * grid.y * grid.z;
-  capacity_ = std::min(init.settings.maxLightsPerCluster, kMaxCapacity);
+  capacity_ = std::min<uint32_t>(init.settings.maxLightsPerCluster, FGB_MAX_LIGHTS_PER_CLUSTER);
   boundsPipeline_ = init.device.createComputePipeline({"cluster bounds", "renderer/cluster_bounds.comp"});
   cullPipeline_ = init.device.createComputePipeline({"clustered light cull", "renderer/light_cull.comp"});
   bounds_ = init.device.createBuffer(
@@ -59,15 +43,15 @@ graph::BufferHandle ClusteredLighting::declareBounds(graph::FrameGraph& graph) {
                                    kBoundsState, kBoundsState);
   auto node = graph.addNode("Cluster Bounds", graph::NodeType::Compute);
   bounds = node.write(bounds, Access::StorageReadWrite);  // read-write: contents kept when not rebuilt
-  const BoundsPush push{device_->storageBufferIndex(scene_->frameConstants), device_->storageBufferIndex(bounds_),
-                        clusterCount_};
+  const gpu::ClusterBoundsPush push{device_->storageBufferIndex(scene_->frameConstants),
+                                    device_->storageBufferIndex(bounds_), clusterCount_};
   node.setJob([push, pipeline = boundsPipeline_, state = boundsState_, projection = scene_->constants.proj](
                   graph::JobContext& context) {
     if (state->built && state->builtFor == projection) return;  // projection unchanged: keep bounds
     auto& cmd = rhi::rhiContext(context).cmd();
     cmd.bindPipeline(pipeline);
     cmd.push(push);
-    cmd.dispatch((push.clusterCount + 63) / 64);
+    cmd.dispatch((push.clusterCount + FGB_CLUSTER_BOUNDS_GROUP_SIZE - 1) / FGB_CLUSTER_BOUNDS_GROUP_SIZE);
     state->built = true;
     state->builtFor = projection;
   });
@@ -85,11 +69,11 @@ void ClusteredLighting::declare(graph::FrameGraph& graph, Blackboard& board) {
   node.read(bounds, Access::StorageRead);
   lists.counts = node.write(lists.counts, Access::StorageWrite);
   lists.indices = node.write(lists.indices, Access::StorageWrite);
-  CullPush push{device_->storageBufferIndex(scene_->frameConstants), device_->storageBufferIndex(bounds_),
-                device_->storageBufferIndex(scene_->lights), 0, 0};
+  gpu::LightCullPush push{device_->storageBufferIndex(scene_->frameConstants), device_->storageBufferIndex(bounds_),
+                          device_->storageBufferIndex(scene_->lights), 0, 0};
   const auto& grid = scene_->constants.clusterGrid;
-  const std::array<uint32_t, 3> groups{(grid.x + kCullBlock - 1) / kCullBlock, (grid.y + kCullBlock - 1) / kCullBlock,
-                                       grid.z};
+  constexpr uint32_t kBlock = FGB_LIGHT_CULL_BLOCK;
+  const std::array<uint32_t, 3> groups{(grid.x + kBlock - 1) / kBlock, (grid.y + kBlock - 1) / kBlock, grid.z};
   node.setJob([push, pipeline = cullPipeline_, lists, groups](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
     push.counts = ctx.storageBufferIndex(lists.counts);

@@ -1,6 +1,7 @@
 #include "mesh_feature.hpp"
 
 #include "../context/handles.hpp"
+#include "renderer/shared/meshes.h"
 
 #include <fgb/rhi/job_context.hpp>
 #include <fgb/scene/frustum.hpp>
@@ -14,44 +15,9 @@ using graph::Access;
 using graph::kStageFragmentShader;
 using graph::kStageVertexShader;
 
-struct CullPush {
-  glm::vec4 planes[6];
-  uint32_t instances;
-  uint32_t commands;
-  uint32_t visible;
-  uint32_t stats;
-  uint32_t instanceCount;
-};
-static_assert(sizeof(CullPush) <= rhi::kPushConstantBytes);
-
-constexpr uint32_t kBatchCount = 3;  // one per DrawClass
-
-// Mirrors shaders/renderer/mesh_compact.comp.
-struct CompactPush {
-  uint32_t commands;
-  uint32_t drawList;
-  uint32_t drawCounts;
-  uint32_t stats;
-  glm::uvec4 batches[kBatchCount];  // x: first group, y: group count
-};
-static_assert(sizeof(CompactPush) <= rhi::kPushConstantBytes);
-
-// Mirrors shaders/renderer/include/forward_push.glsl.
-struct ForwardPush {
-  uint32_t frame;
-  uint32_t instances;
-  uint32_t visible;
-  uint32_t materials;
-  uint32_t lights;
-  uint32_t clusterCounts;
-  uint32_t clusterIndices;
-  uint32_t materialSampler;
-  uint32_t flags;
-  OpaqueDepthTestGpu opaqueDepth;
-};
-
+constexpr uint32_t kBatchCount = FGB_MESH_BATCH_COUNT;  // one per DrawClass
 constexpr uint32_t kStatsBytes = 16;
-constexpr uint32_t kCommandStride = sizeof(DrawIndexedCommand);
+constexpr uint32_t kCommandStride = sizeof(gpu::DrawCommand);
 
 // Opaque and masked instances write depth; transparent ones only test it (forward: against the
 // depth attachment; visibility buffer: against the opaque depth buffer, in forward.frag).
@@ -179,12 +145,12 @@ MeshCullOutputs MeshFeature::declareCull(graph::FrameGraph& graph) {
   out.commands = cull.write(out.commands, Access::StorageReadWrite);
   out.visible = cull.write(out.visible, Access::StorageWrite);
   out.stats = cull.write(out.stats, Access::StorageReadWrite);
-  CullPush push{};
+  gpu::MeshCullPush push{};
   const auto frustum = scene::Frustum::fromMatrix(scene.constants.viewProj);
   for (size_t i = 0; i < 6; ++i) push.planes[i] = frustum.planes[i];
   push.instances = device_->storageBufferIndex(scene.instances);
   push.instanceCount = scene.instanceCount;
-  CompactPush compact{};
+  gpu::MeshCompactPush compact{};
   if (drawCount_) {
     out.drawList = cull.write(graph.createBuffer("mesh draw list", {commandBytes, {}}), Access::StorageWrite);
     out.drawCounts = cull.write(graph.createBuffer("mesh draw counts", {uint64_t{4} * kBatchCount, {}}),
@@ -201,7 +167,7 @@ MeshCullOutputs MeshFeature::declareCull(graph::FrameGraph& graph) {
     push.stats = ctx.storageBufferIndex(out.stats);
     ctx.cmd().bindPipeline(pipelines.cull);
     ctx.cmd().push(push);
-    ctx.cmd().dispatch((push.instanceCount + 63) / 64);
+    ctx.cmd().dispatch((push.instanceCount + FGB_MESH_CULL_GROUP_SIZE - 1) / FGB_MESH_CULL_GROUP_SIZE);
     if (!out.drawList.valid()) return;
     // The packing reads the instance counts every cull workgroup added to.
     ctx.cmd().computeBarrier();
@@ -229,15 +195,15 @@ void MeshFeature::declareDraw(graph::FrameGraph& graph, Blackboard& board, std::
   // (synchronization validation checks each read against the stages the barriers cover).
   constexpr graph::StageMask kForwardStages = kStageVertexShader | kStageFragmentShader;
   node.read(cull.visible, Access::StorageRead, kForwardStages);
-  ForwardPush push{};
+  gpu::ForwardPush push{};
   push.frame = device_->storageBufferIndex(scene.frameConstants);
   push.instances = device_->storageBufferIndex(scene.instances);
   push.materials = device_->storageBufferIndex(scene.materials);
   push.lights = device_->storageBufferIndex(scene.lights);
   push.clusterCounts = push.clusterIndices = rhi::kInvalidId;
   push.materialSampler = device_->samplerIndex(scene.materialSampler);
-  // Bit 2: debug.inject_nan names this pass (forward.frag writes a NaN at the centre pixel).
-  push.flags = (transparent ? 2u : 0u) | (nodeName == injectNanPass_ ? 4u : 0u);
+  push.flags =
+      (transparent ? gpu::kForwardTransparent : 0u) | (nodeName == injectNanPass_ ? gpu::kForwardInjectNan : 0u);
   ClusteredLights clusters;
   if (const auto* published = board.find<ClusteredLights>()) {
     clusters = *published;
@@ -269,7 +235,7 @@ void MeshFeature::declareDepthPrepass(graph::FrameGraph& graph, Blackboard& boar
   node.read(cull.visible, graph::Access::StorageRead, kStageVertexShader);
   targets.depth = node.setDepthStencil(targets.depth, graph::LoadOp::Clear, graph::ClearValue{{}, kDepthClear, 0});
   targets.depthCleared = true;
-  ForwardPush push{};
+  gpu::ForwardPush push{};
   push.frame = device_->storageBufferIndex(scene.frameConstants);
   push.instances = device_->storageBufferIndex(scene.instances);
   node.setJob([push, pipeline = pipelines_.depthOnly, cull, batches = batchesOf(scene, {DrawClass::Opaque}),

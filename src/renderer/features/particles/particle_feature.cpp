@@ -10,46 +10,14 @@
 #include <numeric>
 #include <span>
 
+#include "renderer/shared/particles.h"
+
 namespace fgb::features {
 namespace {
 
 using graph::Access;
 
-// Mirrors shaders/renderer/include/particles.glsl.
-struct ParticleGpu {
-  glm::vec4 positionAge{0.0f};
-  glm::vec4 velocityLifetime{0.0f};
-  uint32_t emitter = 0;
-  uint32_t alive = 0;
-  uint32_t pad0 = 0;
-  uint32_t pad1 = 0;
-};
-static_assert(sizeof(ParticleGpu) == 48);
-
-struct EmitterGpu {
-  glm::vec4 positionRate;
-  glm::vec4 directionCone;
-  glm::vec4 colorStart;
-  glm::vec4 colorEnd;
-  glm::vec4 speedSize;
-  glm::vec4 lifetime;
-  glm::uvec4 seed;
-};
-static_assert(sizeof(EmitterGpu) == 112);
-
-struct EmitPush {
-  uint32_t emitters, particles, freeList, frameIndex;
-};
-struct UpdatePush {
-  uint32_t particles, freeList, drawArgs, aliveList, poolSize;
-};
-// Mirrors the push block of shaders/renderer/particle.vert and particle.frag.
-struct RenderPush {
-  uint32_t frame, particles, emitters, aliveList;
-  OpaqueDepthTestGpu opaqueDepth;
-};
-
-constexpr uint64_t kArgsBytes = sizeof(DrawIndexedCommand);
+constexpr uint64_t kArgsBytes = sizeof(gpu::DrawCommand);
 
 // Particle state persists across frames. Import states name the stages and accesses of the use
 // that comes before (initial) and after (final) the graph; the queue classes document where those
@@ -64,8 +32,8 @@ constexpr graph::ImportState kPoolFinal{graph::kStageComputeShader,
                                         graph::Layout::Undefined, graph::QueueClass::Compute};
 
 // Emitters (and so the particles they spawn) live in camera-relative render space.
-EmitterGpu toGpu(const scene::Emitter& e, const glm::dvec3& cameraPosition, uint32_t seedOffset) {
-  EmitterGpu out{};
+gpu::Emitter toGpu(const scene::Emitter& e, const glm::dvec3& cameraPosition, uint32_t seedOffset) {
+  gpu::Emitter out{};
   out.positionRate = glm::vec4(glm::vec3(e.position - cameraPosition), e.rate);
   out.directionCone = glm::vec4(glm::normalize(e.direction), std::cos(glm::radians(e.coneAngleDeg)));
   out.colorStart = e.colorStart;
@@ -93,22 +61,22 @@ void ParticleFeature::createState(rhi::Device& device, const scene::Scene& scene
   auto storage = [&](const char* name, uint64_t size, rhi::BufferUsage extra = 0) {
     return device.createBuffer({name, size, rhi::kBufferStorage | rhi::kBufferTransferDst | extra, rhi::MemoryUsage::DeviceLocal});
   };
-  pool_ = storage("particle pool", sizeof(ParticleGpu) * poolSize_);
+  pool_ = storage("particle pool", sizeof(gpu::Particle) * poolSize_);
   freeList_ = storage("particle free list", uint64_t{4} * (poolSize_ + 1));
-  emitters_ = storage("particle emitters", sizeof(EmitterGpu) * emitterCount_);
+  emitters_ = storage("particle emitters", sizeof(gpu::Emitter) * emitterCount_);
   quadIndices_ = device.createBuffer({"particle quad", 24, rhi::kBufferIndex | rhi::kBufferTransferDst, rhi::MemoryUsage::DeviceLocal});
   argsTemplate_ = storage("particle draw template", kArgsBytes, rhi::kBufferTransferSrc);
 
   std::vector<uint32_t> freeList{poolSize_};  // [0]: count, then every slot
   freeList.resize(size_t{poolSize_} + 1);
   std::iota(freeList.begin() + 1, freeList.end(), 0u);
-  std::vector<EmitterGpu> emitters;
+  std::vector<gpu::Emitter> emitters;
   for (const auto& emitter : scene.emitters) emitters.push_back(toGpu(emitter, scene.camera.position, seedOffset));
-  rhi::uploadBuffer(device, pool_, bytesOf(std::vector<ParticleGpu>(poolSize_)));
+  rhi::uploadBuffer(device, pool_, bytesOf(std::vector<gpu::Particle>(poolSize_)));
   rhi::uploadBuffer(device, freeList_, bytesOf(freeList));
   rhi::uploadBuffer(device, emitters_, bytesOf(emitters));
   rhi::uploadBuffer(device, quadIndices_, bytesOf(std::vector<uint32_t>{0, 1, 2, 2, 1, 3}));
-  rhi::uploadBuffer(device, argsTemplate_, bytesOf(std::vector<DrawIndexedCommand>{{6, 0, 0, 0, 0}}));
+  rhi::uploadBuffer(device, argsTemplate_, bytesOf(std::vector<gpu::DrawCommand>{{6, 0, 0, 0, 0}}));
 }
 
 void ParticleFeature::initialize(FeatureInit& init) {
@@ -133,8 +101,8 @@ void ParticleFeature::initialize(FeatureInit& init) {
 
 void ParticleFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
   if (!enabled()) return;
-  auto pool = graph.importBuffer("particle pool", {sizeof(ParticleGpu) * poolSize_, {}}, rhi::external(pool_), kPoolInitial,
-                                 kPoolFinal);
+  auto pool = graph.importBuffer("particle pool", {sizeof(gpu::Particle) * poolSize_, {}}, rhi::external(pool_),
+                                 kPoolInitial, kPoolFinal);
   auto freeList = graph.importBuffer("particle free list", {uint64_t{4} * (poolSize_ + 1), {}}, rhi::external(freeList_),
                                      kFreeListState, kFreeListState);
   auto args = graph.createBuffer("particle draw args", {kArgsBytes, {}});
@@ -150,8 +118,8 @@ void ParticleFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
   auto emit = graph.addNode("Particle Emit", graph::NodeType::Compute);
   pool = emit.write(pool, Access::StorageReadWrite);
   freeList = emit.write(freeList, Access::StorageReadWrite);
-  const EmitPush emitPush{device_->storageBufferIndex(emitters_), device_->storageBufferIndex(pool_),
-                          device_->storageBufferIndex(freeList_), 0};
+  const gpu::ParticleEmitPush emitPush{device_->storageBufferIndex(emitters_), device_->storageBufferIndex(pool_),
+                                       device_->storageBufferIndex(freeList_), 0};
   emit.setJob([push = emitPush, pipeline = emitPipeline_, emitters = emitterCount_](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
     push.frameIndex = uint32_t(ctx.execution());  // the simulation step: deterministic per frame
@@ -165,14 +133,15 @@ void ParticleFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
   freeList = update.write(freeList, Access::StorageReadWrite);
   args = update.write(args, Access::StorageReadWrite);
   alive = update.write(alive, Access::StorageWrite);
-  UpdatePush updatePush{device_->storageBufferIndex(pool_), device_->storageBufferIndex(freeList_), 0, 0, poolSize_};
+  gpu::ParticleUpdatePush updatePush{device_->storageBufferIndex(pool_), device_->storageBufferIndex(freeList_), 0, 0,
+                                     poolSize_};
   update.setJob([push = updatePush, pipeline = updatePipeline_, args, alive](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
     push.drawArgs = ctx.storageBufferIndex(args);
     push.aliveList = ctx.storageBufferIndex(alive);
     ctx.cmd().bindPipeline(pipeline);
     ctx.cmd().push(push);
-    ctx.cmd().dispatch((push.poolSize + 63) / 64);
+    ctx.cmd().dispatch((push.poolSize + FGB_PARTICLE_GROUP_SIZE - 1) / FGB_PARTICLE_GROUP_SIZE);
   });
 
   auto& targets = board.get<FrameTargets>();
@@ -184,11 +153,11 @@ void ParticleFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
   constexpr graph::StageMask kRenderStages = graph::kStageVertexShader | graph::kStageFragmentShader;
   render.read(alive, Access::StorageRead, kRenderStages);
   render.read(pool, Access::StorageRead, kRenderStages);
-  RenderPush renderPush{device_->storageBufferIndex(scene_->frameConstants),
-                        device_->storageBufferIndex(pool_),
-                        device_->storageBufferIndex(emitters_),
-                        0,
-                        {}};
+  gpu::ParticleRenderPush renderPush{device_->storageBufferIndex(scene_->frameConstants),
+                                     device_->storageBufferIndex(pool_),
+                                     device_->storageBufferIndex(emitters_),
+                                     0,
+                                     {}};
   render.setJob([push = renderPush, pipeline = renderPipeline_, quad = quadIndices_, args, alive,
                  opaqueDepth = opaqueDepthSource(targets, depthTest_)](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
@@ -197,7 +166,7 @@ void ParticleFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
     ctx.cmd().bindPipeline(pipeline);
     ctx.cmd().push(push);
     ctx.cmd().bindIndexBuffer(quad, 0, rhi::IndexType::Uint32);
-    ctx.cmd().drawIndexedIndirect(ctx.buffer(args), 0, 1, sizeof(DrawIndexedCommand));
+    ctx.cmd().drawIndexedIndirect(ctx.buffer(args), 0, 1, sizeof(gpu::DrawCommand));
   });
 }
 

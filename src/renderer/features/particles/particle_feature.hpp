@@ -33,7 +33,7 @@ class ParticleFeature final : public IRenderFeature {
   rhi::BufferId freeList_;    // [0] count, [1..] free slots (persistent)
   rhi::BufferId emitters_;    // Emitter[] (static)
   rhi::BufferId quadIndices_; // 0 1 2 2 1 3
-  rhi::BufferId argsTemplate_;  // DrawIndexedCommand{6, 0, 0, 0, 0}
+  rhi::BufferId argsTemplate_;                   // gpu::DrawCommand{6, 0, 0, 0, 0}
   DepthTest depthTest_ = DepthTest::Attachment;  // visibility buffer: particle.frag tests the opaque depth
   uint32_t poolSize_ = 0;
   uint32_t emitterCount_ = 0;

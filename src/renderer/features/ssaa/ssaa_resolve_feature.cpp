@@ -2,17 +2,9 @@
 
 #include <fgb/rhi/job_context.hpp>
 
+#include "renderer/shared/post.h"
+
 namespace fgb::features {
-namespace {
-
-// Mirrors the push block of shaders/renderer/include/ssaa.glsl.
-struct ResolvePush {
-  uint32_t source;
-  uint32_t factor;
-  uint32_t target;  // compute form only
-};
-
-}  // namespace
 
 void SsaaResolveFeature::initialize(FeatureInit& init) {
   factor_ = init.settings.ssaa;
@@ -33,8 +25,8 @@ void SsaaResolveFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
   node.setJob([pipeline = pipeline_, source, target = targets.hdr, factor = factor_, form = form_, compute,
                extent = targets.extent](graph::JobContext& context) {
     auto& ctx = rhi::rhiContext(context);
-    const ResolvePush push{ctx.sampledTextureIndex(source), factor,
-                           compute ? ctx.storageTextureIndex(target) : rhi::kInvalidId};
+    const gpu::SsaaResolvePush push{ctx.sampledTextureIndex(source), factor,
+                                    compute ? ctx.storageTextureIndex(target) : rhi::kInvalidId};
     ctx.cmd().bindPipeline(pipeline);
     ctx.cmd().push(push);
     recordPostPass(ctx.cmd(), form, extent);

@@ -3,21 +3,9 @@
 #include <fgb/rhi/job_context.hpp>
 
 #include "../context/handles.hpp"
+#include "renderer/shared/post.h"
 
 namespace fgb::features {
-namespace {
-
-// Mirrors the push block of shaders/renderer/include/tonemap.glsl.
-struct TonemapPush {
-  uint32_t hdrTexture;
-  uint32_t bloomTexture;
-  uint32_t linearSampler;
-  uint32_t exposure;
-  float bloomIntensity;
-  uint32_t display;  // compute form only
-};
-
-}  // namespace
 
 graph::Format TonemapFeature::displayFormat(PostPassForm form) {
   return form == PostPassForm::Compute ? graph::Format::R8G8B8A8Unorm : kDisplayFormat;
@@ -43,7 +31,7 @@ void TonemapFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
   }
   if (targets.exposure.valid()) node.read(targets.exposure, graph::Access::StorageRead, stage);
   targets.display = writePostPassOutput(node, form_, targets.display);
-  TonemapPush push{0, rhi::kInvalidId, samplerIndex_, exposureBuffer_, bloomIntensity_, rhi::kInvalidId};
+  gpu::TonemapPush push{0, rhi::kInvalidId, samplerIndex_, exposureBuffer_, bloomIntensity_, rhi::kInvalidId};
   const graph::Extent extent = targets.outputExtent;
   node.setJob([push, pipeline = pipeline_, hdr, bloom, display = targets.display, form = form_, compute,
                extent](graph::JobContext& context) mutable {

@@ -1,6 +1,6 @@
 // "Tone mapping": L = 1 - exp(-L_hdr * exposure) (thesis), adding the bloom texture when the bloom
 // feature published one, into the display image. The HDR image is pre-exposed; the shader applies
-// the exposure state's tonemapScale (ExposureGpu). Fragment form (tonemap.frag): a full-screen
+// the exposure state's tonemapScale (gpu::Exposure). Fragment form (tonemap.frag): a full-screen
 // pass into the sRGB display target. Compute form (tonemap.comp, the visibility-buffer path): the
 // display image is R8G8B8A8_UNORM with storage usage and receives the same sRGB-encoded bytes
 // (storage images cannot be sRGB on most devices). The maths is shared (include/tonemap.glsl).

@@ -8,6 +8,7 @@
 #include <fgb/shaders/registry.hpp>
 
 #include "../context/handles.hpp"
+#include "renderer/shared/visbuffer.h"
 
 namespace fgb::features {
 namespace {
@@ -15,60 +16,12 @@ namespace {
 using graph::Access;
 constexpr graph::QueueClass kQueue = graph::QueueClass::Graphics;
 
-// Mirrors VisCounters in shaders/renderer/include/visbuffer.glsl.
-struct VisCounters {
-  uint32_t visibleClusters;
-  uint32_t filterGroups[3];
-  uint32_t smallTriangles;
-  uint32_t smallGroups[3];
-  uint64_t largeTotals;  // high 24 bits: large triangles, low 40 bits: their tile jobs
-  uint32_t largeTriangles;
-  uint32_t tileJobs;
-  uint32_t tileGroups[3];
-  uint32_t overflow;
-  uint32_t firstCluster;  // render.occlusion: the visible-list slot of the phase's first cluster
-  uint32_t occluded;      // phase 1: clusters held back by last frame's HiZ
-  uint32_t reserved[2];
-};
-static_assert(sizeof(VisCounters) == 80);
+using gpu::VisCounters;
 constexpr uint64_t kFilterArgsOffset = offsetof(VisCounters, filterGroups);
 constexpr uint64_t kSmallArgsOffset = offsetof(VisCounters, smallGroups);
 constexpr uint64_t kTileArgsOffset = offsetof(VisCounters, tileGroups);
-
-// Mirrors the push block of shaders/renderer/visbuffer/cluster_cull.comp.
-struct CullPush {
-  glm::vec4 planes[6];
-  uint32_t frame;
-  uint32_t instances;
-  uint32_t draws;
-  uint32_t clusters;
-  uint32_t counters;
-  uint32_t visible;
-  uint32_t occlusion;  // HiZ pyramid | occlusion candidates << 16 (indices < 16384: bindless.glsl)
-  uint32_t drawCount;  // kCullDrawCountMask, | kCullOcclusion | kCullReversedZ | kCullHoldBackOdd
-};
-static_assert(sizeof(CullPush) <= rhi::kPushConstantBytes);
-constexpr uint32_t kCullOcclusion = 0x80000000u;
-constexpr uint32_t kCullReversedZ = 0x40000000u;
-constexpr uint32_t kCullHoldBackOdd = 0x20000000u;  // debug.occlusion_hold_back
-constexpr uint32_t kCullDrawCountMask = 0x1fffffffu;
-
-// Mirrors the push block of shaders/renderer/visbuffer/cluster_cull_late.comp.
-struct LateCullPush {
-  uint32_t frame, instances, draws, clusters;
-  uint32_t hiz, candidates, earlyArgs, counters, visible, reversedZ;
-};
-
-// Mirrors the push block of shaders/renderer/visbuffer/hiz_build.comp.
-struct HizPush {
-  uint32_t words, hiz, width, height, level;
-};
-constexpr uint32_t kHizGroupSize = 8;  // hiz_build.comp: 8 x 8
-
-// Mirrors the push block of shaders/renderer/visbuffer/hiz_args.comp.
-struct HizArgsPush {
-  uint32_t rasterArgs, args, width, height;
-};
+// ClusterCullPush::occlusion packs two storage-buffer indices in 16 bits each.
+static_assert(FGB_MAX_STORAGE_BUFFERS <= 0x10000);
 constexpr uint64_t kHizLevelArgsBytes = 12;  // one VkDispatchIndirectCommand per level
 
 // A viewport side at a HiZ pyramid level: ceil(size / 2^level) (hizLevelSize in hiz_occlusion.glsl).
@@ -89,44 +42,8 @@ uint64_t hizKeys(uint32_t width, uint32_t height) {
   return keys;
 }
 
-// Mirrors shaders/renderer/visbuffer/vis_args.comp.
-struct ArgsPush {
-  uint32_t counters;
-  uint32_t args;
-  uint32_t smallPerGroup;
-  uint32_t tileJobCapacity;
-};
-
-// Mirrors the push block of shaders/renderer/include/visbuffer_triangle.glsl.
-struct VisPush {
-  uint32_t frame, instances, materials, draws, clusters, indices, vertices;
-  uint32_t positions;               // cluster vertices (ClusterGeometry::vertices)
-  uint32_t normals, tangents, uvs;  // float offsets of the vertex streams
-  uint32_t counters, args, visible, smallList, largeList, largeCapacity, words, depthOut, hdr;
-  uint32_t materialSampler, lights, clusterCounts, clusterIndices, flags;
-  uint32_t tileJobs, tileJobCapacity, pad;
-  glm::vec4 background;
-};
-static_assert(offsetof(VisPush, background) == 112 && sizeof(VisPush) == rhi::kPushConstantBytes);
-
-constexpr uint32_t kFlagReversedZ = 1;
-constexpr uint32_t kFlagLargeTiles = 2;
-constexpr uint32_t kFlagSerialSubgroups = 4;  // CPU device: see triangle_filter.comp
-constexpr uint32_t kRasterGroupSize = 64;     // visibility_raster.comp's local size
-constexpr uint64_t kLargeTriangleBytes = 64;  // 4 uvec4 (packLargeTriangle in visbuffer_triangle.glsl)
-constexpr uint64_t kTileJobBytes = 8;         // uvec2: large-list slot, job index within the triangle
-constexpr uint32_t kShadeGroupSize = 8;       // material_shade.comp: 8 x 8
-constexpr uint32_t kClearGroupSize = 8;       // vis_clear.comp: 8 x 8
-
-// Mirrors the push block of shaders/renderer/visbuffer/vis_clear.comp.
-struct ClearPush {
-  uint32_t words;
-  uint32_t width;
-  uint32_t height;
-};
-
 // Reversed Z: the projection maps nearer points to larger depth.
-bool projectsReversedZ(const FrameConstantsGpu& constants) {
+bool projectsReversedZ(const gpu::FrameConstants& constants) {
   const float near = constants.depthRange.x;
   const auto depthAt = [&](float distance) {
     const glm::vec4 clip = constants.proj * glm::vec4(0.0f, 0.0f, -distance, 1.0f);
@@ -160,7 +77,7 @@ struct VisBufferFeature::Buffers {
   graph::BufferHandle candidates;   // the clusters phase 1 held back
   graph::BufferHandle hizLateArgs;  // "HiZ Build (late)"'s dispatches (none when phase 2 drew nothing)
   graph::Extent extent;
-  VisPush push{};  // the scene's persistent indices; per-node handles are filled in by the jobs
+  gpu::VisPush push{};  // the scene's persistent indices; per-node handles are filled in by the jobs
 
   // The visibility words in a node's declarations and in its job, whichever backing holds them.
   void readWords(graph::NodeBuilder& node) const {
@@ -257,15 +174,15 @@ VisBufferFeature::Buffers VisBufferFeature::declareBuffers(graph::FrameGraph& gr
   }
   b.visible = graph.createBuffer("visible clusters", {uint64_t{4} * geometry.drawCount, {}});
   b.smallList = graph.createBuffer("small triangles", {uint64_t{32} * geometry.triangles, {}});  // 2 uvec4 each
-  b.largeList = graph.createBuffer("large triangles", {kLargeTriangleBytes * largeCapacity_, {}});
-  b.tileJobs = graph.createBuffer("large triangle tile jobs", {kTileJobBytes * tileJobCapacity_, {}});
+  b.largeList = graph.createBuffer("large triangles", {uint64_t{gpu::kLargeTriangleBytes} * largeCapacity_, {}});
+  b.tileJobs = graph.createBuffer("large triangle tile jobs", {uint64_t{gpu::kTileJobBytes} * tileJobCapacity_, {}});
   if (imageBacking_)
     b.wordImage = graph.createTexture("visibility buffer", {graph::Format::R64Uint, targets.extent});
   else
     b.words = graph.createBuffer("visibility buffer", {uint64_t{8} * pixels, {}});
   b.depth = graph.createBuffer("visibility depth", {uint64_t{4} * pixels, {}});
 
-  VisPush& p = b.push;
+  gpu::VisPush& p = b.push;
   p.frame = device_->storageBufferIndex(scene.frameConstants);
   p.instances = device_->storageBufferIndex(scene.instances);
   p.materials = device_->storageBufferIndex(scene.materials);
@@ -282,7 +199,8 @@ VisBufferFeature::Buffers VisBufferFeature::declareBuffers(graph::FrameGraph& gr
   p.materialSampler = device_->samplerIndex(scene.materialSampler);
   p.lights = device_->storageBufferIndex(scene.lights);
   p.clusterCounts = p.clusterIndices = rhi::kInvalidId;
-  p.flags = (reversedZ_ ? kFlagReversedZ : 0u) | (device_->adapter().type == "cpu" ? kFlagSerialSubgroups : 0u);
+  p.flags =
+      (reversedZ_ ? gpu::kFlagReversedZ : 0u) | (device_->adapter().type == "cpu" ? gpu::kFlagSerialSubgroups : 0u);
   p.background = {targets.background[0], targets.background[1], targets.background[2], targets.background[3]};
   return b;
 }
@@ -309,9 +227,9 @@ void VisBufferFeature::declareClear(graph::FrameGraph& graph, Buffers& b) const 
     auto& ctx = rhi::rhiContext(context);
     if (b.wordImage.valid()) {
       ctx.cmd().bindPipeline(clearImage);
-      ctx.cmd().push(ClearPush{ctx.storageTextureIndex(b.wordImage), b.extent.width, b.extent.height});
-      ctx.cmd().dispatch((b.extent.width + kClearGroupSize - 1) / kClearGroupSize,
-                         (b.extent.height + kClearGroupSize - 1) / kClearGroupSize);
+      ctx.cmd().push(gpu::ClearPush{ctx.storageTextureIndex(b.wordImage), b.extent.width, b.extent.height});
+      ctx.cmd().dispatch((b.extent.width + FGB_VIS_CLEAR_GROUP_SIZE - 1) / FGB_VIS_CLEAR_GROUP_SIZE,
+                         (b.extent.height + FGB_VIS_CLEAR_GROUP_SIZE - 1) / FGB_VIS_CLEAR_GROUP_SIZE);
     } else {
       ctx.cmd().fillBuffer(ctx.buffer(b.words), 0, wordBytes, 0);  // 0: no triangle (see visbuffer.glsl)
     }
@@ -330,15 +248,17 @@ void VisBufferFeature::declareClusterCull(graph::FrameGraph& graph, Buffers& b) 
     node.read(b.hiz, Access::StorageRead);
     b.candidates = node.write(b.candidates, Access::StorageWrite);
   }
-  CullPush push{};
+  gpu::ClusterCullPush push{};
   const auto frustum = scene::Frustum::fromMatrix(scene_->constants.viewProj);
   for (size_t i = 0; i < 6; ++i) push.planes[i] = frustum.planes[i];
   push.frame = b.push.frame;
   push.instances = b.push.instances;
   push.draws = b.push.draws;
   push.clusters = b.push.clusters;
-  if (drawCount_ > kCullDrawCountMask) throw std::logic_error("visbuffer: more clusters than Cluster Cull can count");
-  push.drawCount = drawCount_ | (reversedZ_ ? kCullReversedZ : 0u) | (occlusionHoldBack_ ? kCullHoldBackOdd : 0u);
+  if (drawCount_ > gpu::kCullDrawCountMask)
+    throw std::logic_error("visbuffer: more clusters than Cluster Cull can count");
+  push.drawCount =
+      drawCount_ | (reversedZ_ ? gpu::kCullReversedZ : 0u) | (occlusionHoldBack_ ? gpu::kCullHoldBackOdd : 0u);
   node.setJob([push, pipelines = pipelines_, counters = b.early.counters, visible = b.visible, args = b.early.cullArgs,
                hiz = b.hiz, candidates = b.candidates,
                jobCapacity = tileJobCapacity_](graph::JobContext& context) mutable {
@@ -349,15 +269,15 @@ void VisBufferFeature::declareClusterCull(graph::FrameGraph& graph, Buffers& b) 
     if (hiz.valid()) {
       push.occlusion = ctx.storageBufferIndex(hiz) | ctx.storageBufferIndex(candidates) << 16;
       // The first frame has no previous depths: no HiZ test.
-      if (ctx.execution() > 0) push.drawCount |= kCullOcclusion;
+      if (ctx.execution() > 0) push.drawCount |= gpu::kCullOcclusion;
     }
-    const uint32_t drawCount = push.drawCount & kCullDrawCountMask;
+    const uint32_t drawCount = push.drawCount & gpu::kCullDrawCountMask;
     cmd.bindPipeline(pipelines.cull);
     cmd.push(push);
-    cmd.dispatch((drawCount + 63) / 64);
+    cmd.dispatch((drawCount + FGB_VIS_CULL_GROUP_SIZE - 1) / FGB_VIS_CULL_GROUP_SIZE);
     cmd.computeBarrier();  // the arguments read every workgroup's count
     cmd.bindPipeline(pipelines.args);
-    cmd.push(ArgsPush{push.counters, ctx.storageBufferIndex(args), kRasterGroupSize, jobCapacity});
+    cmd.push(gpu::ArgsPush{push.counters, ctx.storageBufferIndex(args), FGB_VIS_RASTER_GROUP_SIZE, jobCapacity});
     cmd.dispatch(1);
   });
 }
@@ -372,7 +292,7 @@ void VisBufferFeature::declareClusterCullLate(graph::FrameGraph& graph, Buffers&
   b.late.counters = node.write(b.late.counters, Access::StorageReadWrite);
   b.visible = node.write(b.visible, Access::StorageReadWrite);
   b.late.cullArgs = node.write(b.late.cullArgs, Access::StorageReadWrite);  // see cullArgs in Cluster Cull
-  LateCullPush push{};
+  gpu::LateCullPush push{};
   push.frame = b.push.frame;
   push.instances = b.push.instances;
   push.draws = b.push.draws;
@@ -390,10 +310,11 @@ void VisBufferFeature::declareClusterCullLate(graph::FrameGraph& graph, Buffers&
     cmd.bindPipeline(pipelines.cullLate);
     cmd.push(push);
     // Sized for every cluster (the candidate count is on the GPU); the invocations past it leave.
-    cmd.dispatch((drawCount + 63) / 64);
+    cmd.dispatch((drawCount + FGB_VIS_CULL_GROUP_SIZE - 1) / FGB_VIS_CULL_GROUP_SIZE);
     cmd.computeBarrier();
     cmd.bindPipeline(pipelines.args);
-    cmd.push(ArgsPush{push.counters, ctx.storageBufferIndex(b.late.cullArgs), kRasterGroupSize, jobCapacity});
+    cmd.push(
+        gpu::ArgsPush{push.counters, ctx.storageBufferIndex(b.late.cullArgs), FGB_VIS_RASTER_GROUP_SIZE, jobCapacity});
     cmd.dispatch(1);
   });
 }
@@ -426,13 +347,14 @@ void VisBufferFeature::declareTriangleFilter(graph::FrameGraph& graph, Buffers& 
     cmd.dispatchIndirect(ctx.buffer(phase.cullArgs), kFilterArgsOffset);
     cmd.computeBarrier();
     cmd.bindPipeline(pipelines.args);
-    cmd.push(ArgsPush{push.counters, ctx.storageBufferIndex(phase.rasterArgs), kRasterGroupSize, push.tileJobCapacity});
+    cmd.push(gpu::ArgsPush{push.counters, ctx.storageBufferIndex(phase.rasterArgs), FGB_VIS_RASTER_GROUP_SIZE,
+                           push.tileJobCapacity});
     cmd.dispatch(1);
     if (!late) return;
     cmd.computeBarrier();
     cmd.bindPipeline(pipelines.hizArgs);
-    cmd.push(HizArgsPush{ctx.storageBufferIndex(phase.rasterArgs), ctx.storageBufferIndex(b.hizLateArgs),
-                         b.extent.width, b.extent.height});
+    cmd.push(gpu::HizArgsPush{ctx.storageBufferIndex(phase.rasterArgs), ctx.storageBufferIndex(b.hizLateArgs),
+                              b.extent.width, b.extent.height});
     cmd.dispatch(1);
   });
 }
@@ -460,8 +382,8 @@ void VisBufferFeature::declareRaster(graph::FrameGraph& graph, Buffers& b, const
     cmd.push(push);
     cmd.dispatchIndirect(ctx.buffer(args), kSmallArgsOffset);
     // No barrier between the two: atomic max commutes. (A copy: the job runs every frame.)
-    VisPush tiles = push;
-    tiles.flags |= kFlagLargeTiles;
+    gpu::VisPush tiles = push;
+    tiles.flags |= gpu::kFlagLargeTiles;
     cmd.push(tiles);
     cmd.dispatchIndirect(ctx.buffer(args), kTileArgsOffset);
   });
@@ -479,7 +401,7 @@ void VisBufferFeature::declareHizBuild(graph::FrameGraph& graph, Buffers& b, boo
   node.setJob([pipeline = pipelines_.hizBuild, b, levels, late](graph::JobContext& context) {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
-    HizPush push{b.wordsIndex(ctx), ctx.storageBufferIndex(b.hiz), b.extent.width, b.extent.height, 0};
+    gpu::HizPush push{b.wordsIndex(ctx), ctx.storageBufferIndex(b.hiz), b.extent.width, b.extent.height, 0};
     cmd.bindPipeline(pipeline);
     for (uint32_t level = 1; level <= levels; ++level) {
       if (level > 1) cmd.computeBarrier();  // a level reads the one before it
@@ -491,7 +413,8 @@ void VisBufferFeature::declareHizBuild(graph::FrameGraph& graph, Buffers& b, boo
       }
       const uint32_t width = hizLevelSize(b.extent.width, level);
       const uint32_t height = hizLevelSize(b.extent.height, level);
-      cmd.dispatch((width + kHizGroupSize - 1) / kHizGroupSize, (height + kHizGroupSize - 1) / kHizGroupSize);
+      cmd.dispatch((width + FGB_HIZ_GROUP_SIZE - 1) / FGB_HIZ_GROUP_SIZE,
+                   (height + FGB_HIZ_GROUP_SIZE - 1) / FGB_HIZ_GROUP_SIZE);
     }
   });
 }
@@ -544,8 +467,8 @@ void VisBufferFeature::declareShade(graph::FrameGraph& graph, Blackboard& board,
     }
     cmd.bindPipeline(pipelines.shade);
     cmd.push(push);
-    cmd.dispatch((b.extent.width + kShadeGroupSize - 1) / kShadeGroupSize,
-                 (b.extent.height + kShadeGroupSize - 1) / kShadeGroupSize);
+    cmd.dispatch((b.extent.width + FGB_VIS_SHADE_GROUP_SIZE - 1) / FGB_VIS_SHADE_GROUP_SIZE,
+                 (b.extent.height + FGB_VIS_SHADE_GROUP_SIZE - 1) / FGB_VIS_SHADE_GROUP_SIZE);
   });
   targets.color = targets.hdr;  // single-sampled: later forward passes load the shaded image
   targets.colorCleared = true;

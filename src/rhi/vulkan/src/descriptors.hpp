@@ -1,5 +1,6 @@
-// The one descriptor set layout every pipeline shares (set 0, see shaders/include/bindless.glsl)
-// and the one pipeline layout (set 0 + push constants). Bindless where the device allows it
+// The one descriptor set layout every pipeline shares (set 0: binding numbers and capacities from
+// fgb/rhi/shared/bindless.h, which shaders include too) and the one pipeline layout (set 0 + push
+// constants). Bindless where the device allows it
 // (update-after-bind, partially bound): slots are written whenever a resource is created. Fallback
 // otherwise: every slot is pre-filled with a dummy resource and writes wait until the GPU is idle.
 //
@@ -20,6 +21,7 @@
 #include "vk.hpp"
 
 #include <fgb/graph/format.hpp>
+#include <fgb/rhi/shared/bindless.h>
 
 #include <cstdint>
 #include <functional>
@@ -27,22 +29,22 @@
 
 namespace fgb::vulkan {
 
-// Capacities; must match the FGB_MAX_* macros in shaders/include/bindless.glsl.
-inline constexpr uint32_t kMaxStorageBuffers = 16384;  // per storage-buffer binding (0 and 4)
-inline constexpr uint32_t kMaxSampledTextures = 4096;
-inline constexpr uint32_t kMaxStorageTextures = 1024;
-inline constexpr uint32_t kMaxSamplers = 64;
-inline constexpr uint32_t kMaxInt64StorageTextures = 64;
+// Capacities.
+inline constexpr uint32_t kMaxStorageBuffers = FGB_MAX_STORAGE_BUFFERS;  // per storage-buffer binding (0 and 4)
+inline constexpr uint32_t kMaxSampledTextures = FGB_MAX_SAMPLED_TEXTURES;
+inline constexpr uint32_t kMaxStorageTextures = FGB_MAX_STORAGE_TEXTURES;
+inline constexpr uint32_t kMaxSamplers = FGB_MAX_SAMPLERS;
+inline constexpr uint32_t kMaxInt64StorageTextures = FGB_MAX_INT64_STORAGE_TEXTURES;
 
 enum class Binding : uint32_t {
-  StorageBuffers = 0,  // read-only blocks
-  SampledTextures = 1,
-  StorageTextures = 2,
-  Samplers = 3,
-  WritableStorageBuffers = 4,  // blocks the shader may write; same slots as StorageBuffers
-  Int64StorageTextures = 5,    // R64Uint storage textures (64-bit image atomics)
+  StorageBuffers = FGB_BINDING_STORAGE_BUFFERS,  // read-only blocks
+  SampledTextures = FGB_BINDING_SAMPLED_TEXTURES,
+  StorageTextures = FGB_BINDING_STORAGE_TEXTURES,
+  Samplers = FGB_BINDING_SAMPLERS,
+  WritableStorageBuffers = FGB_BINDING_WRITABLE_STORAGE_BUFFERS,  // same slots as StorageBuffers
+  Int64StorageTextures = FGB_BINDING_INT64_STORAGE_TEXTURES,      // R64Uint (64-bit image atomics)
 };
-inline constexpr uint32_t kBindingCount = 6;
+inline constexpr uint32_t kBindingCount = FGB_BINDING_COUNT;
 // The storage-texture binding of a format.
 Binding storageTextureBinding(graph::Format format);
 

@@ -1,5 +1,5 @@
 // Basic vocabulary of the frame graph: queues, node types, resource accesses and the abstract
-// synchronisation state (stages, access masks, layouts). Mirrors Vulkan synchronization2 closely so
+// synchronisation state (stages, access masks, layouts). Follows Vulkan synchronization2 closely so
 // the backend maps it 1:1, but contains no Vulkan types: the graph library stays API-agnostic.
 #pragma once
 

@@ -4,6 +4,7 @@
 
 #include <fgb/graph/format.hpp>
 #include <fgb/graph/frame_graph.hpp>
+#include <fgb/rhi/shared/bindless.h>
 
 #include <cstdint>
 #include <string>
@@ -12,6 +13,7 @@
 namespace fgb::rhi {
 
 inline constexpr uint32_t kInvalidId = graph::kInvalidIndex;
+static_assert(kInvalidId == FGB_NONE, "shaders test indices against FGB_NONE");
 
 // Typed ids keep a buffer from being passed where a texture is expected.
 template <class Tag>
@@ -129,7 +131,7 @@ struct ComputePipelineDesc {
 };
 
 // Every pipeline shares one layout: the bindless set plus this many bytes of push constants.
-inline constexpr uint32_t kPushConstantBytes = 128;
+inline constexpr uint32_t kPushConstantBytes = FGB_PUSH_CONSTANT_BYTES;
 
 // Imported graph resources refer to RHI objects through ExternalResource ids.
 graph::ExternalResource external(BufferId buffer);

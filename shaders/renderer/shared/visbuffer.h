@@ -1,0 +1,178 @@
+// Shared by C++ and GLSL (fgb/rhi/shared/prelude.h): the visibility-buffer path's GPU structs,
+// push blocks, flags and sizes (src/renderer/features/visbuffer/, shaders/renderer/visbuffer/).
+// GLSL: VisCounters needs GL_EXT_shader_explicit_arithmetic_types_int64 (visbuffer.glsl).
+#ifndef FGB_RENDERER_SHARED_VISBUFFER_H
+#define FGB_RENDERER_SHARED_VISBUFFER_H
+
+#include "fgb/rhi/shared/prelude.h"
+
+// Workgroup sizes (local_size_x/y of the shaders; the feature dispatches with them).
+#define FGB_VIS_CULL_GROUP_SIZE 64    // cluster_cull.comp, cluster_cull_late.comp: one cluster each
+#define FGB_VIS_RASTER_GROUP_SIZE 64  // visibility_raster.comp: small triangles per workgroup
+#define FGB_VIS_SHADE_GROUP_SIZE 8    // material_shade.comp: 8 x 8 pixels
+#define FGB_VIS_CLEAR_GROUP_SIZE 8    // vis_clear.comp: 8 x 8 pixels
+#define FGB_HIZ_GROUP_SIZE 8          // hiz_build.comp: 8 x 8 texels (hiz_args.comp sizes its dispatches)
+
+FGB_GPU_BEGIN
+
+// Cluster draw flags (ClusterDraw::flags).
+const uint kClusterSingleSided = 1u;  // back faces are culled (glTF: not double-sided)
+const uint kClusterMirrored = 2u;     // negative determinant: front faces wind the other way on screen
+const uint kClusterConeUsable = 4u;   // near-uniform scale: the cluster's normal cone stays valid in world space
+const uint kClusterAlphaMasked = 8u;  // alpha-tested during "Visibility Raster"
+
+// scene::Cluster as the shaders read it (the upload copies the scene's clusters as they are:
+// gpu_upload.cpp checks the layouts agree). A cluster's triangles are packed words
+// (scene::packClusterTriangle: three 8-bit indices into the cluster's vertex list); its vertices are
+// firstVertex + those indices in the scene-wide cluster vertex stream (ClusterGeometry::vertices:
+// position, attribute vertex).
+struct ClusterData {
+  vec4 sphere;  // mesh-local centre, radius
+  vec4 cone;    // mesh-local axis, cutoff
+  uint firstTriangle;
+  uint triangleCount;
+  uint firstVertex;
+  uint vertexCount;
+};
+FGB_CHECK_SIZE(ClusterData, 48)
+
+// One cluster of one instance (what "Cluster Cull" tests).
+struct ClusterDraw {
+  uint instance;     // GPU instance index
+  uint cluster;      // index into the scene's clusters
+  uint firstVertex;  // the mesh's first vertex (cluster indices are mesh-local)
+  uint flags;        // kCluster* bits
+};
+FGB_CHECK_SIZE(ClusterDraw, 16)
+
+// Counters and indirect dispatch arguments written by the culling nodes.
+struct VisCounters {
+  uint visibleClusters;
+  uint filterGroups[3];   // "Triangle Filter": one workgroup per visible cluster
+  uint smallTriangles;
+  uint smallGroups[3];    // "Visibility Raster", small triangles: one thread each
+  uint64_t largeTotals;   // high 24 bits: large triangles, low 40 bits: their tile jobs
+  uint largeTriangles;
+  uint tileJobs;          // jobs of at most 16 8x8 tiles of one large triangle (capped by the list)
+  uint tileGroups[3];     // "Visibility Raster", large triangles: one workgroup per tile job
+  uint overflow;          // large triangles dropped for lack of list space (should stay 0)
+  // render.occlusion=1 (two-phase HiZ culling). The phase-2 ("late") nodes count in counters of
+  // their own, whose visible clusters follow phase 1's in the visible-cluster list:
+  uint firstCluster;      // the list slot of this phase's first cluster (0 in phase 1)
+  uint occluded;          // phase 1: clusters held back by last frame's HiZ (phase 2 re-tests them)
+  uint reserved[2];
+};
+FGB_CHECK_SIZE(VisCounters, 80)
+
+// "Cluster Cull" (cluster_cull.comp).
+struct ClusterCullPush {
+  vec4 planes[6];  // inside: dot(n, p) + d >= 0
+  uint frame;
+  uint instances;
+  uint draws;
+  uint clusters;
+  uint counters;
+  uint visible;    // visible-cluster list: ClusterDraw indices
+  uint occlusion;  // render.occlusion: HiZ pyramid (low 16 bits), occlusion candidates (high 16 bits)
+  uint drawCount;  // kCullDrawCountMask; kCullOcclusion, kCullReversedZ, kCullHoldBackOdd
+};
+FGB_CHECK_PUSH(ClusterCullPush, 128)
+// drawCount's top bits (render.occlusion):
+const uint kCullOcclusion = 0x80000000u;  // test against last frame's HiZ pyramid (not on the first frame)
+const uint kCullReversedZ = 0x40000000u;
+const uint kCullHoldBackOdd = 0x20000000u;  // debug.occlusion_hold_back: odd clusters are candidates too
+const uint kCullDrawCountMask = 0x1fffffffu;
+
+// "Cluster Cull (late)" (cluster_cull_late.comp).
+struct LateCullPush {
+  uint frame;
+  uint instances;
+  uint draws;
+  uint clusters;
+  uint hiz;         // this frame's pyramid so far (read)
+  uint candidates;  // ClusterDraw indices held back by phase 1 (read)
+  uint earlyArgs;   // phase 1's counters (read): candidates, phase-1 visible clusters
+  uint counters;    // the late counters (read-write)
+  uint visible;     // the visible-cluster list (appended to)
+  uint reversedZ;
+};
+FGB_CHECK_PUSH(LateCullPush, 40)
+
+// "HiZ Build" (hiz_build.comp).
+struct HizPush {
+  uint words;   // level 1: the visibility buffer (storage buffer, or R64 image: render.vis_backing)
+  uint hiz;     // the pyramid (read-write)
+  uint width;   // the viewport
+  uint height;
+  uint level;   // the level written (>= 1)
+};
+FGB_CHECK_PUSH(HizPush, 20)
+
+// The HiZ build's indirect arguments (hiz_args.comp).
+struct HizArgsPush {
+  uint rasterArgs;  // "Triangle Filter (late)"'s snapshot (read)
+  uint args;        // written: one VkDispatchIndirectCommand (uvec3) per level from level 1
+  uint width;       // the viewport
+  uint height;
+};
+FGB_CHECK_PUSH(HizArgsPush, 16)
+
+// The raster's indirect arguments (vis_args.comp).
+struct ArgsPush {
+  uint counters;       // read
+  uint args;           // written: the counters with the arguments filled in
+  uint smallPerGroup;  // small triangles per raster workgroup
+  uint tileJobCapacity;
+};
+FGB_CHECK_PUSH(ArgsPush, 16)
+
+// "Visibility Clear" of the R64 image backing (vis_clear.comp).
+struct ClearPush {
+  uint words;  // storage-texture index of the visibility image
+  uint width;
+  uint height;
+};
+FGB_CHECK_PUSH(ClearPush, 12)
+
+// "Triangle Filter", "Visibility Raster" and "Material Shade" (visbuffer_triangle.glsl).
+struct VisPush {
+  uint frame;
+  uint instances;
+  uint materials;
+  uint draws;
+  uint clusters;
+  uint indices;         // cluster triangles (packed 8-bit cluster-local indices, ClusterData)
+  uint vertices;        // the scene's vertex buffer (streams at the float offsets below)
+  uint positions;       // cluster vertices (uvec4: position as float bits, w: its vertex in `vertices`)
+  uint normals;         // float offsets of the vertex streams
+  uint tangents;
+  uint uvs;
+  uint counters;        // VisCounters the culling nodes add to
+  uint args;            // VisCounters snapshot with the indirect arguments of this node
+  uint visible;         // visible-cluster list
+  uint smallList;       // ids of small triangles
+  uint largeList;       // kLargeTriangleBytes per large triangle, set up by "Triangle Filter" (packLargeTriangle)
+  uint largeCapacity;
+  uint words;           // the visibility buffer (uint64 per pixel)
+  uint depthOut;        // float per pixel, the later colour passes' depth test (opaque_depth.glsl)
+  uint hdr;             // storage image index of the HDR target
+  uint materialSampler;
+  uint lights;
+  uint clusterCounts;   // FGB_NONE: no clustered lighting
+  uint clusterIndices;
+  uint flags;           // kFlagReversedZ, kFlagLargeTiles, kFlagSerialSubgroups
+  uint tileJobs;        // kTileJobBytes per tile job: large-list slot, job index within the triangle
+  uint tileJobCapacity;
+  uint pad;
+  vec4 background;      // (at byte 112) HDR clear of pixels no triangle covers (pre-exposed, alpha 0)
+};
+FGB_CHECK_PUSH(VisPush, 128)
+const uint kFlagReversedZ = 1u;
+const uint kFlagLargeTiles = 2u;        // raster the large-triangle tiles (else the small triangles)
+const uint kFlagSerialSubgroups = 4u;   // a CPU device: a workgroup's subgroups run one after another
+const uint kLargeTriangleBytes = 64u;   // 4 uvec4 (packLargeTriangle in visbuffer_triangle.glsl)
+const uint kTileJobBytes = 8u;          // uvec2: large-list slot, job index within the triangle
+
+FGB_GPU_END
+
+#endif

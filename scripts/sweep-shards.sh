@@ -62,6 +62,7 @@ done
 spec=""
 if [[ -z $device ]]; then
   spec="$here/build/gpu-resources.json"
+  mkdir -p "$(dirname "$spec")"
   [[ -f $spec ]] || FGBENCH="$fgbench" "$here/scripts/gpu-resources.sh" "$spec" >/dev/null
   gpus=$(grep -o '"id"' "$spec" | wc -l)
   if [[ $gpus -eq 0 ]]; then

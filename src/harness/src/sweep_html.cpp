@@ -318,7 +318,7 @@ std::string sweepHtml(const SweepResult& result) {
   for (std::size_t r = 0; r < result.references.size(); ++r) {
     const auto& ref = result.references[r];
     html += fmt::format("<figure>{}<figcaption>reference {} ({}; two renders {})</figcaption></figure>\n",
-                        imgTag(ref.images.display, "reference"), r + 1, describeSize(ref.images.display),
+                        imgTag(ref.images.display, "reference"), r + 1, sizeText(ref.workload, ref.images),
                         ref.identical ? "bit-identical" : "differ");
   }
   for (const auto& c : result.configurations) {

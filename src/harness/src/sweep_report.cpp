@@ -6,6 +6,7 @@
 #include <fgb/core/atomic_file.hpp>
 #include <fgb/core/error.hpp>
 #include <fgb/core/stopwatch.hpp>
+#include <fgb/harness/html_util.hpp>
 #include <fgb/harness/image_io.hpp>
 #include <fgb/harness/json_io.hpp>
 #include <fgb/harness/report.hpp>
@@ -27,8 +28,9 @@ uint32_t msaaUsed(const ConfigurationOutcome& c) {
 }
 
 nlohmann::json configJson(const render::WorkloadConfig& w, const RenderedImages& images) {
-  return {{"width", images.display.width},
-          {"height", images.display.height},
+  const auto [width, height] = renderedSize(w, images);
+  return {{"width", width},
+          {"height", height},
           {"msaa_requested", w.msaa},
           {"knobs", knobsJson(w.knobs)}};
 }
@@ -126,21 +128,22 @@ nlohmann::json shardJson(const SweepResult& result) {
           {"grid_indices", result.shard->gridIndices}};
 }
 
-// A shard's images, for sweep-merge's page (written atomically, as PNG: the page shows 8-bit
-// images anyway): images/config-G.png and heat-G.png by grid place G, images/reference-R.png by
-// the shard's reference R (1-based).
+// A shard's images, for sweep-merge's page, at the size the page shows them (full-size 1080p PNGs
+// took a shard 6 s to encode on the H200's host; thumbnails 0.2 s): images/config-G.png and
+// heat-G.png by grid place G, images/reference-R.png by the shard's reference R (1-based).
 void writeShardImages(const std::filesystem::path& dir, const SweepResult& result) {
   const auto images = dir / "images";
   std::error_code ec;
   std::filesystem::create_directories(images, ec);
   if (ec) throw InputError(images.string() + ": cannot create (" + ec.message() + ")");
   for (std::size_t r = 0; r < result.references.size(); ++r)
-    writePng(images / fmt::format("reference-{}.png", r + 1), result.references[r].images.display);
+    writePng(images / fmt::format("reference-{}.png", r + 1),
+             shrinkToWidth(result.references[r].images.display, kThumbnailWidth));
   for (std::size_t i = 0; i < result.configurations.size(); ++i) {
     const std::size_t g = result.shard->gridIndices[i] + 1;
     const auto& c = result.configurations[i];
-    writePng(images / fmt::format("config-{}.png", g), c.images.display);
-    writePng(images / fmt::format("heat-{}.png", g), c.heatMap);
+    writePng(images / fmt::format("config-{}.png", g), shrinkToWidth(c.images.display, kThumbnailWidth));
+    writePng(images / fmt::format("heat-{}.png", g), shrinkToWidth(c.heatMap, kThumbnailWidth));
   }
 }
 
@@ -213,6 +216,17 @@ std::string frontSentence(const SweepResult& result) {
 
 }  // namespace
 
+std::pair<uint32_t, uint32_t> renderedSize(const render::WorkloadConfig& workload, const RenderedImages& images) {
+  // A merged sweep's images are its shards' thumbnails; its workloads hold the rendered size.
+  if (workload.width && workload.height) return {workload.width, workload.height};
+  return {images.display.width, images.display.height};
+}
+
+std::string sizeText(const render::WorkloadConfig& workload, const RenderedImages& images) {
+  const auto [width, height] = renderedSize(workload, images);
+  return fmt::format("{}x{}", width, height);
+}
+
 double sweepError(const ConfigurationOutcome& c) {
   return c.display.flip ? c.display.flip->mean : c.display.rmse;
 }
@@ -234,7 +248,7 @@ std::vector<std::string> referenceLines(const SweepResult& result) {
     std::string knobs;
     for (const auto& [k, v] : r.workload.knobs) knobs += " " + k + "=" + v;
     std::string line =
-        fmt::format("reference {}: {} msaa={}{}; two renders {} (floor {:.5f})", i + 1, describeSize(r.images.display),
+        fmt::format("reference {}: {} msaa={}{}; two renders {} (floor {:.5f})", i + 1, sizeText(r.workload, r.images),
                     r.workload.msaa, knobs, r.identical ? "bit-identical" : "differ",
                     r.repeatDisplay.flip ? r.repeatDisplay.flip->mean : 0.0);
     if (r.convergence) {
@@ -350,7 +364,8 @@ std::string sweepCsv(const SweepResult& result) {
     for (std::size_t d : c.dominatedBy)
       dominatedBy += (dominatedBy.empty() ? "" : ";") + result.configurations[d].configuration.label;
     csv += fmt::format(",{},{},{},{:.6f},{:.6f},{:.6f},{},{},{},{},{:.6f},{},{:.6f},{},{},{},{},{}\n",
-                       c.images.display.width, c.images.display.height, msaaUsed(c), c.frameGpu.median,
+                       renderedSize(c.configuration.workload, c.images).first,
+                       renderedSize(c.configuration.workload, c.images).second, msaaUsed(c), c.frameGpu.median,
                        c.frameGpu.lower, c.frameGpu.upper, c.frameGpu.n, c.stable ? 1 : 0, flipText(c.display),
                        flipText(c.hdr), c.display.rmse, psnrText(c.display), c.hdr.rmse, nonFinite(c),
                        c.onFront ? 1 : 0, c.unresolved ? 1 : 0, biasText(result, c), csvField(dominatedBy));
@@ -439,7 +454,7 @@ std::string sweepWallSummary(const SweepResult& result) {
       s(o.metricsMs), s(o.reportMs));
   for (std::size_t i = 0; i < result.references.size(); ++i) {
     const auto& r = result.references[i];
-    text += fmt::format("sweep:   reference {} ({}):", i + 1, describeSize(r.images.display));
+    text += fmt::format("sweep:   reference {} ({}):", i + 1, sizeText(r.workload, r.images));
     for (const auto& w : r.renders) {
       text += fmt::format(" [open {}, frames {}, readback {}]", s(w.openMs), s(w.framesMs), s(w.readbackMs));
     }

@@ -14,7 +14,8 @@ std::string base64(std::span<const uint8_t> bytes);
 std::string pngDataUri(std::span<const uint8_t> png);  // "data:image/png;base64,..."
 
 // <img> of `image` shrunk to at most `maxWidth` pixels wide, as an inline PNG.
-std::string imgTag(const Image& image, const std::string& alt, uint32_t maxWidth = 420);
+inline constexpr uint32_t kThumbnailWidth = 420;  // pages show images at most this wide
+std::string imgTag(const Image& image, const std::string& alt, uint32_t maxWidth = kThumbnailWidth);
 
 // A log10 axis over [lo, hi]: position of a value and tick values (1, 2, 5 x 10^k inside the range).
 struct LogAxis {

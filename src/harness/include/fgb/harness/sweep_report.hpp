@@ -23,6 +23,9 @@ std::string passStackSvg(const SweepResult& result);  // per-pass median times s
 
 // The front's configurations, fastest first (indices into result.configurations).
 std::vector<std::size_t> frontByTime(const SweepResult& result);
+// The size a configuration or reference rendered at (WxH): its workload's, else its images'.
+std::pair<uint32_t, uint32_t> renderedSize(const render::WorkloadConfig& workload, const RenderedImages& images);
+std::string sizeText(const render::WorkloadConfig& workload, const RenderedImages& images);
 // The error the front is built on: LDR-FLIP mean against the reference (RMSE without FLIP).
 double sweepError(const ConfigurationOutcome& c);
 // How the sweep measured and decided, in one paragraph (reports and --help say the same).

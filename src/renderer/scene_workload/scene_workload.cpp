@@ -245,6 +245,7 @@ class SceneWorkload final : public Workload {
       if (feature->enabled()) feature->declare(graph, board);
     rhi::GraphOptions options;
     options.name = "frame";
+    if (!settings_.asyncCompute) options.queues = 1;
     if (!settings_.slowPass.empty()) {
       std::vector<std::string> passes;
       for (const auto& node : graph.nodes()) passes.push_back(node.name);

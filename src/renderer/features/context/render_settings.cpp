@@ -55,6 +55,7 @@ VisBacking visBackingNamed(const std::string& value) {
 void applyOne(RenderSettings& settings, const std::string& key, const std::string& value) {
   if (key == "debug.view") settings.debugView = value == "light-complexity" ? DebugView::LightComplexity : DebugView::None;
   else if (key == "render.depth_prepass") settings.depthPrepass = flag(value);
+  else if (key == "render.async") settings.asyncCompute = flag(value);
   else if (key == "render.ssaa") settings.ssaa = count(value);
   else if (key == "render.path") settings.renderPath = value == "visbuffer" ? RenderPath::VisBuffer : RenderPath::Forward;
   else if (key == "render.vis_backing") settings.visBacking = visBackingNamed(value);
@@ -76,6 +77,8 @@ const std::vector<KnobSpec>& rendererKnobSpecs() {
   static const std::vector<KnobSpec> specs = {
       word("debug.view", {"none", "off", "light-complexity"}, "debug visualisation", Look),
       flag("render.depth_prepass", "depth-only pass before shading", CostOnly, "0"),
+      flag("render.async", "compute nodes on a compute queue of their own where the device has one (0: all on graphics)",
+           CostOnly, "1"),
       // The sweep's reference raises it to 4 (`fgbench sweep --reference-ssaa` up to 8).
       integer("render.ssaa", 1, 8, "supersampling: scene passes at S*W x S*H, box-filtered to W x H", Approximation,
               "4"),

@@ -37,6 +37,9 @@ struct RenderSettings {
   bool occlusionHoldBack = false;     // debug.occlusion_hold_back: phase 1 also holds back odd clusters
   uint32_t ssaa = 1;                  // render.ssaa: scene passes at ssaa*width x ssaa*height
   bool depthPrepass = false;          // render.depth_prepass
+  // render.async: compute nodes run on a compute queue of their own where the device has one
+  // (async compute); off, every node runs on the graphics queue (rhi::GraphOptions::queues = 1).
+  bool asyncCompute = true;
   DebugView debugView = DebugView::None;  // debug.view = none | light-complexity
   LightingMode lightingMode = LightingMode::Clustered;  // lighting.mode = clustered | all
   uint32_t clusterSlices = 24;        // lighting.slices

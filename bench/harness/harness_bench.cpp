@@ -2,10 +2,10 @@
 //   build/bench/harness_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 // The EXR pair is generated procedurally (3840x2160 unless FGBENCH_BENCH_WIDTH/HEIGHT say
 // otherwise) into a temporary directory once per process.
-#include <fgb/harness/image_io.hpp>
-#include <fgb/harness/metrics.hpp>
-#include <fgb/harness/parallel.hpp>
-#include <fgb/harness/run_loop.hpp>
+#include <fgb/harness/base/parallel.hpp>
+#include <fgb/harness/image/image_io.hpp>
+#include <fgb/harness/metrics/metrics.hpp>
+#include <fgb/harness/run/run_loop.hpp>
 
 #include "fake_workload.hpp"
 

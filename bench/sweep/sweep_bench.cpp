@@ -18,8 +18,8 @@
 #include <benchmark/benchmark.h>
 
 #include <cmath>
-#include <fgb/harness/sweep.hpp>
-#include <fgb/harness/sweep_report.hpp>
+#include <fgb/harness/sweep/sweep.hpp>
+#include <fgb/harness/sweep_report/sweep_report.hpp>
 #include <filesystem>
 #include <map>
 #include <memory>

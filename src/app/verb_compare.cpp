@@ -5,9 +5,9 @@
 #include "verb.hpp"
 
 #include <fgb/core/error.hpp>
-#include <fgb/harness/image_io.hpp>
-#include <fgb/harness/json_io.hpp>
-#include <fgb/harness/metrics.hpp>
+#include <fgb/harness/base/json_io.hpp>
+#include <fgb/harness/image/image_io.hpp>
+#include <fgb/harness/metrics/metrics.hpp>
 
 #include <fmt/format.h>
 

@@ -4,8 +4,8 @@
 #include "verb.hpp"
 
 #include <fgb/core/error.hpp>
-#include <fgb/harness/compare_runs.hpp>
-#include <fgb/harness/json_io.hpp>
+#include <fgb/harness/base/json_io.hpp>
+#include <fgb/harness/results/compare_runs.hpp>
 
 #include <fmt/format.h>
 

@@ -3,7 +3,7 @@
 
 #include <fgb/core/atomic_file.hpp>
 #include <fgb/core/error.hpp>
-#include <fgb/harness/run_loop.hpp>
+#include <fgb/harness/run/run_loop.hpp>
 #include <fgb/renderer/workload.hpp>
 
 #include <filesystem>

@@ -3,15 +3,15 @@
 #include "verb.hpp"
 
 #include <fgb/core/error.hpp>
-#include <fgb/harness/budget.hpp>
-#include <fgb/harness/dart.hpp>
-#include <fgb/harness/golden.hpp>
-#include <fgb/harness/json_io.hpp>
-#include <fgb/harness/progress.hpp>
-#include <fgb/harness/report.hpp>
-#include <fgb/harness/render_path.hpp>
-#include <fgb/harness/run_loop.hpp>
-#include <fgb/harness/run_outputs.hpp>
+#include <fgb/harness/results/budget.hpp>
+#include <fgb/harness/report/dart.hpp>
+#include <fgb/harness/results/golden.hpp>
+#include <fgb/harness/base/json_io.hpp>
+#include <fgb/harness/base/progress.hpp>
+#include <fgb/harness/report/report.hpp>
+#include <fgb/harness/run/render_path.hpp>
+#include <fgb/harness/run/run_loop.hpp>
+#include <fgb/harness/run/run_outputs.hpp>
 #include <fgb/renderer/workload.hpp>
 
 #include <fmt/format.h>

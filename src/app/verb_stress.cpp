@@ -4,10 +4,10 @@
 #include <fmt/format.h>
 
 #include <fgb/core/error.hpp>
-#include <fgb/harness/golden.hpp>
-#include <fgb/harness/json_io.hpp>
-#include <fgb/harness/run_outputs.hpp>
-#include <fgb/harness/stress.hpp>
+#include <fgb/harness/base/json_io.hpp>
+#include <fgb/harness/results/golden.hpp>
+#include <fgb/harness/run/run_outputs.hpp>
+#include <fgb/harness/stress/stress.hpp>
 #include <fgb/renderer/workload.hpp>
 #include <fgb/scene/load.hpp>
 #include <iostream>

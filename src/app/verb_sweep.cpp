@@ -5,13 +5,13 @@
 
 #include <algorithm>
 #include <fgb/core/error.hpp>
-#include <fgb/harness/golden.hpp>
-#include <fgb/harness/json_io.hpp>
-#include <fgb/harness/progress.hpp>
-#include <fgb/harness/run_loop.hpp>
-#include <fgb/harness/run_outputs.hpp>
-#include <fgb/harness/sweep.hpp>
-#include <fgb/harness/sweep_report.hpp>
+#include <fgb/harness/base/json_io.hpp>
+#include <fgb/harness/base/progress.hpp>
+#include <fgb/harness/results/golden.hpp>
+#include <fgb/harness/run/run_loop.hpp>
+#include <fgb/harness/run/run_outputs.hpp>
+#include <fgb/harness/sweep/sweep.hpp>
+#include <fgb/harness/sweep_report/sweep_report.hpp>
 #include <fgb/renderer/workload.hpp>
 #include <iostream>
 

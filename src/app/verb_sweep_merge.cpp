@@ -4,11 +4,11 @@
 #include <fmt/format.h>
 
 #include <fgb/core/error.hpp>
-#include <fgb/harness/golden.hpp>
-#include <fgb/harness/json_io.hpp>
-#include <fgb/harness/run_outputs.hpp>
-#include <fgb/harness/sweep.hpp>
-#include <fgb/harness/sweep_report.hpp>
+#include <fgb/harness/base/json_io.hpp>
+#include <fgb/harness/results/golden.hpp>
+#include <fgb/harness/run/run_outputs.hpp>
+#include <fgb/harness/sweep/sweep.hpp>
+#include <fgb/harness/sweep_report/sweep_report.hpp>
 #include <iostream>
 
 #include "verb.hpp"

@@ -1,5 +1,5 @@
 #include <fgb/core/error.hpp>
-#include <fgb/harness/budget.hpp>
+#include <fgb/harness/results/budget.hpp>
 
 #include "test_util.hpp"
 

@@ -1,7 +1,7 @@
 #include <fgb/core/error.hpp>
 #include <fgb/core/atomic_file.hpp>
-#include <fgb/harness/compare_runs.hpp>
-#include <fgb/harness/json_io.hpp>
+#include <fgb/harness/results/compare_runs.hpp>
+#include <fgb/harness/base/json_io.hpp>
 
 #include "test_util.hpp"
 

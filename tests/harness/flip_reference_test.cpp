@@ -1,7 +1,7 @@
 // Checks the fast FLIP (separable, trimmed and folded kernels, vectorised approximations of cbrt,
 // pow and the sRGB curve) against a direct, double-precision evaluation of the paper's
 // definitions with full 2D kernels, written independently here.
-#include <fgb/harness/flip.hpp>
+#include <fgb/harness/flip/flip.hpp>
 
 #include "flip_filters.hpp"
 

@@ -1,6 +1,6 @@
 // FLIP is tested on properties the paper's definition guarantees, not on magic numbers.
-#include <fgb/harness/flip.hpp>
-#include <fgb/harness/metrics.hpp>
+#include <fgb/harness/flip/flip.hpp>
+#include <fgb/harness/metrics/metrics.hpp>
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 #include <fgb/core/atomic_file.hpp>
 #include <fgb/core/error.hpp>
-#include <fgb/harness/golden.hpp>
-#include <fgb/harness/image_io.hpp>
-#include <fgb/harness/json_io.hpp>
+#include <fgb/harness/base/json_io.hpp>
+#include <fgb/harness/image/image_io.hpp>
+#include <fgb/harness/results/golden.hpp>
 
 #include "test_util.hpp"
 

@@ -1,5 +1,5 @@
 #include <fgb/core/error.hpp>
-#include <fgb/harness/image_io.hpp>
+#include <fgb/harness/image/image_io.hpp>
 
 #include "test_util.hpp"
 

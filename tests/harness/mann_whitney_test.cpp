@@ -1,4 +1,4 @@
-#include <fgb/harness/mann_whitney.hpp>
+#include <fgb/harness/stats/mann_whitney.hpp>
 
 #include <gtest/gtest.h>
 

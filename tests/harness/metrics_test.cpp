@@ -1,4 +1,4 @@
-#include <fgb/harness/metrics.hpp>
+#include <fgb/harness/metrics/metrics.hpp>
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include <fgb/harness/pareto.hpp>
+#include <fgb/harness/stats/pareto.hpp>
 #include <vector>
 
 namespace fgb::harness {

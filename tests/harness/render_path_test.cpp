@@ -1,8 +1,8 @@
 #include <gtest/gtest.h>
 
 #include <fgb/core/error.hpp>
-#include <fgb/harness/render_path.hpp>
-#include <fgb/harness/run_loop.hpp>
+#include <fgb/harness/run/render_path.hpp>
+#include <fgb/harness/run/run_loop.hpp>
 
 #include "fake_workload.hpp"
 

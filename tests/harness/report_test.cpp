@@ -1,9 +1,9 @@
 #include <fgb/core/atomic_file.hpp>
-#include <fgb/harness/dart.hpp>
-#include <fgb/harness/html_util.hpp>
-#include <fgb/harness/json_io.hpp>
-#include <fgb/harness/report.hpp>
-#include <fgb/harness/run_loop.hpp>
+#include <fgb/harness/base/json_io.hpp>
+#include <fgb/harness/report/dart.hpp>
+#include <fgb/harness/report/html_util.hpp>
+#include <fgb/harness/report/report.hpp>
+#include <fgb/harness/run/run_loop.hpp>
 
 #include "fake_workload.hpp"
 #include "test_util.hpp"

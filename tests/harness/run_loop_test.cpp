@@ -1,6 +1,6 @@
 #include <fgb/core/error.hpp>
-#include <fgb/harness/report.hpp>
-#include <fgb/harness/run_loop.hpp>
+#include <fgb/harness/report/report.hpp>
+#include <fgb/harness/run/run_loop.hpp>
 
 #include "fake_workload.hpp"
 

@@ -1,9 +1,9 @@
 #include <fgb/core/atomic_file.hpp>
 #include <fgb/core/error.hpp>
-#include <fgb/harness/image_io.hpp>
-#include <fgb/harness/json_io.hpp>
-#include <fgb/harness/run_loop.hpp>
-#include <fgb/harness/run_outputs.hpp>
+#include <fgb/harness/base/json_io.hpp>
+#include <fgb/harness/image/image_io.hpp>
+#include <fgb/harness/run/run_loop.hpp>
+#include <fgb/harness/run/run_outputs.hpp>
 
 #include "fake_workload.hpp"
 #include "test_util.hpp"

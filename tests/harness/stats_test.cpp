@@ -1,4 +1,4 @@
-#include <fgb/harness/stats.hpp>
+#include <fgb/harness/stats/stats.hpp>
 
 #include <gtest/gtest.h>
 

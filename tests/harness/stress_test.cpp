@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <fgb/core/error.hpp>
-#include <fgb/harness/stress.hpp>
+#include <fgb/harness/stress/stress.hpp>
 
 namespace fgb::harness {
 namespace {

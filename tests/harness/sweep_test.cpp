@@ -2,9 +2,9 @@
 
 #include <cmath>
 #include <fgb/core/error.hpp>
-#include <fgb/harness/html_util.hpp>
-#include <fgb/harness/sweep.hpp>
-#include <fgb/harness/sweep_report.hpp>
+#include <fgb/harness/report/html_util.hpp>
+#include <fgb/harness/sweep/sweep.hpp>
+#include <fgb/harness/sweep_report/sweep_report.hpp>
 #include <filesystem>
 #include <fstream>
 #include <functional>

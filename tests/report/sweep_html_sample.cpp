@@ -4,8 +4,8 @@
 // frame times of seconds (lavapipe's atrium at 640x360) and labels long enough to collide.
 #include <cmath>
 #include <exception>
-#include <fgb/harness/sweep.hpp>
-#include <fgb/harness/sweep_report.hpp>
+#include <fgb/harness/sweep/sweep.hpp>
+#include <fgb/harness/sweep_report/sweep_report.hpp>
 #include <iostream>
 #include <memory>
 #include <string>

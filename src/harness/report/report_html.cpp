@@ -1,0 +1,141 @@
+#include <fgb/harness/report/html_util.hpp>
+#include <fgb/harness/report/report.hpp>
+#include <fgb/harness/stats/stats.hpp>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace fgb::harness {
+namespace {
+
+constexpr const char* kStyle =
+    "body{font-family:sans-serif;max-width:900px;margin:2em auto;color:#222}"
+    "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #ccc;padding:3px 8px;text-align:right}"
+    "td:first-child,th:first-child{text-align:left}.bad{color:#c0392b;font-weight:bold}.ok{color:#2e7d32}"
+    ".note{color:#555}"
+    "figure{margin:0}figcaption{color:#555;font-size:90%}img.shot{width:100%;height:auto;border:1px solid #ccc}"
+    ".trio{display:flex;gap:8px}.trio figure{flex:1;min-width:0}#flipper button{font-size:100%}";
+
+// Flips #flip-view between the reference and the test image (the sources are those of the images
+// above it, so each picture is in the file once).
+constexpr const char* kFlipScript =
+    "(function(){var v=document.getElementById('flip-view'),b=document.getElementById('flip-toggle'),"
+    "l=document.getElementById('flip-label'),r=document.getElementById('golden-reference'),"
+    "t=document.getElementById('frame'),test=false;"
+    "function show(){v.src=(test?t:r).src;v.dataset.showing=test?'test':'reference';l.textContent=test?'test (this run)':'reference (golden)';"
+    "b.textContent=test?'Show reference':'Show test';}"
+    "b.addEventListener('click',function(){test=!test;show();});show();"
+    "document.getElementById('flipper').hidden=false;})();";
+
+std::string verdictSpan(const std::string& verdict) {
+  const char* cls = verdict == "fail" ? "bad" : (verdict == "pass" ? "ok" : "note");
+  return fmt::format(R"(<span class="{}">{}</span>)", cls, escapeXml(verdict));
+}
+
+std::string passRows(const RunResult& run) {
+  std::string rows;
+  auto cells = [](const Summary& s) {
+    return fmt::format("<td>{:.4f}</td><td>{:.4f}</td><td>{:.4f}</td><td>{:.4f}</td><td>{:.4f}</td><td>{:.4f}</td><td>{}</td>",
+                       s.median, s.p5, s.p95, s.mean, s.min, s.max, s.n);
+  };
+  for (const auto& p : run.passes) {
+    rows += fmt::format("<tr><td>{}</td><td>{}</td>{}<td>{}</td></tr>\n", escapeXml(p.name), escapeXml(p.queue),
+                        p.culled ? std::string(R"(<td colspan="7">culled</td>)") : cells(p.gpu),
+                        p.unstable ? R"(<span class="bad">unstable</span>)" : "");
+  }
+  rows += fmt::format("<tr><th>frame (GPU)</th><td></td>{}<td></td></tr>\n", cells(run.frameGpu));
+  rows += fmt::format("<tr><th>frame (CPU)</th><td></td>{}<td></td></tr>\n", cells(run.frameCpu));
+  return rows;
+}
+
+std::string budgetHtml(const RunResult& run) {
+  if (!run.budget) return "<p class=\"note\">No budget given.</p>\n";
+  std::string out = fmt::format("<p>{}: {}</p>\n<ul>\n", escapeXml(run.budget->file), verdictSpan(run.budget->verdict));
+  for (const auto* line : run.budget->failing()) {
+    out += line->status == "missing"
+               ? fmt::format("<li>{}: not measured (budget {:.3f} ms)</li>\n", escapeXml(line->pass), line->budgetMs)
+               : fmt::format("<li>{}: {:.4f} ms against {:.3f} ms, over by {:.4f} ms ({:+.1f}%)</li>\n", escapeXml(line->pass),
+                             *line->measuredMs, line->budgetMs, line->overMs(), line->overPercent());
+  }
+  for (const auto& w : run.budget->warnings) out += "<li class=\"note\">" + escapeXml(w) + "</li>\n";
+  return out + "</ul>\n";
+}
+
+std::string goldenHtml(const RunResult& run) {
+  if (!run.golden) return "<p class=\"note\">No golden compared.</p>\n";
+  std::string out = fmt::format("<p>{}: {}</p>\n<table><tr><th>image</th><th>max abs</th><th>RMSE</th><th>PSNR dB</th>"
+                                "<th>share over</th><th>FLIP mean</th><th>FLIP p99</th><th>NaN/Inf</th><th>failures</th><th>heat map</th></tr>\n",
+                                escapeXml(run.golden->file), verdictSpan(run.golden->verdict));
+  for (const auto& image : run.golden->images) {
+    const auto& m = image.metrics;
+    std::string failures;
+    for (const auto& f : image.failures) failures += (failures.empty() ? "" : "; ") + f;
+    // checkGolden writes the heat map of each failing image next to this report (run_outputs.cpp).
+    const char* heatMap = image.kind == "hdr" ? "golden-diff-hdr.png" : "golden-diff.png";
+    const std::string heatMapCell = image.failures.empty() ? "–" : fmt::format(R"(<a href="{0}">{0}</a>)", heatMap);
+    out += fmt::format("<tr><td>{}</td><td>{:.5f}</td><td>{:.5f}</td><td>{}</td><td>{:.4f}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
+                       image.kind, m.maxAbsError, m.rmse, std::isfinite(m.psnr) ? fmt::format("{:.2f}", m.psnr) : "∞",
+                       m.shareOverThreshold, m.flip ? fmt::format("{:.5f}", m.flip->mean) : "–",
+                       m.flip ? fmt::format("{:.5f}", m.flip->p99) : "–", m.nonFiniteReference + m.nonFiniteTest,
+                       escapeXml(failures.empty() ? "none" : failures), heatMapCell);
+  }
+  return out + "</table>\n";
+}
+
+std::string figure(const std::string& id, std::span<const uint8_t> png, const ReportImages& images, const std::string& alt,
+                   const std::string& captionHtml) {
+  return fmt::format(R"(<figure><img class="shot" id="{}" src="{}" width="{}" height="{}" alt="{}"><figcaption>{}</figcaption></figure>)"
+                     "\n",
+                     id, pngDataUri(png), images.width, images.height, escapeXml(alt), captionHtml);
+}
+
+// The frame inline; with a golden, reference | test | heat map side by side and a flip view.
+std::string picturesHtml(const RunResult& run, const ReportImages& images) {
+  const std::string files = "<a href=\"frame.png\">frame.png</a> (tone-mapped) · <a href=\"frame.exr\">frame.exr</a> (linear HDR)";
+  if (images.frame.empty()) return "<p>Last frame: " + files + "</p>\n";
+  if (images.reference.empty()) return figure("frame", images.frame, images, "last frame", "Last frame: " + files);
+  std::string flipMean;
+  if (run.golden && !run.golden->images.empty() && run.golden->images[0].metrics.flip) {
+    flipMean = fmt::format(", mean {:.5f}", run.golden->images[0].metrics.flip->mean);
+  }
+  std::string html = "<div class=\"trio\">\n";
+  html += figure("golden-reference", images.reference, images, "reference", "Reference (golden)");
+  html += figure("frame", images.frame, images, "test", "Test (this run): " + files);
+  if (!images.heatMap.empty()) html += figure("golden-heatmap", images.heatMap, images, "FLIP heat map", "FLIP heat map" + flipMean);
+  html += "</div>\n";
+  html += fmt::format(R"(<div id="flipper" hidden><p><button id="flip-toggle" type="button">Show test</button> showing <b id="flip-label">reference (golden)</b></p>)"
+                      R"(<img class="shot" id="flip-view" width="{}" height="{}" alt="reference or test, as the button flips them"></div>)"
+                      "\n<script>{}</script>\n",
+                      images.width, images.height, kFlipScript);
+  return html;
+}
+
+}  // namespace
+
+std::string htmlReport(const RunResult& run, const ReportImages& images) {
+  std::string html = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n";
+  html += fmt::format("<title>fgbench report: {}</title>\n<style>{}</style></head><body>\n", escapeXml(run.scene), kStyle);
+  html += fmt::format("<h1>fgbench report: {}</h1>\n", escapeXml(run.scene));
+  html += fmt::format("<p>{} ({}), driver {}, Vulkan {}<br>{}×{}, MSAA: {}, {} measured frames after {} warm-up; tool {}</p>\n",
+                      escapeXml(run.device.name), escapeXml(run.device.type), escapeXml(run.device.driver),
+                      escapeXml(run.device.apiVersion), run.config.width, run.config.height, msaaLabel(run.config.msaa),
+                      run.config.frames, run.config.warmup, escapeXml(run.toolVersion));
+  html += "<p class=\"note\">" + escapeXml(timestampSourceNote(run.device)) + "</p>\n";
+  html += "<h2>Frame</h2>\n" + picturesHtml(run, images);
+  html += "<p>Frame graph: <a href=\"graph.dot\">graph.dot</a>, <a href=\"graph-full.dot\">graph-full.dot</a></p>\n";
+  html += "<h2>Passes against budget</h2>\n" + passBarsSvg(run);
+  html += "<h2>Frame time series</h2>\n" + frameSeriesSvg(run);
+  html += "<h2>Queue timeline</h2>\n" + queueTimelineSvg(run);
+  html += "<h2>Timings (ms)</h2>\n<table><tr><th>pass</th><th>queue</th><th>median</th><th>p5</th><th>p95</th><th>mean</th>"
+          "<th>min</th><th>max</th><th>n</th><th>spread</th></tr>\n" + passRows(run) + "</table>\n";
+  html += fmt::format("<p class=\"note\">unstable: (p95 − p5) / median above {:g}; read such medians with care.</p>\n",
+                      kDefaultUnstableSpread);
+  html += "<p class=\"note\">" + escapeXml(hostOverheadNote(run)) + "</p>\n";
+  html += "<h2>Budget</h2>\n" + budgetHtml(run);
+  html += "<h2>Golden image</h2>\n" + goldenHtml(run);
+  return html + "</body></html>\n";
+}
+
+}  // namespace fgb::harness

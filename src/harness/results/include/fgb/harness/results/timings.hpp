@@ -1,0 +1,93 @@
+// A benchmark run's results and its files: timings.json (contract schema, plus per-frame samples
+// so `compare-runs` can test significance) and timings.csv (one row per pass per frame).
+#pragma once
+
+#include <fgb/harness/results/budget.hpp>
+#include <fgb/harness/results/golden.hpp>
+#include <fgb/harness/stats/stats.hpp>
+#include <fgb/renderer/workload.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace fgb::harness {
+
+inline constexpr int kTimingsSchema = 1;
+
+struct PassRecord {
+  std::string name;
+  std::string queue;
+  bool culled = false;
+  std::vector<double> samplesMs;  // one per measured frame (empty when culled)
+  std::vector<double> startMs;    // start offsets within the frame when the workload reports them
+  Summary gpu;
+  bool unstable = false;
+  std::optional<render::NonFiniteCounts> nonFinite;  // --check-finite: this pass's counts (last frame)
+};
+
+// Host time around rendering, reported apart from GPU time: opening the workload (start-up, with
+// its phases), the measured loop (wall time, time inside the workload's calls, and the harness'
+// own share: bookkeeping, progress), reading the images back and encoding the outputs.
+struct HarnessOverhead {
+  double openMs = 0.0;
+  render::StartupTimes startup;
+  double loopWallMs = 0.0;
+  double workloadCallsMs = 0.0;
+  double harnessMs = 0.0;
+  double perFrameUs = 0.0;
+  double readbackMs = 0.0;
+  double encodeMs = 0.0;  // EXR + PNG
+};
+
+struct RunConfig {
+  uint32_t width = 0, height = 0, msaa = 0, frames = 0, warmup = 0;
+  std::map<std::string, std::string> knobs;
+};
+
+struct RunResult {
+  std::string toolVersion;
+  std::string scene;
+  std::string sceneHash;
+  render::DeviceDescription device;
+  RunConfig config;
+  std::map<std::string, double> stats;
+  std::vector<PassRecord> passes;  // declaration order
+  std::vector<double> frameGpuMs, frameCpuMs;
+  Summary frameGpu, frameCpu;
+  HarnessOverhead overhead;
+  std::optional<BudgetResult> budget;
+  std::optional<GoldenResult> golden;
+  bool checkedFinite = false;                       // --check-finite was on
+  std::vector<render::NonFiniteCounts> nonFinite;   // checked passes, in execution order
+
+  const PassRecord* findPass(const std::string& name) const;
+  // The first checked pass (execution order) that wrote a NaN, Inf or value above half of R16F's
+  // maximum; null when none did (or nothing was checked).
+  const render::NonFiniteCounts* firstNonFinite() const;
+  MeasuredMedians medians() const;
+};
+
+// Fills the summaries and the unstable flags from the samples.
+void summarizeRun(RunResult& run, double unstableSpread = kDefaultUnstableSpread);
+
+nlohmann::json toJson(const RunResult& run);
+std::string toCsv(const RunResult& run);
+
+// Timings of a previous run, for compare-runs. Needs schema 1 and per-frame samples; anything
+// else is InputError naming the file and field.
+struct LoadedTimings {
+  std::string file;
+  std::string scene;
+  std::string deviceName;
+  std::string deviceType;  // "cpu", "discrete", "integrated", ... ("" when the file has none)
+  std::vector<PassRecord> passes;  // with samples
+  std::vector<double> frameGpuMs;
+};
+LoadedTimings loadTimings(const std::filesystem::path& path);
+
+}  // namespace fgb::harness

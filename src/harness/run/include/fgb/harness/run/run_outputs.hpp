@@ -1,0 +1,47 @@
+// What `fgbench run --out DIR` writes, and the golden check of a run's images. Every file is written
+// atomically (temporary + rename), so a crash never leaves a half-written output.
+#pragma once
+
+#include <fgb/harness/image/image.hpp>
+#include <fgb/harness/results/golden.hpp>
+#include <fgb/harness/results/timings.hpp>
+
+#include <filesystem>
+#include <string>
+
+namespace fgb::harness {
+
+struct RenderedImages {
+  Image hdr;      // linear HDR before tone mapping
+  Image display;  // tone-mapped, linear values in [0, 1]
+};
+
+// The golden's display image and the FLIP heat map of the render against it, for report.html.
+struct GoldenPictures {
+  Image reference;
+  Image heatMap;
+};
+
+struct RunArtifacts {
+  RunResult run;
+  RenderedImages images;
+  std::string graphBrief, graphFull;
+  GoldenPictures golden;  // empty (0x0) without --golden
+};
+
+// Creates DIR if needed (InputError when that is impossible) and writes frame.exr, frame.png,
+// timings.json, timings.csv, graph.dot, graph-full.dot, report.md and report.html.
+void writeRunOutputs(const std::filesystem::path& dir, const RunArtifacts& artifacts);
+
+// Compares the display image (as frame.png stores it) with the golden PNG and, when the golden has
+// one, the HDR image (as frame.exr stores it) with the golden EXR. On failure writes heat maps
+// golden-diff.png (display) / golden-diff-hdr.png into diffDir. Mismatched sizes or unreadable
+// goldens -> InputError naming the file. `pictures`, when given, receives the display reference and
+// its heat map whether or not the comparison failed.
+GoldenResult checkGolden(const Golden& golden, const RenderedImages& images, const std::filesystem::path& diffDir,
+                         GoldenPictures* pictures = nullptr);
+
+// Stable content hash of a scene file (FNV-1a 64, hex); built-in scenes hash their name.
+std::string sceneHash(const std::string& scenePath);
+
+}  // namespace fgb::harness

@@ -85,6 +85,19 @@ TEST(KnobRegistry, OutOfRangeAndMalformedValuesSayWhatWasExpected) {
   EXPECT_EQ(messageOf(registry, "render.ssaa", ""), "--set render.ssaa=: expected an integer in [1, 4]");
 }
 
+// A word-or-file knob (render.path): one of its words, or a user's FILE.json, read and checked by
+// its owner when used.
+TEST(KnobRegistry, AWordOrFileKnobTakesItsWordsOrAJsonFile) {
+  KnobRegistry registry;
+  registry.add({{"render.path", KnobType::WordOrFile, 0, 0, false, false, {"forward", "visbuffer"}, "renderer", "",
+                 ReferenceRole::CostOnly, "forward"}});
+  EXPECT_NO_THROW(registry.check("render.path", "visbuffer"));
+  EXPECT_NO_THROW(registry.check("render.path", "bench/paths/forward-no-bloom.json"));
+  EXPECT_EQ(messageOf(registry, "render.path", "deferred"),
+            "--set render.path=deferred: expected forward|visbuffer or FILE.json");
+  EXPECT_EQ(messageOf(registry, "render.path", ".json"), "--set render.path=.json: expected forward|visbuffer or FILE.json");
+}
+
 TEST(KnobRegistry, AKeyRegisteredTwiceIsAProgrammingError) {
   KnobRegistry registry = twoLayers();
   EXPECT_THROW(

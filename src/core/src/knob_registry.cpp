@@ -88,6 +88,8 @@ std::string describeExpected(const KnobSpec& spec) {
       return "three numbers x,y,z";
     case KnobType::Text:
       return "a non-empty value";
+    case KnobType::WordOrFile:
+      return joinWords(spec.words, "|") + " or FILE.json";
   }
   return "a value";
 }
@@ -107,6 +109,8 @@ bool knobValueValid(const KnobSpec& spec, std::string_view value) {
       return validVec3(value);
     case KnobType::Text:
       return !value.empty();
+    case KnobType::WordOrFile:
+      return isWordOf(spec, value) || (value.size() > 5 && value.ends_with(".json"));
   }
   return false;
 }

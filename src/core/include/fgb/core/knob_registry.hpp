@@ -20,6 +20,9 @@ enum class KnobType {
   Word,     // one of `words`
   Vec3,     // three finite numbers "x,y,z"
   Text,     // any non-empty text (checked by its owner when used, e.g. a pass name)
+  // One of `words` (built-in names), or the path of a user's FILE.json, which its owner reads and
+  // checks when used (render.path: a render path file).
+  WordOrFile,
 };
 
 // What a knob does to a sweep's reference image (docs/sweep.md, "The reference"). Every knob has

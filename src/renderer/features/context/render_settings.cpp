@@ -1,5 +1,7 @@
 #include "render_settings.hpp"
 
+#include "render_path.hpp"
+
 #include <fgb/core/error.hpp>
 
 #include <charconv>
@@ -22,6 +24,12 @@ KnobSpec word(std::string key, std::vector<std::string> words, std::string help,
 KnobSpec flag(std::string key, std::string help, ReferenceRole role, std::string exact = {}) {
   return {std::move(key), KnobType::Flag,  0.0, 0.0, false, false, {}, "renderer", std::move(help),
           role,           std::move(exact)};
+}
+
+std::vector<std::string> builtinPathNames() {
+  std::vector<std::string> names;
+  for (const BuiltinRenderPath& path : builtinRenderPaths()) names.emplace_back(path.name);
+  return names;
 }
 
 const KnobRegistry& rendererRegistry() {
@@ -56,7 +64,6 @@ void applyOne(RenderSettings& settings, const std::string& key, const std::strin
   if (key == "debug.view") settings.debugView = value == "light-complexity" ? DebugView::LightComplexity : DebugView::None;
   else if (key == "render.depth_prepass") settings.depthPrepass = flag(value);
   else if (key == "render.ssaa") settings.ssaa = count(value);
-  else if (key == "render.path") settings.renderPath = value == "visbuffer" ? RenderPath::VisBuffer : RenderPath::Forward;
   else if (key == "render.vis_backing") settings.visBacking = visBackingNamed(value);
   else if (key == "render.occlusion") settings.occlusion = flag(value);
   else if (key == "debug.occlusion_hold_back") settings.occlusionHoldBack = flag(value);
@@ -80,9 +87,12 @@ const std::vector<KnobSpec>& rendererKnobSpecs() {
       integer("render.ssaa", 1, 8, "supersampling: scene passes at S*W x S*H, box-filtered to W x H", Approximation,
               "4"),
       // The reference path is the thesis' forward raster; another path's difference from it at
-      // convergence is its bias, which the sweep reports apart from its error.
-      word("render.path", {"forward", "visbuffer"},
-           "what draws the opaque scene: forward raster or compute visibility buffer", CostOnly, "forward"),
+      // convergence is its bias, which the sweep reports apart from its error. A built-in name
+      // (src/renderer/paths/NAME.json, embedded) or a user's FILE.json, which the scene workload
+      // reads and checks (scene_workload/render_paths.cpp); it is the path, not a setting.
+      {"render.path", KnobType::WordOrFile, 0, 0, false, false, builtinPathNames(), "renderer",
+       "the render path: a built-in one, or a FILE.json naming its features (src/renderer/paths/*.json)",
+       CostOnly, "forward"},
       word("render.vis_backing", {"auto", "buffer", "image"},
            "visbuffer words: R64 image atomics or a storage buffer (auto: image where the device has them)", CostOnly,
            "auto"),

@@ -98,6 +98,20 @@ TEST(KnobRegistry, AWordOrFileKnobTakesItsWordsOrAJsonFile) {
   EXPECT_EQ(messageOf(registry, "render.path", ".json"), "--set render.path=.json: expected forward|visbuffer or FILE.json");
 }
 
+// One parser per type checks and converts: layers take the value in its type, never the text.
+TEST(KnobRegistry, ParsesEachValueOnceIntoItsType) {
+  const KnobRegistry registry = twoLayers();
+  EXPECT_EQ(std::get<double>(registry.parse("render.ssaa", "3")), 3.0);
+  EXPECT_EQ(std::get<std::string>(registry.parse("lighting.mode", "all")), "all");
+  EXPECT_EQ(std::get<double>(registry.parse("camera.near", "1e-6")), 1e-6);
+  EXPECT_EQ(std::get<std::string>(registry.parse("camera.far", "inf")), "inf");  // one of its words
+  EXPECT_EQ(std::get<KnobVec3>(registry.parse("camera.position", "1,-2.5,3e7")), (KnobVec3{1.0, -2.5, 3e7}));
+  EXPECT_FALSE(std::get<bool>(registry.parse("post.bloom", "off")));
+  EXPECT_TRUE(std::get<bool>(registry.parse("post.bloom", "1")));
+  EXPECT_THROW((void)registry.parse("render.ssaa", "5"), InputError);
+  EXPECT_FALSE(tryParseKnobValue(*registry.find("camera.position"), "1,2").has_value());
+}
+
 TEST(KnobRegistry, AKeyRegisteredTwiceIsAProgrammingError) {
   KnobRegistry registry = twoLayers();
   EXPECT_THROW(

@@ -121,6 +121,26 @@ TEST(RenderSettings, SupersamplingScalesTheScenePassesOnly) {
   EXPECT_THROW(applyRendererKnobs(settings, {{"render.ssaa", "0"}}), InputError);
 }
 
+// Each knob's table line says where its value lands: every field is reached, "none" lands as "".
+TEST(RenderSettings, EveryKnobLandsInItsField) {
+  RenderSettings settings;
+  applyRendererKnobs(settings, {{"bloom.mips", "3"},
+                                {"particles.seed", "1073741824"},
+                                {"lighting.max_per_cluster", "1024"},
+                                {"debug.occlusion_hold_back", "true"},
+                                {"debug.view", "off"},
+                                {"debug.inject_nan", "Mesh Render"}});
+  EXPECT_EQ(settings.bloomMips, 3u);
+  EXPECT_EQ(settings.particleSeedOffset, 1u << 30);
+  EXPECT_EQ(settings.maxLightsPerCluster, 1024u);
+  EXPECT_TRUE(settings.occlusionHoldBack);
+  EXPECT_EQ(settings.debugView, DebugView::None);
+  EXPECT_EQ(settings.injectNanPass, "Mesh Render");
+  applyRendererKnobs(settings, {{"debug.inject_nan", "none"}, {"debug.slow_pass", "none"}});
+  EXPECT_EQ(settings.injectNanPass, "");
+  EXPECT_EQ(settings.slowPass, "");
+}
+
 TEST(RenderSettings, LightingMode) {
   RenderSettings settings;
   EXPECT_EQ(settings.lightingMode, LightingMode::Clustered);

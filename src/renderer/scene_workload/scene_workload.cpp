@@ -98,12 +98,6 @@ features::RenderSettings makeSettings(const WorkloadConfig& config, const scene:
   return settings;
 }
 
-std::vector<std::string> knobList(const std::map<std::string, std::string>& knobs) {
-  std::vector<std::string> list;
-  for (const auto& [key, value] : knobs) list.push_back(key + "=" + value);
-  return list;
-}
-
 class SceneWorkload final : public Workload {
  public:
   explicit SceneWorkload(const WorkloadConfig& config) {
@@ -114,7 +108,7 @@ class SceneWorkload final : public Workload {
     const std::filesystem::path cacheDir =
         config.cacheDir.empty() ? scene::CookedCache::defaultDirectory() : std::filesystem::path(config.cacheDir);
     loadOptions.cacheDir = cacheDir;
-    loadOptions.knobs = knobList(config.knobs);
+    loadOptions.knobs = config.knobs;  // the scene's own keys are parsed once, there
     loaded_ = scene::loadScene(config.scenePath, loadOptions);
     startup_.sceneMs = timer.lap();
 

@@ -48,8 +48,7 @@ int runScene(const SceneVerbOptions& options) {
   scene::LoadOptions load;
   if (!options.cache.empty()) load.cacheDir = options.cache;
   load.useCache = !options.noCache;
-  (void)checkedKnobs(options.sets);  // every key known to some layer, every value in range
-  load.knobs = options.sets;
+  load.knobs = checkedKnobs(options.sets);  // every key known to some layer, every value in range
   const scene::LoadedScene loaded = scene::loadScene(options.scene, load);
   if (!options.quiet) {
     for (const std::string& warning : loaded.scene.warnings) std::cerr << "fgbench: warning: " << warning << "\n";

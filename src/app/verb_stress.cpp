@@ -33,7 +33,7 @@ struct StressOptions {
 harness::LadderContext ladderContext(const StressOptions& o) {
   if (o.ladder.rfind("light-scale", 0) != 0) return {};
   scene::LoadOptions load;
-  load.knobs = o.common.sets;
+  load.knobs = checkedKnobs(o.common.sets);
   const scene::LoadedScene loaded = scene::loadScene(o.scene, load);
   return {loaded.scene.post.exposure, loaded.scene.post.autoExposure};
 }

@@ -85,6 +85,33 @@ TEST(KnobRegistry, OutOfRangeAndMalformedValuesSayWhatWasExpected) {
   EXPECT_EQ(messageOf(registry, "render.ssaa", ""), "--set render.ssaa=: expected an integer in [1, 4]");
 }
 
+// A word-or-file knob (render.path): one of its words, or a user's FILE.json, read and checked by
+// its owner when used.
+TEST(KnobRegistry, AWordOrFileKnobTakesItsWordsOrAJsonFile) {
+  KnobRegistry registry;
+  registry.add({{"render.path", KnobType::WordOrFile, 0, 0, false, false, {"forward", "visbuffer"}, "renderer", "",
+                 ReferenceRole::CostOnly, "forward"}});
+  EXPECT_NO_THROW(registry.check("render.path", "visbuffer"));
+  EXPECT_NO_THROW(registry.check("render.path", "bench/paths/forward-no-bloom.json"));
+  EXPECT_EQ(messageOf(registry, "render.path", "deferred"),
+            "--set render.path=deferred: expected forward|visbuffer or FILE.json");
+  EXPECT_EQ(messageOf(registry, "render.path", ".json"), "--set render.path=.json: expected forward|visbuffer or FILE.json");
+}
+
+// One parser per type checks and converts: layers take the value in its type, never the text.
+TEST(KnobRegistry, ParsesEachValueOnceIntoItsType) {
+  const KnobRegistry registry = twoLayers();
+  EXPECT_EQ(std::get<double>(registry.parse("render.ssaa", "3")), 3.0);
+  EXPECT_EQ(std::get<std::string>(registry.parse("lighting.mode", "all")), "all");
+  EXPECT_EQ(std::get<double>(registry.parse("camera.near", "1e-6")), 1e-6);
+  EXPECT_EQ(std::get<std::string>(registry.parse("camera.far", "inf")), "inf");  // one of its words
+  EXPECT_EQ(std::get<KnobVec3>(registry.parse("camera.position", "1,-2.5,3e7")), (KnobVec3{1.0, -2.5, 3e7}));
+  EXPECT_FALSE(std::get<bool>(registry.parse("post.bloom", "off")));
+  EXPECT_TRUE(std::get<bool>(registry.parse("post.bloom", "1")));
+  EXPECT_THROW((void)registry.parse("render.ssaa", "5"), InputError);
+  EXPECT_FALSE(tryParseKnobValue(*registry.find("camera.position"), "1,2").has_value());
+}
+
 TEST(KnobRegistry, AKeyRegisteredTwiceIsAProgrammingError) {
   KnobRegistry registry = twoLayers();
   EXPECT_THROW(

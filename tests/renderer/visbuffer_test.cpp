@@ -209,5 +209,35 @@ TEST(VisBuffer, LaterColourPassesTestTheOpaqueDepthBufferInsteadOfADepthImage) {
   }
 }
 
+// A user's render path file (bench/paths/visbuffer-fragment-post.json): the visibility buffer with
+// the thesis' fragment post passes. The path, not the feature, decides the form: "Tone mapping" and
+// "SSAA Resolve" are graphics nodes, the HDR image is render.path=visbuffer's bit for bit (the
+// display image may differ by the sRGB encoding: the format's or the compute shader's).
+TEST(VisBuffer, AUserPathFileChoosesThePostPassForm) {
+  const std::string file = std::string(FGB_BENCH_PATHS_DIR) + "/visbuffer-fragment-post.json";
+  for (const char* ssaa : {"1", "2"}) {
+    SCOPED_TRACE(std::string("render.ssaa=") + ssaa);
+    const auto config = [&](const std::string& path) {
+      return sized(lavapipeConfig("atrium-small.json", {{"render.path", path}, {"render.ssaa", ssaa}}, true), 160,
+                   90, 1);
+    };
+    Rendered fragment = render(config(file), 2);
+    const graph::FrameGraph* graph = frameGraphOf(*fragment.workload);
+    ASSERT_NE(graph, nullptr);
+    EXPECT_EQ(graph->nodes()[nodeIndex(*graph, "Tone mapping")].type, graph::NodeType::Graphics);
+    if (std::string(ssaa) == "2") {
+      EXPECT_EQ(graph->nodes()[nodeIndex(*graph, "SSAA Resolve")].type, graph::NodeType::Graphics);
+    }
+    EXPECT_EQ(graph->nodes()[nodeIndex(*graph, "Material Shade")].type, graph::NodeType::Compute);
+    const Images withFile = imagesOf(fragment);
+    fragment = {};
+    const Images builtIn = renderImages(config("visbuffer"), 2);
+    EXPECT_EQ(withFile.validationMessages, 0u);
+    EXPECT_EQ(withFile.hdr.pixels, builtIn.hdr.pixels);
+    // One sRGB step, read back as linear values: at most ~0.009 (at 1.0), relatively more near 0.
+    EXPECT_EQ(differingValues(withFile.display, builtIn.display, 0.05f, 0.01f), 0u);
+  }
+}
+
 }  // namespace
 }  // namespace fgb::render

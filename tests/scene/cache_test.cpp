@@ -148,7 +148,7 @@ TEST(LoadScene, WarmLoadSkipsGenerationAndGivesTheSameScene) {
   EXPECT_EQ(warm.scene.instances.size(), 115u);
 
   // Different knobs that change geometry use a different entry.
-  options.knobs = {"atrium.seed=7"};
+  options.knobs = {{"atrium.seed", "7"}};
   const LoadedScene other = loadScene(file, options);
   EXPECT_EQ(other.parts[0].cache, "miss");
   EXPECT_NE(other.hash, cold.hash);
@@ -179,18 +179,19 @@ TEST(LoadScene, OverridesAndKnobsApplyAfterTheCache) {
   })");
   LoadOptions options;
   options.cacheDir = dir.path() / "cache";
-  options.knobs = {"camera.near=0.5", "post.bloom=0", "renderer.anything=1"};
+  options.knobs = {{"camera.near", "0.5"}, {"post.bloom", "0"}, {"renderer.anything", "1"}};
   const LoadedScene loaded = loadScene(file, options);
   EXPECT_EQ(loaded.scene.lights.size(), 3u);
   EXPECT_FLOAT_EQ(loaded.scene.camera.verticalFovDeg, 40.0f);
   EXPECT_FLOAT_EQ(loaded.scene.camera.nearPlane, 0.5f);
   EXPECT_FLOAT_EQ(loaded.scene.post.exposure, 1.5f);
   EXPECT_FALSE(loaded.scene.post.bloom.enabled);
-  options.knobs = {"scene.lights=0", "scene.particles=0"};
+  options.knobs = {{"scene.lights", "0"}, {"scene.particles", "0"}};
   EXPECT_TRUE(loadScene(file, options).scene.lights.empty());
 
   // Stability knobs: infinite far plane, auto exposure, light and emissive scales.
-  options.knobs = {"camera.far=inf", "post.exposure=auto", "scene.light_scale=1e3", "scene.emissive_scale=2"};
+  options.knobs = {
+      {"camera.far", "inf"}, {"post.exposure", "auto"}, {"scene.light_scale", "1e3"}, {"scene.emissive_scale", "2"}};
   const Scene scaled = loadScene(file, options).scene;
   EXPECT_TRUE(std::isinf(scaled.camera.farPlane));
   EXPECT_TRUE(scaled.post.autoExposure);
@@ -198,11 +199,11 @@ TEST(LoadScene, OverridesAndKnobsApplyAfterTheCache) {
   EXPECT_FLOAT_EQ(scaled.post.bloom.threshold, loaded.scene.post.bloom.threshold * 1e3f);
   EXPECT_FLOAT_EQ(scaled.lights[0].intensity, loaded.scene.lights[0].intensity * 1e3f);
   EXPECT_FLOAT_EQ(scaled.sun.intensity, loaded.scene.sun.intensity * 1e3f);
-  options.knobs = {"post.exposure=0"};
+  options.knobs = {{"post.exposure", "0"}};
   EXPECT_THROW(loadScene(file, options), fgb::InputError);
 
   // scene.offset moves everything, camera included, in double.
-  options.knobs = {"scene.offset=1e7"};
+  options.knobs = {{"scene.offset", "1e7"}};
   const Scene moved = loadScene(file, options).scene;
   const auto movedBy = [](const glm::dvec3& after, const glm::dvec3& before) {
     return glm::length(after - before - glm::dvec3(1e7, 0.0, 1e7)) < 1e-8;  // double: ~2e-9 m steps

@@ -33,7 +33,7 @@ TEST(ScenesDirectory, GeneratorOnlyScenesLoad) {
   for (const auto& file : sceneFiles()) {
     const SceneDescription d = parseSceneFile(file);
     if (!d.models.empty()) continue;  // model scenes are tested with the importer (tests/import)
-    LoadOptions options{cache.path(), true, {"atrium.scale=0.01", "atrium.texture_size=8"}};
+    LoadOptions options{cache.path(), true, {{"atrium.scale", "0.01"}, {"atrium.texture_size", "8"}}};
     const LoadedScene loaded = loadScene(file, options);
     const SceneStats s = stats(loaded.scene);
     SCOPED_TRACE(file.string());

@@ -33,15 +33,15 @@ bool inRange(const KnobSpec& spec, double value) {
   return aboveMin && belowMax;
 }
 
-bool validVec3(std::string_view text) {
+std::optional<KnobVec3> parseVec3(std::string_view text) {
+  KnobVec3 vec{};
   for (int axis = 0; axis < 3; ++axis) {
     const size_t comma = text.find(',');
-    if ((axis < 2) != (comma != std::string_view::npos)) return false;
-    double component = 0.0;
-    if (!parseDouble(text.substr(0, comma), component)) return false;
+    if ((axis < 2) != (comma != std::string_view::npos)) return std::nullopt;
+    if (!parseDouble(text.substr(0, comma), vec[size_t(axis)])) return std::nullopt;
     text = comma == std::string_view::npos ? std::string_view{} : text.substr(comma + 1);
   }
-  return true;
+  return vec;
 }
 
 std::string formatBound(double value) {
@@ -88,28 +88,49 @@ std::string describeExpected(const KnobSpec& spec) {
       return "three numbers x,y,z";
     case KnobType::Text:
       return "a non-empty value";
+    case KnobType::WordOrFile:
+      return joinWords(spec.words, "|") + " or FILE.json";
   }
   return "a value";
 }
 
-bool knobValueValid(const KnobSpec& spec, std::string_view value) {
+std::optional<KnobValue> tryParseKnobValue(const KnobSpec& spec, std::string_view value) {
   double number = 0.0;
   switch (spec.type) {
     case KnobType::Integer:
-      return isWordOf(spec, value) || (parseInteger(value, number) && inRange(spec, number));
+      if (isWordOf(spec, value)) return std::string(value);
+      if (parseInteger(value, number) && inRange(spec, number)) return number;
+      return std::nullopt;
     case KnobType::Number:
-      return isWordOf(spec, value) || (parseDouble(value, number) && inRange(spec, number));
+      if (isWordOf(spec, value)) return std::string(value);
+      if (parseDouble(value, number) && inRange(spec, number)) return number;
+      return std::nullopt;
     case KnobType::Flag:
-      return value == "0" || value == "1" || value == "true" || value == "false" || value == "on" || value == "off";
+      if (value == "1" || value == "true" || value == "on") return true;
+      if (value == "0" || value == "false" || value == "off") return false;
+      return std::nullopt;
     case KnobType::Word:
-      return isWordOf(spec, value);
+      if (isWordOf(spec, value)) return std::string(value);
+      return std::nullopt;
     case KnobType::Vec3:
-      return validVec3(value);
+      if (const auto vec = parseVec3(value)) return *vec;
+      return std::nullopt;
     case KnobType::Text:
-      return !value.empty();
+      if (!value.empty()) return std::string(value);
+      return std::nullopt;
+    case KnobType::WordOrFile:
+      if (isWordOf(spec, value) || (value.size() > 5 && value.ends_with(".json"))) return std::string(value);
+      return std::nullopt;
   }
-  return false;
+  return std::nullopt;
 }
+
+KnobValue parseKnobValue(const KnobSpec& spec, std::string_view value) {
+  if (auto parsed = tryParseKnobValue(spec, value)) return std::move(*parsed);
+  throw InputError("--set " + spec.key + "=" + std::string(value) + ": expected " + describeExpected(spec));
+}
+
+bool knobValueValid(const KnobSpec& spec, std::string_view value) { return tryParseKnobValue(spec, value).has_value(); }
 
 KnobSpec withRole(KnobSpec spec, ReferenceRole role, std::string exact) {
   spec.role = role;
@@ -158,13 +179,13 @@ std::string KnobRegistry::knownKeys() const {
   return list;
 }
 
-void KnobRegistry::check(const std::string& key, const std::string& value) const {
+void KnobRegistry::check(const std::string& key, const std::string& value) const { (void)parse(key, value); }
+
+KnobValue KnobRegistry::parse(const std::string& key, const std::string& value) const {
   const KnobSpec* spec = find(key);
   if (!spec)
     throw InputError("--set " + key + "=" + value + ": unknown knob '" + key + "' (known: " + knownKeys() + ")");
-  if (!knobValueValid(*spec, value)) {
-    throw InputError("--set " + key + "=" + value + ": expected " + describeExpected(*spec));
-  }
+  return parseKnobValue(*spec, value);
 }
 
 void KnobRegistry::checkAll(const std::map<std::string, std::string>& knobs) const {

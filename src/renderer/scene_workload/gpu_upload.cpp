@@ -294,7 +294,8 @@ void uploadGeometry(SceneUploader& uploader, const scene::Scene& scene, GpuScene
 
 }  // namespace
 
-GpuScene uploadScene(rhi::Device& device, const scene::Scene& scene, const features::RenderSettings& settings) {
+GpuScene uploadScene(rhi::Device& device, const scene::Scene& scene, const features::RenderSettings& settings,
+                     const features::RenderPath& path) {
   GpuScene gpu;
   gpu.scene = &scene;
   gpu.constants = makeFrameConstants(scene, settings);
@@ -304,7 +305,7 @@ GpuScene uploadScene(rhi::Device& device, const scene::Scene& scene, const featu
 
   SceneUploader uploader(device);
   uploadGeometry(uploader, scene, gpu);
-  if (settings.renderPath == features::RenderPath::VisBuffer) uploadClusters(uploader, scene, gpu);
+  if (path.uploadClusters) uploadClusters(uploader, scene, gpu);
   std::vector<uint32_t> textureIndices;
   for (const auto& texture : scene.textures) {
     gpu.textures.push_back(uploader.texture(texture));

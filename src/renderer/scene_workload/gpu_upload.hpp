@@ -5,6 +5,7 @@
 #pragma once
 
 #include "../features/context/gpu_scene.hpp"
+#include "../features/context/render_path.hpp"
 
 #include <fgb/rhi/device.hpp>
 #include <fgb/scene/scene.hpp>
@@ -20,7 +21,9 @@ gpu::Exposure initialExposure(const scene::PostSettings& post);
 // Instances grouped into indirect draw groups (opaque, masked, transparent back to front).
 void buildDrawGroups(const scene::Scene& scene, const glm::dvec3& cameraPosition, features::GpuScene& gpu);
 
-// Creates the GPU objects and runs the upload graph to completion.
-features::GpuScene uploadScene(rhi::Device& device, const scene::Scene& scene, const features::RenderSettings& settings);
+// Creates the GPU objects and runs the upload graph to completion; the cooked clusters too where the
+// path says ("upload": {"clusters": true}).
+features::GpuScene uploadScene(rhi::Device& device, const scene::Scene& scene, const features::RenderSettings& settings,
+                               const features::RenderPath& path);
 
 }  // namespace fgb::render

@@ -74,7 +74,7 @@ uint32_t jsonCount(const nlohmann::json& section, const char* key, uint32_t fall
 }
 
 features::RenderSettings makeSettings(const WorkloadConfig& config, const scene::SceneDescription& description,
-                                      uint32_t sampleCounts) {
+                                      uint32_t sampleCounts, const features::RenderPath& path) {
   const nlohmann::json render = description.renderer.is_object() && description.renderer.contains("render")
                                     ? description.renderer["render"]
                                     : nlohmann::json();
@@ -93,26 +93,22 @@ features::RenderSettings makeSettings(const WorkloadConfig& config, const scene:
   settings.msaa = msaa;
   features::applyRendererKnobs(settings, config.knobs);
   settings.checkFinite = config.checkFinite;
-  if (config.clampMsaaToPath) settings.msaa = std::min(settings.msaa, maxMsaaOf(settings));
-  checkRenderPathSettings(settings, config.clampMsaaToPath ? settings.msaa : requestedMsaa);
+  if (config.clampMsaaToPath) settings.msaa = std::min(settings.msaa, path.maxMsaa);
+  checkRenderPathSettings(path, config.clampMsaaToPath ? settings.msaa : requestedMsaa);
   return settings;
-}
-
-std::vector<std::string> knobList(const std::map<std::string, std::string>& knobs) {
-  std::vector<std::string> list;
-  for (const auto& [key, value] : knobs) list.push_back(key + "=" + value);
-  return list;
 }
 
 class SceneWorkload final : public Workload {
  public:
   explicit SceneWorkload(const WorkloadConfig& config) {
     Stopwatch timer;
+    // First: a bad render path file is bad input before any work.
+    path_ = renderPathOf(config.knobs);
     scene::LoadOptions loadOptions;
     const std::filesystem::path cacheDir =
         config.cacheDir.empty() ? scene::CookedCache::defaultDirectory() : std::filesystem::path(config.cacheDir);
     loadOptions.cacheDir = cacheDir;
-    loadOptions.knobs = knobList(config.knobs);
+    loadOptions.knobs = config.knobs;  // the scene's own keys are parsed once, there
     loaded_ = scene::loadScene(config.scenePath, loadOptions);
     startup_.sceneMs = timer.lap();
 
@@ -122,13 +118,13 @@ class SceneWorkload final : public Workload {
     deviceOptions.pipelineCacheDir = (cacheDir / "pipelines").string();
     device_ = vulkan::createDevice(deviceOptions);
     description_ = describeDevice(device_->adapter());
-    settings_ = makeSettings(config, loaded_.description, device_->sampleCounts());
+    settings_ = makeSettings(config, loaded_.description, device_->sampleCounts(), path_);
     rhi::checkRenderSize(device_->adapter(), settings_.width, settings_.height);
     checkSupersampledSize(device_->adapter(), settings_);
-    resolveDeviceSettings(settings_, *device_);
+    resolveDeviceSettings(settings_, path_, *device_);
     startup_.deviceMs = timer.lap();
 
-    gpu_ = uploadScene(*device_, loaded_.scene, settings_);
+    gpu_ = uploadScene(*device_, loaded_.scene, settings_, path_);
     startup_.uploadMs = timer.lap();
     createFeatures();
     buildFrameGraph();
@@ -183,7 +179,7 @@ class SceneWorkload final : public Workload {
 
  private:
   void createFeatures() {
-    RenderPathPlan plan = planRenderPath(settings_);
+    RenderPathPlan plan = planRenderPath(path_);
     features_ = std::move(plan.features);
     hdrStorage_ = plan.computeWritesHdr;
     displayStorage_ = plan.computeWritesDisplay;
@@ -192,7 +188,7 @@ class SceneWorkload final : public Workload {
     auto finiteCheck = std::make_unique<features::FiniteCheckFeature>();
     finiteCheck_ = finiteCheck.get();
     features_.push_back(std::move(finiteCheck));
-    features::FeatureInit init{*device_, gpu_, settings_};
+    features::FeatureInit init{*device_, gpu_, settings_, path_};
     for (auto& feature : features_) feature->initialize(init);
   }
 
@@ -268,6 +264,7 @@ class SceneWorkload final : public Workload {
   DeviceDescription description_;
   StartupTimes startup_;
   features::RenderSettings settings_;
+  features::RenderPath path_;  // render.path
   features::GpuScene gpu_;
   std::vector<std::unique_ptr<features::IRenderFeature>> features_;
   features::FiniteCheckFeature* finiteCheck_ = nullptr;  // owned by features_

@@ -36,20 +36,19 @@ json defaultsFor(const std::string& type) {
   return nullptr;
 }
 
-// Knob values are strings; store them as JSON numbers/booleans so params stay canonical.
-json knobValue(const std::string& text) {
-  if (text == "true" || text == "false") return text == "true";
-  double number = 0.0;
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), number);
-  if (error == std::errc() && end == text.data() + text.size()) {
-    if (number == double(int64_t(number)) && std::abs(number) < 9e15) return int64_t(number);
-    return number;
-  }
-  return text;
+// Knob values arrive parsed (Knobs); store them as JSON numbers/booleans so params stay canonical
+// (an integral number as an integer: part of the cooked cache key).
+json knobValue(const KnobValue& value) {
+  if (const auto* flag = std::get_if<bool>(&value)) return *flag;
+  if (const auto* text = std::get_if<std::string>(&value)) return *text;
+  if (const auto* vec = std::get_if<KnobVec3>(&value)) return json::array({(*vec)[0], (*vec)[1], (*vec)[2]});
+  const double number = std::get<double>(value);
+  if (number == double(int64_t(number)) && std::abs(number) < 9e15) return int64_t(number);
+  return number;
 }
 
 void applyKnobs(json& params, const std::string& type, const Knobs& knobs) {
-  std::vector<std::pair<std::string, std::string>> applicable;
+  std::vector<std::pair<std::string, KnobValue>> applicable;
   if (isAtriumBased(type)) {
     for (const auto& kv : knobs.withPrefix("atrium.")) applicable.push_back(kv);
   }

@@ -13,7 +13,6 @@
 #include <nlohmann/json.hpp>
 
 #include <chrono>
-#include <limits>
 #include <mutex>
 
 namespace fgb::scene {
@@ -137,69 +136,6 @@ Scene loadModel(PartLoader& loader, const SceneDescription& d, const ModelRef& m
   });
 }
 
-// Emissive materials and particles (whose colours are emitted radiance).
-void scaleEmissive(Scene& scene, float factor) {
-  for (Material& material : scene.materials) material.emissiveStrength *= factor;
-  for (Emitter& emitter : scene.emitters) {
-    emitter.colorStart = glm::vec4(glm::vec3(emitter.colorStart) * factor, emitter.colorStart.a);
-    emitter.colorEnd = glm::vec4(glm::vec3(emitter.colorEnd) * factor, emitter.colorEnd.a);
-  }
-}
-
-// Every source of radiance, and the bloom threshold (a radiance level): with the exposure divided
-// by the same factor the image should not change (the `light-scale` stress ladder).
-void scaleLights(Scene& scene, float factor) {
-  for (PointLight& light : scene.lights) light.intensity *= factor;
-  scene.sun.intensity *= factor;
-  scaleEmissive(scene, factor);
-  scene.post.lightScale *= factor;
-  scene.post.bloom.threshold *= factor;
-}
-
-// The whole scene and its camera moved by `offset` (world placement is double: nothing is lost).
-void translateScene(Scene& scene, const glm::dvec3& offset) {
-  for (Instance& instance : scene.instances) {
-    instance.transform[3] += glm::dvec4(offset, 0.0);
-    if (!instance.worldBounds.isEmpty()) instance.worldBounds = {instance.worldBounds.min + offset, instance.worldBounds.max + offset};
-  }
-  for (PointLight& light : scene.lights) light.position += offset;
-  for (Emitter& emitter : scene.emitters) emitter.position += offset;
-  scene.camera.position += offset;
-  scene.camera.target += offset;
-}
-
-void applyKnobs(Scene& scene, const Knobs& knobs) {
-  Camera& c = scene.camera;
-  if (auto v = knobs.number("camera.fov")) c.verticalFovDeg = static_cast<float>(*v);
-  if (auto v = knobs.number("camera.near")) c.nearPlane = static_cast<float>(*v);
-  if (auto v = knobs.numberOr("camera.far", "inf")) c.farPlane = static_cast<float>(*v);
-  if (knobs.isWord("camera.far", "inf")) c.farPlane = std::numeric_limits<float>::infinity();
-  if (auto v = knobs.vec3("camera.position")) c.position = *v;
-  if (auto v = knobs.vec3("camera.target")) c.target = *v;
-  if (!(c.verticalFovDeg > 0.0f && c.verticalFovDeg < 179.0f)) throw InputError("--set camera.fov: expected degrees in (0, 179)");
-  if (!(c.nearPlane > 0.0f && c.farPlane > c.nearPlane)) throw InputError("--set camera.near/far: expected 0 < near < far");
-  if (glm::length(c.target - c.position) <= 0.0f) throw InputError("--set camera.target: must differ from the position");
-  PostSettings& p = scene.post;
-  if (auto v = knobs.numberOr("post.exposure", "auto")) {
-    if (!(*v > 0.0)) throw InputError("--set post.exposure=" + std::to_string(*v) + ": expected a positive number or 'auto'");
-    p.exposure = static_cast<float>(*v);
-    p.autoExposure = false;
-  }
-  if (knobs.isWord("post.exposure", "auto")) p.autoExposure = true;
-  if (auto v = knobs.flag("post.bloom")) p.bloom.enabled = *v;
-  if (auto v = knobs.number("post.bloom_threshold")) p.bloom.threshold = static_cast<float>(*v);
-  if (auto v = knobs.number("post.bloom_knee")) p.bloom.knee = static_cast<float>(*v);
-  if (auto v = knobs.number("post.bloom_intensity")) p.bloom.intensity = static_cast<float>(*v);
-  if (auto v = knobs.number("post.bloom_radius")) p.bloom.radius = static_cast<float>(*v);
-  if (knobs.flag("scene.lights") == false) scene.lights.clear();
-  if (knobs.flag("scene.particles") == false) scene.emitters.clear();
-  if (auto v = knobs.flag("scene.sun")) scene.sun.enabled = *v;
-  if (auto v = knobs.scale("scene.light_scale")) scaleLights(scene, static_cast<float>(*v));
-  if (auto v = knobs.scale("scene.emissive_scale")) scaleEmissive(scene, static_cast<float>(*v));
-  // Last, so camera knobs describe the scene before it moves: any offset gives the same image.
-  if (auto v = knobs.number("scene.offset")) translateScene(scene, glm::dvec3(*v, 0.0, *v));
-}
-
 void applyDescription(Scene& scene, const SceneDescription& d) {
   scene.lights.insert(scene.lights.end(), d.lights.begin(), d.lights.end());
   scene.emitters.insert(scene.emitters.end(), d.emitters.begin(), d.emitters.end());
@@ -243,7 +179,7 @@ LoadedScene loadScene(const std::filesystem::path& sceneFile, const LoadOptions&
   const auto start = Clock::now();
   LoadedScene result;
   result.description = parseSceneFile(sceneFile);
-  const Knobs knobs = Knobs::parse(options.knobs);
+  const Knobs knobs = Knobs::from(options.knobs);
   const SceneDescription& d = result.description;
   PartLoader loader(options, result);
 

@@ -35,9 +35,10 @@ struct DrawGroup {
   uint32_t capacity = 0;   // instances in the group
 };
 
-// The cooked clusters, uploaded for the visibility-buffer path only (render.path=visbuffer), and
-// one gpu::ClusterDraw per cluster of every opaque or alpha-masked instance ("Cluster Cull" tests
-// each). Transparent instances stay with the forward "Mesh Render Transparent".
+// The cooked clusters, uploaded where the render path says so ("upload": {"clusters": true}: the
+// visibility-buffer path), and one gpu::ClusterDraw per cluster of every opaque or alpha-masked
+// instance ("Cluster Cull" tests each). Transparent instances stay with the forward "Mesh Render
+// Transparent".
 // Cluster vertices are numbered across the scene (cluster.firstVertex + local index): a vertex
 // shared by several clusters has a copy in each, so a triangle's corners are found from its one
 // packed word without the mesh's index buffer.

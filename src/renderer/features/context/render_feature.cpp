@@ -49,10 +49,6 @@ std::pair<uint32_t, uint32_t> GpuScene::groupRange(DrawClass drawClass) const {
   return {first, last - first};
 }
 
-DepthTest depthTestFor(const RenderSettings& settings) {
-  return settings.renderPath == RenderPath::VisBuffer ? DepthTest::OpaqueDepthBuffer : DepthTest::Attachment;
-}
-
 void setDepthState(rhi::GraphicsPipelineDesc& desc, DepthTest form, bool writesDepth) {
   if (form == DepthTest::OpaqueDepthBuffer) {
     if (writesDepth) throw std::logic_error("pipeline '" + desc.name + "' writes depth: it needs a depth attachment");

@@ -5,6 +5,7 @@
 
 #include "blackboard.hpp"
 #include "gpu_scene.hpp"
+#include "render_path.hpp"
 #include "render_settings.hpp"
 #include "renderer/shared/opaque_depth.h"
 
@@ -23,12 +24,10 @@ struct FeatureInit {
   rhi::Device& device;
   const GpuScene& scene;
   const RenderSettings& settings;
+  // The path's decisions (post-pass form, depth test, ...); the feature's own options come through
+  // its registry entry's factory.
+  const RenderPath& path;
 };
-
-// How a full-screen post pass runs: as a fragment pass (the thesis' forward renderer) or as a
-// compute dispatch on the graphics queue (the visibility-buffer path: on GPUs that run graphics on
-// a few SMs only, compute reaches all of them). Both forms share their GLSL maths.
-enum class PostPassForm : uint8_t { Fragment, Compute };
 
 // The pipeline of a full-screen post pass in the given form: "renderer/<shader>.comp", or the
 // full-screen triangle with "renderer/<shader>.frag" drawing into one `colorFormat` target.
@@ -58,15 +57,6 @@ class IRenderFeature {
   virtual void addStats(std::map<std::string, double>& /*stats*/) const {}
 };
 
-// How the colour passes drawn after the opaque scene ("Mesh Render Transparent", "Particle
-// Render") depth-test against it. Forward: the depth attachment, kDepthCompare in the pipeline.
-// Visibility buffer: no depth attachment (the opaque depth is a buffer "Material Shade" writes,
-// FrameTargets::opaqueDepth); the fragment shaders' "opaque_depth" variants (setDepthState picks
-// them) read it and discard what the attachment's test would reject (include/opaque_depth.glsl).
-// The pipelines differ (a depth format or none), so a feature picks the form from the settings
-// once, at initialisation.
-enum class DepthTest : uint8_t { Attachment, OpaqueDepthBuffer };
-[[nodiscard]] DepthTest depthTestFor(const RenderSettings& settings);
 // The pipeline's depth state for `form`: the depth format and kDepthCompare, writing when asked;
 // none for OpaqueDepthBuffer (which cannot write depth: std::logic_error).
 void setDepthState(rhi::GraphicsPipelineDesc& desc, DepthTest form, bool writesDepth);

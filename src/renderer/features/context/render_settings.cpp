@@ -1,27 +1,120 @@
 #include "render_settings.hpp"
 
+#include "render_path.hpp"
+
 #include <fgb/core/error.hpp>
 
-#include <charconv>
+#include <algorithm>
+#include <functional>
+#include <utility>
 
 namespace fgb::features {
 namespace {
 
-// Each knob with its reference role (fgb/core/knob_registry.hpp) and, for approximation and
-// cost-only knobs, the value the sweep's reference uses.
-KnobSpec integer(std::string key, double min, double max, std::string help, ReferenceRole role,
-                 std::string exact = {}) {
-  return {std::move(key), KnobType::Integer, min, max, false, false, {}, "renderer", std::move(help),
-          role,           std::move(exact)};
+// One renderer knob, in one line of the table below: its registry entry (type, range, reference
+// role and, for approximation and cost-only knobs, the value the sweep's reference uses) and
+// where its value lands in RenderSettings. The value arrives parsed once (parseKnobValue).
+struct RendererKnob {
+  KnobSpec spec;
+  std::function<void(RenderSettings&, const KnobValue&)> land;
+};
+
+KnobSpec spec(std::string key, KnobType type, std::string help, ReferenceRole role, std::string exact,
+              std::vector<std::string> words = {}, double min = 0.0, double max = 0.0) {
+  return {std::move(key), type, min, max, false, false, std::move(words), "renderer", std::move(help), role,
+          std::move(exact)};
 }
-KnobSpec word(std::string key, std::vector<std::string> words, std::string help, ReferenceRole role,
-              std::string exact = {}) {
-  return {std::move(key), KnobType::Word,  0.0, 0.0, false, false, std::move(words), "renderer", std::move(help),
-          role,           std::move(exact)};
+
+// An integer in [min, max] into a uint32_t field.
+RendererKnob count(std::string key, double min, double max, uint32_t RenderSettings::*field, std::string help,
+                   ReferenceRole role, std::string exact = {}) {
+  return {spec(std::move(key), KnobType::Integer, std::move(help), role, std::move(exact), {}, min, max),
+          [field](RenderSettings& s, const KnobValue& v) { s.*field = uint32_t(std::get<double>(v)); }};
 }
-KnobSpec flag(std::string key, std::string help, ReferenceRole role, std::string exact = {}) {
-  return {std::move(key), KnobType::Flag,  0.0, 0.0, false, false, {}, "renderer", std::move(help),
-          role,           std::move(exact)};
+// 0|1|true|false|on|off into a bool field.
+RendererKnob flag(std::string key, bool RenderSettings::*field, std::string help, ReferenceRole role,
+                  std::string exact = {}) {
+  return {spec(std::move(key), KnobType::Flag, std::move(help), role, std::move(exact)),
+          [field](RenderSettings& s, const KnobValue& v) { s.*field = std::get<bool>(v); }};
+}
+// One of `words` into the field of type T: the words and their values in one list.
+template <class T>
+RendererKnob word(std::string key, T RenderSettings::*field, std::vector<std::pair<std::string, T>> words,
+                  std::string help, ReferenceRole role, std::string exact = {}) {
+  std::vector<std::string> names;
+  for (const auto& [name, value] : words) names.push_back(name);
+  return {spec(std::move(key), KnobType::Word, std::move(help), role, std::move(exact), std::move(names)),
+          [field, words](RenderSettings& s, const KnobValue& v) {
+            for (const auto& [name, value] : words)
+              if (name == std::get<std::string>(v)) s.*field = value;
+          }};
+}
+// Text of `type` (Word with `words`, or Text) into a string field; "none" lands as "".
+RendererKnob text(std::string key, KnobType type, std::vector<std::string> words, std::string RenderSettings::*field,
+                  std::string help, ReferenceRole role, std::string exact = {}) {
+  return {spec(std::move(key), type, std::move(help), role, std::move(exact), std::move(words)),
+          [field](RenderSettings& s, const KnobValue& v) {
+            const auto& value = std::get<std::string>(v);
+            s.*field = value == "none" ? "" : value;
+          }};
+}
+
+std::vector<std::string> builtinPathNames() {
+  std::vector<std::string> names;
+  for (const BuiltinRenderPath& path : builtinRenderPaths()) names.emplace_back(path.name);
+  return names;
+}
+
+const std::vector<RendererKnob>& rendererKnobs() {
+  using enum ReferenceRole;
+  using S = RenderSettings;
+  static const std::vector<RendererKnob> knobs = {
+      word("debug.view", &S::debugView,
+           {{"none", DebugView::None}, {"off", DebugView::None}, {"light-complexity", DebugView::LightComplexity}},
+           "debug visualisation", Look),
+      flag("render.depth_prepass", &S::depthPrepass, "depth-only pass before shading", CostOnly, "0"),
+      flag("render.async", &S::asyncCompute,
+           "compute nodes on a compute queue of their own where the device has one (0: all on graphics)", CostOnly, "1"),
+      // The sweep's reference raises it to 4 (`fgbench sweep --reference-ssaa` up to 8).
+      count("render.ssaa", 1, 8, &S::ssaa, "supersampling: scene passes at S*W x S*H, box-filtered to W x H",
+            Approximation, "4"),
+      // The reference path is the thesis' forward raster; another path's difference from it at
+      // convergence is its bias, which the sweep reports apart from its error. A built-in name
+      // (src/renderer/paths/NAME.json, embedded) or a user's FILE.json, which the scene workload
+      // reads and checks (scene_workload/render_paths.cpp); it is the path, not a setting, so it
+      // lands in no field.
+      {spec("render.path", KnobType::WordOrFile,
+            "the render path: a built-in one, or a FILE.json naming its features (src/renderer/paths/*.json)",
+            CostOnly, "forward", builtinPathNames()),
+       [](RenderSettings&, const KnobValue&) {}},
+      word("render.vis_backing", &S::visBacking,
+           {{"auto", VisBacking::Auto}, {"buffer", VisBacking::Buffer}, {"image", VisBacking::Image}},
+           "visbuffer words: R64 image atomics or a storage buffer (auto: image where the device has them)", CostOnly,
+           "auto"),
+      flag("render.occlusion", &S::occlusion,
+           "visbuffer: two-phase HiZ occlusion culling of clusters (no effect on render.path=forward)", CostOnly, "0"),
+      word("lighting.mode", &S::lightingMode, {{"clustered", LightingMode::Clustered}, {"all", LightingMode::All}},
+           "clustered light lists, or every light for every pixel", Approximation, "all"),
+      // Unused by lighting.mode=all; the largest values make the reference's exactness explicit.
+      count("lighting.slices", 1, 64, &S::clusterSlices, "cluster depth slices", Approximation, "64"),
+      count("lighting.max_per_cluster", 1, 1024, &S::maxLightsPerCluster, "lights kept per cluster (overflow guard)",
+            Approximation, "1024"),
+      // A wider bloom is another look, not an approximation that converges (issue 30).
+      count("bloom.mips", 1, 10, &S::bloomMips, "bloom chain levels (clamped to what the size allows)", Look),
+      count("particles.seed", 0, 1 << 30, &S::particleSeedOffset, "added to every emitter's seed", Content),
+      // Phase 2 of render.occlusion has nothing to recover while the camera stands still (phase 1
+      // tests against the same depths); this makes it recover clusters (tests: same image).
+      flag("debug.occlusion_hold_back", &S::occlusionHoldBack,
+           "render.occlusion: phase 1 also holds back every other cluster for phase 2 (tests)", CostOnly, "0"),
+      // The passes whose shaders can write a NaN on request (tests of --check-finite).
+      text("debug.inject_nan", KnobType::Word, {"none", "Mesh Render", "Bloom"}, &S::injectNanPass,
+           "pass that writes a NaN (tests of --check-finite)", Content),
+      // NAME:PERCENT, checked against the frame's passes once the graph is declared (slowPassOf).
+      // Slower, not different: pinned off in the sweep's reference.
+      text("debug.slow_pass", KnobType::Text, {}, &S::slowPass,
+           "NAME:PERCENT: that pass also spins on the GPU for PERCENT% of its own time (timing tests)", CostOnly, ""),
+  };
+  return knobs;
 }
 
 const KnobRegistry& rendererRegistry() {
@@ -40,77 +133,14 @@ bool underRendererPrefix(const std::string& key) {
   return false;
 }
 
-// Values reach these only after the registry checked them (type and range).
-uint32_t count(const std::string& value) {
-  uint32_t parsed = 0;
-  std::from_chars(value.data(), value.data() + value.size(), parsed);
-  return parsed;
-}
-bool flag(const std::string& value) { return value == "1" || value == "true" || value == "on"; }
-VisBacking visBackingNamed(const std::string& value) {
-  if (value == "buffer") return VisBacking::Buffer;
-  return value == "image" ? VisBacking::Image : VisBacking::Auto;
-}
-
-void applyOne(RenderSettings& settings, const std::string& key, const std::string& value) {
-  if (key == "debug.view") settings.debugView = value == "light-complexity" ? DebugView::LightComplexity : DebugView::None;
-  else if (key == "render.depth_prepass") settings.depthPrepass = flag(value);
-  else if (key == "render.async") settings.asyncCompute = flag(value);
-  else if (key == "render.ssaa") settings.ssaa = count(value);
-  else if (key == "render.path") settings.renderPath = value == "visbuffer" ? RenderPath::VisBuffer : RenderPath::Forward;
-  else if (key == "render.vis_backing") settings.visBacking = visBackingNamed(value);
-  else if (key == "render.occlusion") settings.occlusion = flag(value);
-  else if (key == "debug.occlusion_hold_back") settings.occlusionHoldBack = flag(value);
-  else if (key == "lighting.mode") settings.lightingMode = value == "all" ? LightingMode::All : LightingMode::Clustered;
-  else if (key == "lighting.slices") settings.clusterSlices = count(value);
-  else if (key == "lighting.max_per_cluster") settings.maxLightsPerCluster = count(value);
-  else if (key == "bloom.mips") settings.bloomMips = count(value);
-  else if (key == "particles.seed") settings.particleSeedOffset = count(value);
-  else if (key == "debug.inject_nan") settings.injectNanPass = value == "none" ? "" : value;
-  else if (key == "debug.slow_pass") settings.slowPass = value == "none" ? "" : value;
-}
-
 }  // namespace
 
 const std::vector<KnobSpec>& rendererKnobSpecs() {
-  using enum ReferenceRole;
-  static const std::vector<KnobSpec> specs = {
-      word("debug.view", {"none", "off", "light-complexity"}, "debug visualisation", Look),
-      flag("render.depth_prepass", "depth-only pass before shading", CostOnly, "0"),
-      flag("render.async", "compute nodes on a compute queue of their own where the device has one (0: all on graphics)",
-           CostOnly, "1"),
-      // The sweep's reference raises it to 4 (`fgbench sweep --reference-ssaa` up to 8).
-      integer("render.ssaa", 1, 8, "supersampling: scene passes at S*W x S*H, box-filtered to W x H", Approximation,
-              "4"),
-      // The reference path is the thesis' forward raster; another path's difference from it at
-      // convergence is its bias, which the sweep reports apart from its error.
-      word("render.path", {"forward", "visbuffer"},
-           "what draws the opaque scene: forward raster or compute visibility buffer", CostOnly, "forward"),
-      word("render.vis_backing", {"auto", "buffer", "image"},
-           "visbuffer words: R64 image atomics or a storage buffer (auto: image where the device has them)", CostOnly,
-           "auto"),
-      flag("render.occlusion",
-           "visbuffer: two-phase HiZ occlusion culling of clusters (no effect on render.path=forward)", CostOnly, "0"),
-      word("lighting.mode", {"clustered", "all"}, "clustered light lists, or every light for every pixel",
-           Approximation, "all"),
-      // Unused by lighting.mode=all; the largest values make the reference's exactness explicit.
-      integer("lighting.slices", 1, 64, "cluster depth slices", Approximation, "64"),
-      integer("lighting.max_per_cluster", 1, 1024, "lights kept per cluster (overflow guard)", Approximation, "1024"),
-      // A wider bloom is another look, not an approximation that converges (issue 30).
-      integer("bloom.mips", 1, 10, "bloom chain levels (clamped to what the size allows)", Look),
-      integer("particles.seed", 0, 1 << 30, "added to every emitter's seed", Content),
-      // Phase 2 of render.occlusion has nothing to recover while the camera stands still (phase 1
-      // tests against the same depths); this makes it recover clusters (tests: same image).
-      flag("debug.occlusion_hold_back",
-           "render.occlusion: phase 1 also holds back every other cluster for phase 2 (tests)", CostOnly, "0"),
-      // The passes whose shaders can write a NaN on request (tests of --check-finite).
-      word("debug.inject_nan", {"none", "Mesh Render", "Bloom"}, "pass that writes a NaN (tests of --check-finite)",
-           Content),
-      // NAME:PERCENT, checked against the frame's passes once the graph is declared (slowPassOf).
-      // Slower, not different: pinned off in the sweep's reference.
-      {"debug.slow_pass", KnobType::Text, 0, 0, false, false, {}, "renderer",
-       "NAME:PERCENT: that pass also spins on the GPU for PERCENT% of its own time (timing tests)", CostOnly, ""},
-  };
+  static const std::vector<KnobSpec> specs = [] {
+    std::vector<KnobSpec> list;
+    for (const RendererKnob& knob : rendererKnobs()) list.push_back(knob.spec);
+    return list;
+  }();
   return specs;
 }
 
@@ -119,8 +149,13 @@ bool isRendererKnob(const std::string& key) { return rendererRegistry().find(key
 void applyRendererKnobs(RenderSettings& settings, const std::map<std::string, std::string>& knobs) {
   for (const auto& [key, value] : knobs) {
     if (!underRendererPrefix(key)) continue;
-    rendererRegistry().check(key, value);
-    applyOne(settings, key, value);
+    const auto& table = rendererKnobs();
+    const auto knob = std::find_if(table.begin(), table.end(), [&](const RendererKnob& k) { return k.spec.key == key; });
+    if (knob == table.end()) {
+      rendererRegistry().check(key, value);  // unknown: throws, naming the known keys
+      continue;
+    }
+    knob->land(settings, parseKnobValue(knob->spec, value));
   }
 }
 

@@ -13,11 +13,6 @@ namespace fgb::features {
 
 enum class DebugView : uint8_t { None, LightComplexity };
 
-// render.path: which features draw the opaque scene. Forward (the thesis' renderer) rasterises it
-// in "Mesh Render"; VisBuffer culls clusters and triangles, rasterises ids in compute and shades
-// from the visibility buffer (features/visbuffer).
-enum class RenderPath : uint8_t { Forward, VisBuffer };
-
 // render.vis_backing: what holds the visibility buffer's 64-bit words on the visbuffer path. Auto
 // becomes Image where the device has 64-bit atomics on R64 storage images, else Buffer; the scene
 // workload resolves it once the device is open (features::resolveVisBacking).
@@ -31,7 +26,8 @@ struct RenderSettings {
   uint32_t width = 640;               // output size: the HDR image bloom and tone mapping work on
   uint32_t height = 360;
   uint32_t msaa = 1;
-  RenderPath renderPath = RenderPath::Forward;  // render.path = forward | visbuffer
+  // render.path is not a setting: it is the path itself (render_path.hpp), which features receive
+  // through FeatureInit (scene_workload/render_paths.cpp reads the knob).
   VisBacking visBacking = VisBacking::Auto;     // render.vis_backing = auto | buffer | image
   bool occlusion = false;             // render.occlusion: two-phase HiZ cluster culling (visbuffer)
   bool occlusionHoldBack = false;     // debug.occlusion_hold_back: phase 1 also holds back odd clusters

@@ -21,7 +21,7 @@ constexpr uint32_t kCommandStride = sizeof(gpu::DrawCommand);
 
 // Opaque and masked instances write depth; transparent ones only test it (forward: against the
 // depth attachment; visibility buffer: against the opaque depth buffer, in forward.frag).
-rhi::GraphicsPipelineDesc forwardPipeline(const RenderSettings& settings, bool transparent) {
+rhi::GraphicsPipelineDesc forwardPipeline(const RenderSettings& settings, bool transparent, DepthTest transparentTest) {
   rhi::GraphicsPipelineDesc desc;
   desc.name = transparent ? "mesh forward (blend)" : "mesh forward";
   desc.vertexShader = "renderer/forward.vert";
@@ -35,13 +35,13 @@ rhi::GraphicsPipelineDesc forwardPipeline(const RenderSettings& settings, bool t
   desc.cullMode = rhi::CullMode::None;
   desc.colorFormats = {kHdrFormat};
   desc.blend = {transparent ? rhi::BlendMode::Alpha : rhi::BlendMode::Opaque};
-  setDepthState(desc, transparent ? depthTestFor(settings) : DepthTest::Attachment, !transparent);
+  setDepthState(desc, transparent ? transparentTest : DepthTest::Attachment, !transparent);
   desc.samples = settings.msaa;
   return desc;
 }
 
 rhi::GraphicsPipelineDesc depthOnlyPipeline(const RenderSettings& settings) {
-  rhi::GraphicsPipelineDesc desc = forwardPipeline(settings, false);
+  rhi::GraphicsPipelineDesc desc = forwardPipeline(settings, false, DepthTest::Attachment);
   desc.name = "mesh depth prepass";
   desc.fragmentShader.clear();
   desc.colorFormats.clear();
@@ -108,17 +108,20 @@ void MeshFeature::configure(const GpuScene& scene) {
 void MeshFeature::initialize(FeatureInit& init) {
   configure(init.scene);
   device_ = &init.device;
-  drawsOpaque_ = init.settings.renderPath == RenderPath::Forward;
-  transparentDepthTest_ = depthTestFor(init.settings);
+  transparentDepthTest_ = init.path.depthTest;
   if (!enabled()) return;
   pipelines_.cull = init.device.createComputePipeline({"mesh frustum cull", "renderer/mesh_cull.comp"});
   drawCount_ = init.device.drawIndirectCount();
   if (drawCount_) pipelines_.compact = init.device.createComputePipeline({"mesh draw compaction", "renderer/mesh_compact.comp"});
-  if (drawsOpaque_) pipelines_.opaque = init.device.createGraphicsPipeline(forwardPipeline(init.settings, false));
+  if (drawsOpaque_)
+    pipelines_.opaque =
+        init.device.createGraphicsPipeline(forwardPipeline(init.settings, false, DepthTest::Attachment));
   depthPrepass_ = drawsOpaque_ && init.settings.depthPrepass;
   injectNanPass_ = init.settings.injectNanPass;
   if (depthPrepass_) pipelines_.depthOnly = init.device.createGraphicsPipeline(depthOnlyPipeline(init.settings));
-  if (hasTransparent_) pipelines_.transparent = init.device.createGraphicsPipeline(forwardPipeline(init.settings, true));
+  if (hasTransparent_)
+    pipelines_.transparent =
+        init.device.createGraphicsPipeline(forwardPipeline(init.settings, true, transparentDepthTest_));
   statsReadback_ = createReadbackBuffer(init.device, "mesh cull stats readback", kStatsBytes);
 }
 

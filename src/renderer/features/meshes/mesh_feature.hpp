@@ -7,10 +7,10 @@
 // front after opaque. With render.depth_prepass=1, "Depth Prepass" lays down the depth of opaque
 // instances first (alpha-masked ones write depth in "Mesh Render"). Command instance counts are
 // reset by their own transfer node ("Mesh Cull Reset") so no shader relies on cross-workgroup
-// ordering. On the visibility-buffer path only "Mesh Render Transparent" is declared (with the
-// cull it needs), which depth-tests in its fragment shader against the opaque depth buffer "Material
-// Shade" wrote (no depth attachment: DepthTest::OpaqueDepthBuffer); the opaque scene is the
-// visbuffer feature's.
+// ordering. With the option "opaque": false (the visibility-buffer path) only "Mesh Render
+// Transparent" is declared (with the cull it needs), which depth-tests as the path says: there in
+// its fragment shader against the opaque depth buffer "Material Shade" wrote (no depth attachment:
+// DepthTest::OpaqueDepthBuffer); the opaque scene is the visbuffer feature's.
 #pragma once
 
 #include "../context/render_feature.hpp"
@@ -37,6 +37,8 @@ struct MeshCullOutputs {
 
 class MeshFeature final : public IRenderFeature {
  public:
+  // drawsOpaque: the path's "opaque" option (feature_registry.cpp).
+  explicit MeshFeature(bool drawsOpaque = true) : drawsOpaque_(drawsOpaque) {}
   [[nodiscard]] std::string_view name() const override { return "meshes"; }
   [[nodiscard]] bool enabled() const override { return instanceCount_ > 0 && (drawsOpaque_ || hasTransparent_); }
   void initialize(FeatureInit& init) override;
@@ -68,10 +70,11 @@ class MeshFeature final : public IRenderFeature {
   bool hasTransparent_ = false;
   bool depthPrepass_ = false;
   std::string injectNanPass_;  // debug.inject_nan
-  // Forward path: "Mesh Render" draws opaque and masked instances. The visibility-buffer path
+  // "Mesh Render" draws opaque and masked instances (option "opaque"). The visibility-buffer path
   // draws those in compute and leaves this feature only the transparent ones.
   bool drawsOpaque_ = true;
-  // How "Mesh Render Transparent" tests the opaque depth (visibility buffer: in forward.frag).
+  // How "Mesh Render Transparent" tests the opaque depth (the path's depth_test; visibility
+  // buffer: in forward.frag).
   DepthTest transparentDepthTest_ = DepthTest::Attachment;
   bool drawCount_ = false;  // the device has vkCmdDrawIndexedIndirectCount
 };

@@ -93,7 +93,7 @@ void ParticleFeature::initialize(FeatureInit& init) {
   desc.fragmentShader = "renderer/particle.frag";
   desc.colorFormats = {kHdrFormat};
   desc.blend = {rhi::BlendMode::Alpha};
-  depthTest_ = depthTestFor(init.settings);
+  depthTest_ = init.path.depthTest;
   setDepthState(desc, depthTest_, false);
   desc.samples = init.settings.msaa;
   renderPipeline_ = init.device.createGraphicsPipeline(desc);

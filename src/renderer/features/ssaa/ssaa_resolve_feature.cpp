@@ -8,6 +8,7 @@ namespace fgb::features {
 
 void SsaaResolveFeature::initialize(FeatureInit& init) {
   factor_ = init.settings.ssaa;
+  form_ = init.path.post;
   if (!enabled()) return;
   pipeline_ = createPostPassPipeline(init.device, form_, "ssaa resolve", "ssaa_resolve", kHdrFormat);
 }

@@ -18,14 +18,13 @@ namespace fgb::features {
 
 class SsaaResolveFeature final : public IRenderFeature {
  public:
-  explicit SsaaResolveFeature(PostPassForm form = PostPassForm::Fragment) : form_(form) {}
   [[nodiscard]] std::string_view name() const override { return "ssaa resolve"; }
   [[nodiscard]] bool enabled() const override { return factor_ > 1; }
   void initialize(FeatureInit& init) override;
   void declare(graph::FrameGraph& graph, Blackboard& board) override;
 
  private:
-  PostPassForm form_;
+  PostPassForm form_ = PostPassForm::Fragment;  // the path's "post"
   rhi::PipelineId pipeline_;
   uint32_t factor_ = 1;
 };

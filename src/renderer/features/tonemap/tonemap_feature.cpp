@@ -12,6 +12,7 @@ graph::Format TonemapFeature::displayFormat(PostPassForm form) {
 }
 
 void TonemapFeature::initialize(FeatureInit& init) {
+  form_ = init.path.post;
   pipeline_ = createPostPassPipeline(init.device, form_, "tone mapping", "tonemap", kDisplayFormat);
   samplerIndex_ = init.device.samplerIndex(init.scene.linearClampSampler);
   exposureBuffer_ = init.device.storageBufferIndex(init.scene.exposure);

@@ -12,7 +12,6 @@ namespace fgb::features {
 
 class TonemapFeature final : public IRenderFeature {
  public:
-  explicit TonemapFeature(PostPassForm form = PostPassForm::Fragment) : form_(form) {}
   [[nodiscard]] std::string_view name() const override { return "tonemap"; }
   void initialize(FeatureInit& init) override;
   void declare(graph::FrameGraph& graph, Blackboard& board) override;
@@ -21,7 +20,7 @@ class TonemapFeature final : public IRenderFeature {
   [[nodiscard]] static graph::Format displayFormat(PostPassForm form);
 
  private:
-  PostPassForm form_;
+  PostPassForm form_ = PostPassForm::Fragment;  // the path's "post"
   rhi::PipelineId pipeline_;
   uint32_t samplerIndex_ = 0;
   uint32_t exposureBuffer_ = 0;

@@ -100,7 +100,7 @@ struct VisBufferFeature::Buffers {
 void VisBufferFeature::initialize(FeatureInit& init) {
   device_ = &init.device;
   scene_ = &init.scene;
-  drawCount_ = init.settings.renderPath == RenderPath::VisBuffer ? init.scene.clusterGeometry.drawCount : 0;
+  drawCount_ = init.scene.clusterGeometry.drawCount;  // the path uploads the clusters (upload.clusters)
   if (!enabled()) return;
   if (!init.device.shaderCapabilities().bufferInt64Atomics)
     throw DeviceError("render.path=visbuffer needs 64-bit storage-buffer atomics (shaderBufferInt64Atomics), which " +

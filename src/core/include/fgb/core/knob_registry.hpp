@@ -5,10 +5,13 @@
 // exit 2 naming the key (and listing the known ones) instead of a silently ignored setting.
 #pragma once
 
+#include <array>
 #include <limits>
 #include <map>
+#include <optional>
 #include <string>
 #include <string_view>
+#include <variant>
 #include <vector>
 
 namespace fgb {
@@ -20,6 +23,9 @@ enum class KnobType {
   Word,     // one of `words`
   Vec3,     // three finite numbers "x,y,z"
   Text,     // any non-empty text (checked by its owner when used, e.g. a pass name)
+  // One of `words` (built-in names), or the path of a user's FILE.json, which its owner reads and
+  // checks when used (render.path: a render path file).
+  WordOrFile,
 };
 
 // What a knob does to a sweep's reference image (docs/sweep.md, "The reference"). Every knob has
@@ -57,6 +63,19 @@ struct KnobSpec {
   std::string exact;  // Approximation: the reference's value; CostOnly: the pinned value ("" = dropped)
 };
 
+// A knob's value once checked and converted, by the one parser of its type (parseKnobValue):
+// Integer and Number as a double (or, for one of their `words`, that word), Flag as a bool, Word,
+// Text and WordOrFile as the text, Vec3 as three doubles. Layers take values in this form, so a
+// value is parsed (and checked) once, not kept as text and parsed again where it is used.
+using KnobVec3 = std::array<double, 3>;
+using KnobValue = std::variant<double, bool, std::string, KnobVec3>;
+
+// `text` checked against `spec` and converted; InputError "--set key=text: expected ..." (one line)
+// when it is of the wrong type or out of range.
+KnobValue parseKnobValue(const KnobSpec& spec, std::string_view text);
+// The same without throwing: nullopt where parseKnobValue throws.
+std::optional<KnobValue> tryParseKnobValue(const KnobSpec& spec, std::string_view text);
+
 // `spec` with its reference role (and the reference's value for Approximation / CostOnly knobs).
 KnobSpec withRole(KnobSpec spec, ReferenceRole role, std::string exact = {});
 
@@ -76,6 +95,8 @@ class KnobRegistry {
   // ones, and for a value of the wrong type or out of range, saying what was expected.
   void check(const std::string& key, const std::string& value) const;
   void checkAll(const std::map<std::string, std::string>& knobs) const;
+  // check(), returning the converted value (parseKnobValue).
+  [[nodiscard]] KnobValue parse(const std::string& key, const std::string& value) const;
 
   // "a, b, c": every key, sorted.
   [[nodiscard]] std::string knownKeys() const;
@@ -87,7 +108,7 @@ class KnobRegistry {
 // What a spec accepts, in words: "an integer in [1, 4]", "0|1", "a number > 0 or inf", ...
 std::string describeExpected(const KnobSpec& spec);
 
-// True when `value` is acceptable for `spec` (type and range).
+// True when `value` is acceptable for `spec` (type and range): tryParseKnobValue has a value.
 bool knobValueValid(const KnobSpec& spec, std::string_view value);
 
 // Splits "key=value" assignments (InputError "--set X: expected key=value" when one has no '=' or

@@ -16,6 +16,7 @@
 #pragma once
 
 #include <fgb/core/knob_registry.hpp>
+#include <fgb/scene/scene.hpp>
 
 #include <glm/ext/vector_double3.hpp>
 
@@ -27,20 +28,36 @@
 
 namespace fgb::scene {
 
-// The scene layer's entries of the knob registry (keys above, with types and ranges).
+// The scene layer's entries of the knob registry (keys above, with types and ranges), from the
+// table in knobs.cpp, where each knob's line also says where its value lands.
 std::vector<KnobSpec> knobSpecs();
+
+class Knobs;
+// Applies the knobs that land in the loaded scene (camera, post, lights, offset; not the generator
+// parameters atrium.* / stress.*), in the table's order, then checks the camera they leave
+// (InputError: fov in (0, 179), 0 < near < far, target != position).
+void applyKnobs(Scene& scene, const Knobs& knobs);
 
 class Knobs {
  public:
   Knobs() = default;
-  // Parses "key=value" strings (InputError when one has no '='); validates the owned keys.
+  // The owned keys of `knobs`, each value checked and converted once (parseKnobValue, against
+  // knobSpecs()): InputError naming the key for an unknown owned key or a bad value. Other keys
+  // belong to other layers and are left out.
+  static Knobs from(const std::map<std::string, std::string>& knobs);
+  // The same from "key=value" strings (InputError when one has no '=').
   static Knobs parse(const std::vector<std::string>& assignments);
 
   static bool ownedByScene(std::string_view key);
   static const std::vector<std::string>& knownKeys();
 
   bool has(const std::string& key) const { return values_.count(key) != 0; }
-  // Typed getters: nullopt when unset; InputError "--set key=value: expected ..." when malformed.
+  std::optional<KnobValue> value(const std::string& key) const {
+    const auto it = values_.find(key);
+    return it == values_.end() ? std::nullopt : std::optional<KnobValue>(it->second);
+  }
+  // Typed getters of the values parsed at construction: nullopt when unset (or, for number, set to
+  // a word).
   std::optional<double> number(const std::string& key) const;
   // A number, or nullopt when unset or set to `word` (camera.far=inf, post.exposure=auto).
   std::optional<double> numberOr(const std::string& key, const std::string& word) const;
@@ -51,10 +68,10 @@ class Knobs {
   std::optional<glm::dvec3> vec3(const std::string& key) const;  // double: camera positions far out
 
   // Owned knobs with a given prefix ("atrium."), without the prefix.
-  std::map<std::string, std::string> withPrefix(const std::string& prefix) const;
+  std::map<std::string, KnobValue> withPrefix(const std::string& prefix) const;
 
  private:
-  std::map<std::string, std::string> values_;  // owned keys only
+  std::map<std::string, KnobValue> values_;  // owned keys only, parsed
 };
 
 }  // namespace fgb::scene

@@ -18,6 +18,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -39,7 +40,7 @@ bool hasModelImporter();
 struct LoadOptions {
   std::optional<std::filesystem::path> cacheDir;  // default: CookedCache::defaultDirectory()
   bool useCache = true;                           // false: never read or write cooked entries
-  std::vector<std::string> knobs;                 // "key=value"; only scene-owned keys are read
+  std::map<std::string, std::string> knobs;       // key -> value; only scene-owned keys are read
 };
 
 // How one part was obtained (for reports and for checking that a warm load skipped cooking).

@@ -1,0 +1,151 @@
+#include "feature_registry.hpp"
+
+#include "bloom/bloom_feature.hpp"
+#include "exposure/exposure_feature.hpp"
+#include "lighting/clustered_lighting.hpp"
+#include "meshes/mesh_feature.hpp"
+#include "particles/particle_feature.hpp"
+#include "ssaa/msaa_resolve_feature.hpp"
+#include "ssaa/ssaa_resolve_feature.hpp"
+#include "tonemap/tonemap_feature.hpp"
+#include "visbuffer/visbuffer_feature.hpp"
+
+#include <algorithm>
+
+namespace fgb::features {
+namespace {
+
+using Options = nlohmann::json;
+
+// A kind with no options and a fixed contract.
+template <class Feature>
+FeatureKind plain(std::string name, FeaturePhase phase, std::string help, FeatureContract contract) {
+  FeatureKind kind;
+  kind.name = std::move(name);
+  kind.phase = phase;
+  kind.help = std::move(help);
+  kind.contract = [contract](const Options&, const RenderPath&) { return contract; };
+  kind.create = [](const Options&) -> std::unique_ptr<IRenderFeature> { return std::make_unique<Feature>(); };
+  return kind;
+}
+
+FeatureKind meshes() {
+  FeatureKind kind;
+  kind.name = "meshes";
+  kind.phase = FeaturePhase::SceneColour;
+  kind.help = "\"Mesh Frustum Cull\", \"Mesh Render\" (opaque, alpha-masked) and \"Mesh Render Transparent\"";
+  kind.options = {{"opaque", true, "draws the opaque and alpha-masked scene (\"Mesh Render\"), writing the depth attachment"}};
+  kind.contract = [](const Options& options, const RenderPath& path) {
+    FeatureContract contract;
+    // "Mesh Render Transparent" tests the opaque depth the way the path says.
+    contract.needs = {depthProductOf(path.depthTest)};
+    if (options.at("opaque").get<bool>()) contract.provides = {"opaque_scene", "depth_attachment"};
+    return contract;
+  };
+  kind.create = [](const Options& options) -> std::unique_ptr<IRenderFeature> {
+    return std::make_unique<MeshFeature>(options.at("opaque").get<bool>());
+  };
+  return kind;
+}
+
+FeatureKind particles() {
+  FeatureKind kind = plain<ParticleFeature>("particles", FeaturePhase::SceneColour,
+                                            "\"Particle Emit\", \"Particle Update\", \"Particle Render\"", {});
+  kind.contract = [](const Options&, const RenderPath& path) {
+    return FeatureContract{{depthProductOf(path.depthTest)}, {}};
+  };
+  return kind;
+}
+
+FeatureKind visbuffer() {
+  FeatureKind kind = plain<VisBufferFeature>(
+      "visbuffer", FeaturePhase::Opaque,
+      "the compute visibility buffer draws the opaque scene (\"Cluster Cull\" ... \"Material Shade\")",
+      {{"clusters"}, {"opaque_scene", "opaque_depth_buffer"}});
+  kind.maxMsaa = 1;  // one visibility sample per pixel
+  kind.computeWritesHdr = true;  // "Material Shade"
+  return kind;
+}
+
+}  // namespace
+
+const char* phaseName(FeaturePhase phase) {
+  switch (phase) {
+    case FeaturePhase::Lighting: return "lighting";
+    case FeaturePhase::Opaque: return "opaque";
+    case FeaturePhase::SceneColour: return "scene colour";
+    case FeaturePhase::MsaaResolve: return "msaa resolve";
+    case FeaturePhase::SsaaResolve: return "ssaa resolve";
+    case FeaturePhase::Bloom: return "bloom";
+    case FeaturePhase::Exposure: return "exposure";
+    case FeaturePhase::ToneMapping: return "tone mapping";
+  }
+  return "?";
+}
+
+std::string phaseOrder() {
+  std::string order;
+  for (auto phase = uint8_t(FeaturePhase::Lighting); phase <= uint8_t(FeaturePhase::ToneMapping); ++phase)
+    order += (order.empty() ? "" : ", ") + std::string(phaseName(FeaturePhase(phase)));
+  return order;
+}
+
+std::string providersOf(std::string_view product) {
+  if (product == "clusters") return "\"upload\": {\"clusters\": true}";
+  if (product == "opaque_scene") return "meshes with \"opaque\": true, or visbuffer";
+  if (product == "depth_attachment") return "meshes with \"opaque\": true";
+  std::string names;
+  for (const FeatureKind& kind : featureKinds()) {
+    // Any path: the contract's products that do not depend on options or the path.
+    const RenderPath anyPath;
+    Options options = Options::object();
+    for (const FeatureOption& option : kind.options) options[option.name] = option.defaultValue;
+    const auto provides = kind.contract(options, anyPath).provides;
+    if (std::find(provides.begin(), provides.end(), product) != provides.end())
+      names += (names.empty() ? "" : ", ") + kind.name;
+  }
+  return names.empty() ? "no feature" : names;
+}
+
+const char* depthProductOf(DepthTest test) {
+  return test == DepthTest::Attachment ? "depth_attachment" : "opaque_depth_buffer";
+}
+
+const std::vector<FeatureKind>& featureKinds() {
+  using enum FeaturePhase;
+  static const std::vector<FeatureKind> kinds = {
+      plain<ClusteredLighting>("clustered_lighting", Lighting,
+                               "\"Cluster Bounds\", \"Clustered Light Cull\": per-cluster light lists",
+                               {{}, {"light_lists"}}),
+      visbuffer(),
+      meshes(),
+      particles(),
+      // After the last feature that draws colour: the MSAA target becomes the HDR image here.
+      plain<MsaaResolveFeature>("msaa_resolve", MsaaResolve, "\"MSAA Resolve\" (or \"Clear\" when nothing drew)",
+                                {{}, {"hdr"}}),
+      plain<SsaaResolveFeature>("ssaa_resolve", SsaaResolve, "\"SSAA Resolve\" (render.ssaa > 1), in the path's post form",
+                                {{"hdr"}, {"output_hdr"}}),
+      plain<BloomFeature>("bloom", Bloom, "\"Bloom\"", {{"output_hdr"}, {"bloom"}}),
+      plain<ExposureFeature>("exposure", Exposure, "\"Exposure\" (post.exposure=auto)", {{"output_hdr"}, {}}),
+      plain<TonemapFeature>("tonemap", ToneMapping, "\"Tone mapping\", in the path's post form",
+                            {{"output_hdr"}, {"display"}}),
+  };
+  return kinds;
+}
+
+const FeatureKind* findFeatureKind(std::string_view name) {
+  for (const FeatureKind& kind : featureKinds())
+    if (kind.name == name) return &kind;
+  return nullptr;
+}
+
+std::string knownFeatureNames() {
+  std::vector<std::string> names;
+  for (const FeatureKind& kind : featureKinds()) names.push_back(kind.name);
+  std::sort(names.begin(), names.end());
+  std::string list;
+  for (const std::string& name : names) list += (list.empty() ? "" : ", ") + name;
+  return list;
+}
+
+}  // namespace fgb::features

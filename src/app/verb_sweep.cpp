@@ -54,7 +54,7 @@ std::vector<harness::SweepAxis> gatherAxes(const SweepOptions& o, const harness:
 
 // Every value of a knob axis against the knob registry, before anything opens: exit 2 naming it.
 void checkAxisKnob(const harness::SweepAxis& axis) {
-  if (axis.key == "msaa" || axis.key == "width" || axis.key == "height" || axis.key == "size") return;
+  if (!harness::isKnobAxis(axis.key)) return;
   for (const auto& value : axis.values) {
     try {
       knobRegistry().check(axis.key, value);

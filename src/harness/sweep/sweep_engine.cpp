@@ -175,9 +175,7 @@ void checkReference(const WorkloadOpener& open, ReferenceOutcome& reference, con
   }
   for (const SweepConfiguration* c : configurations) {
     const std::string label = biasLabelOf(*c, plan.referenceRules);
-    const bool done = std::any_of(reference.biases.begin(), reference.biases.end(),
-                                  [&](const ReferenceCheck& b) { return b.label == label; });
-    if (label.empty() || done) continue;
+    if (label.empty() || reference.biasIndex(label)) continue;
     if (say) say("bias of " + label);
     reference.biases.push_back(
         renderCheck(open, reference, label, *biasRenderOf(*c, reference.workload, plan.referenceRules), frames));
@@ -212,11 +210,8 @@ SweepResult runSweep(const WorkloadOpener& open, const SweepPlan& requested, con
 
   result.referenceRules = plan.referenceRules;
   if (!plan.configurations.empty()) {
-    for (const auto& [key, value] : plan.configurations.front().point) {
-      const bool knob = key != "msaa" && key != "width" && key != "height" && key != "size";
-      result.roles[key] =
-          knob ? referenceRoleName(roleOf(plan.referenceRules, key)) : (key == "msaa" ? "approximation" : "content");
-    }
+    for (const auto& [key, value] : plan.configurations.front().point)
+      result.roles[key] = referenceRoleName(roleOf(plan.referenceRules, key));
   }
   result.lookKeys =
       plan.referenceOverride ? std::vector<std::string>{} : variedLookKeys(plan.configurations, plan.referenceRules);
@@ -236,12 +231,8 @@ SweepResult runSweep(const WorkloadOpener& open, const SweepPlan& requested, con
       say(fmt::format("reference {}/{}: {}", r + 1, referenceConfigs.size(), what));
     });
   }
-  for (auto& c : result.configurations) {
-    const std::string label = biasLabelOf(c.configuration, plan.referenceRules);
-    const auto& biases = result.references[c.reference].biases;
-    const auto it = std::find_if(biases.begin(), biases.end(), [&](const auto& b) { return b.label == label; });
-    if (!label.empty() && it != biases.end()) c.bias = static_cast<std::size_t>(it - biases.begin());
-  }
+  for (auto& c : result.configurations)
+    c.bias = result.references[c.reference].biasIndex(biasLabelOf(c.configuration, plan.referenceRules));
   result.overhead.referenceMs = phase.lap();
 
   say("warming up");
@@ -304,15 +295,21 @@ void compareWithReferences(SweepResult& result) {
   }
 }
 
+std::optional<std::size_t> ReferenceOutcome::biasIndex(const std::string& label) const {
+  const auto it = std::find_if(biases.begin(), biases.end(), [&](const ReferenceCheck& b) { return b.label == label; });
+  if (label.empty() || it == biases.end()) return std::nullopt;
+  return static_cast<std::size_t>(it - biases.begin());
+}
+
 double sweepError(const ConfigurationOutcome& c) {
-  return c.display.flip ? c.display.flip->mean : c.display.rmse;
+  return displayError(c.display);
 }
 
 void markFront(SweepResult& result) {
   std::vector<TradeoffPoint> points;
   for (const auto& c : result.configurations) {
     if (c.run.frameGpuMs.empty()) throw DeviceError(c.configuration.label + ": no frames measured");
-    points.push_back({c.run.frameGpuMs, c.display.flip ? c.display.flip->mean : c.display.rmse});
+    points.push_back({c.run.frameGpuMs, sweepError(c)});
   }
   const FrontAnalysis front = paretoFront(points, {result.alpha, result.errorFloor});
   for (std::size_t i = 0; i < result.configurations.size(); ++i) {

@@ -161,8 +161,13 @@ std::vector<SweepConfiguration> expandGrid(const render::WorkloadConfig& base, c
   return grid;
 }
 
+bool isKnobAxis(const std::string& key) {
+  return key != "msaa" && key != "width" && key != "height" && key != "size";
+}
+
 ReferenceRole roleOf(const ReferenceRules& rules, const std::string& key) {
-  if (!rules.knobs) return ReferenceRole::Content;
+  if (key == "msaa") return ReferenceRole::Approximation;
+  if (!isKnobAxis(key) || !rules.knobs) return ReferenceRole::Content;
   const KnobSpec* spec = rules.knobs->find(key);
   if (!spec) throw std::logic_error("sweep: knob '" + key + "' is not in the knob registry");
   return spec->role;
@@ -256,8 +261,7 @@ std::vector<std::string> variedLookKeys(const std::vector<SweepConfiguration>& c
   std::vector<std::string> keys;
   if (configurations.empty()) return keys;
   for (const auto& [key, value] : configurations.front().point) {
-    const bool knob = key != "msaa" && key != "width" && key != "height" && key != "size";
-    if (knob && roleOf(rules, key) == ReferenceRole::Look) keys.push_back(key);
+    if (roleOf(rules, key) == ReferenceRole::Look) keys.push_back(key);
   }
   return keys;
 }

@@ -152,11 +152,9 @@ ConfigurationOutcome configurationOf(const ShardFile& s, const SweepResult& merg
   c.hdr = metricsOf(s, field(s, field(s, j, "error"), "hdr"));
   c.unresolved = field(s, j, "unresolved").get<bool>();
   if (const auto& bias = field(s, j, "bias"); !bias.is_null()) {
-    const auto& biases = merged.references.at(c.reference).biases;
     const std::string label = field(s, bias, "label").get<std::string>();
-    const auto it = std::find_if(biases.begin(), biases.end(), [&](const auto& b) { return b.label == label; });
-    if (it == biases.end()) bad(s, c.configuration.label + ": its bias '" + label + "' is not among its reference's");
-    c.bias = static_cast<std::size_t>(it - biases.begin());
+    c.bias = merged.references.at(c.reference).biasIndex(label);
+    if (!c.bias) bad(s, c.configuration.label + ": its bias '" + label + "' is not among its reference's");
   }
   const auto& wall = field(s, j, "wall_ms");
   c.wall = {number(s, wall, "open"),

@@ -79,7 +79,11 @@ struct ReferenceRules {
   std::map<std::string, std::string> baseKnobs;  // the knobs before the grid's axes (--set, sweep file)
 };
 
-// The role of `key` under `rules` (Content without a registry). A key the registry lacks is a
+// True for a --vary key that is a --set knob; false for msaa, width, height and size.
+bool isKnobAxis(const std::string& key);
+
+// The role of an axis key under `rules`: msaa is an approximation, width/height/size content, a
+// knob what the registry says (content without a registry). A knob the registry lacks is a
 // programming error: every knob was checked against it before the sweep started.
 ReferenceRole roleOf(const ReferenceRules& rules, const std::string& key);
 
@@ -151,13 +155,19 @@ struct ReferenceRenderWall {
   double openMs = 0.0, framesMs = 0.0, readbackMs = 0.0;
 };
 
+// The error a sweep judges by: the LDR-FLIP mean of the display images (RMSE where FLIP was not
+// computed).
+inline double displayError(const ImageMetrics& display) {
+  return display.flip ? display.flip->mean : display.rmse;
+}
+
 // A render compared with the reference: the convergence step, or a cost-only knob's bias render.
 struct ReferenceCheck {
   std::string label;  // "render.ssaa=3", "render.path=visbuffer"
   render::WorkloadConfig workload;
   ImageMetrics display, hdr;  // against the reference: LDR-FLIP on the display image, HDR-FLIP on the HDR
   ReferenceRenderWall wall;
-  [[nodiscard]] double gap() const { return display.flip ? display.flip->mean : display.rmse; }
+  [[nodiscard]] double gap() const { return displayError(display); }
 };
 
 struct ReferenceOutcome {
@@ -171,6 +181,8 @@ struct ReferenceOutcome {
   std::optional<ReferenceCheck> convergence;
   std::vector<ReferenceCheck> biases;  // converged renders of the varied cost-only knobs' values
   [[nodiscard]] double convergenceGap() const { return convergence ? convergence->gap() : 0.0; }
+  // The index in `biases` of the render labelled `label` (none for "" or a label not rendered).
+  [[nodiscard]] std::optional<std::size_t> biasIndex(const std::string& label) const;
 };
 
 // Wall time one configuration cost the sweep (ms): where a sweep's time goes, per configuration.

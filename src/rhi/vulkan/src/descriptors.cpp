@@ -75,14 +75,7 @@ void Descriptors::createLayout() {
   setLayout_ = Owned<VkDescriptorSetLayout>(device_, layout, vkDestroyDescriptorSetLayout);
 
   const VkPushConstantRange push{VK_SHADER_STAGE_ALL, 0, rhi::kPushConstantBytes};
-  auto pipelineInfo = vkStruct<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
-  pipelineInfo.setLayoutCount = 1;
-  pipelineInfo.pSetLayouts = &layout;
-  pipelineInfo.pushConstantRangeCount = 1;
-  pipelineInfo.pPushConstantRanges = &push;
-  VkPipelineLayout pipelineLayout = VK_NULL_HANDLE;
-  check(vkCreatePipelineLayout(device_, &pipelineInfo, nullptr, &pipelineLayout), "vkCreatePipelineLayout");
-  pipelineLayout_ = Owned<VkPipelineLayout>(device_, pipelineLayout, vkDestroyPipelineLayout);
+  pipelineLayout_ = createPipelineLayout(device_, layout, push, "bindless set");
 }
 
 void Descriptors::createPool() {

@@ -82,21 +82,14 @@ SpinWork::SpinWork(VulkanDevice& device, double fraction) : device_(device), fra
     vkUpdateDescriptorSets(vk, 1, &write, 0, nullptr);
 
     const VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(SpinPush)};
-    auto layoutInfo = vkStruct<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
-    layoutInfo.setLayoutCount = 1;
-    layoutInfo.pSetLayouts = &setLayout;
-    layoutInfo.pushConstantRangeCount = 1;
-    layoutInfo.pPushConstantRanges = &range;
-    VkPipelineLayout layout = VK_NULL_HANDLE;
-    check(vkCreatePipelineLayout(vk, &layoutInfo, nullptr, &layout), "vkCreatePipelineLayout (slow pass)");
-    layout_ = Owned<VkPipelineLayout>(vk, layout, vkDestroyPipelineLayout);
+    layout_ = createPipelineLayout(vk, setLayout, range, "slow pass");
 
     auto info = vkStruct<VkComputePipelineCreateInfo>(VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO);
     info.stage = vkStruct<VkPipelineShaderStageCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO);
     info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
     info.stage.module = device.shaderModule("common/spin.comp");
     info.stage.pName = "main";
-    info.layout = layout;
+    info.layout = layout_.get();
     VkPipeline pipeline = VK_NULL_HANDLE;
     check(vkCreateComputePipelines(vk, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline),
           "vkCreateComputePipelines (slow pass)");

@@ -27,6 +27,18 @@ std::string_view toString(VkResult result) {
   }
 }
 
+Owned<VkPipelineLayout> createPipelineLayout(VkDevice device, VkDescriptorSetLayout setLayout,
+                                             const VkPushConstantRange& push, std::string_view what) {
+  auto info = vkStruct<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
+  info.setLayoutCount = 1;
+  info.pSetLayouts = &setLayout;
+  info.pushConstantRangeCount = 1;
+  info.pPushConstantRanges = &push;
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+  check(vkCreatePipelineLayout(device, &info, nullptr, &layout), "vkCreatePipelineLayout (" + std::string(what) + ")");
+  return Owned<VkPipelineLayout>(device, layout, vkDestroyPipelineLayout);
+}
+
 void check(VkResult result, std::string_view what) {
   if (result == VK_SUCCESS) return;
   throw DeviceError(std::string(what) + " failed: " + std::string(toString(result)) + " (" +

@@ -26,6 +26,14 @@ void check(VkResult result, std::string_view what);
 // Owns one device-level Vulkan object and destroys it with the function it was created for
 // (vkDestroyBuffer, vkFreeMemory, ...). Move-only.
 template <class T>
+class Owned;
+
+// A pipeline layout of one descriptor set layout and one push-constant range; `what` names it in
+// the error ("vkCreatePipelineLayout (what) failed: ...").
+Owned<VkPipelineLayout> createPipelineLayout(VkDevice device, VkDescriptorSetLayout setLayout,
+                                             const VkPushConstantRange& push, std::string_view what);
+
+template <class T>
 class Owned {
  public:
   using Destroy = void(VKAPI_PTR*)(VkDevice, T, const VkAllocationCallbacks*);

@@ -11,6 +11,10 @@
 //   ExecuteRecording/... : as Execute, but every job records one command (a 4-byte vkCmdFillBuffer
 //             of its output; all accesses are transfer accesses), so every node pays its barriers,
 //             timestamps and the command: the executor's cost per node that does work.
+//   ExecuteRecording/layered_reuse, .../layered_record_every_frame : the same graph, every node
+//             declaring a constant recording key (NodeBuilder::recordingFixed): with reuse its kept
+//             command buffers are submitted again; with debug.record_every_frame every job runs.
+//             Counters record_us and submit_us: the executor's host times per execution.
 // Timestamps on, debug labels off (labels cost one call pair per node; see the "labels" variant).
 // Target (issue): execute with empty jobs in <= 0.5 ms for 10,000 nodes on one core. Empty jobs
 // record nothing, so the executor records no barrier, timestamp or label for them (it defers all
@@ -55,6 +59,7 @@ NodeType typeOf(uint32_t node) {
 }
 
 bool gRecordingJobs = false;  // set while building the graphs of the ExecuteRecording variant
+bool gKeyedJobs = false;      // ... and their nodes declare a constant recording key
 
 BufferHandle declareNode(FrameGraph& graph, uint32_t i, const BufferHandle* inputs, uint32_t inputCount, bool sideEffect) {
   const NodeType type = typeOf(i);
@@ -69,6 +74,7 @@ BufferHandle declareNode(FrameGraph& graph, uint32_t i, const BufferHandle* inpu
       auto& ctx = rhi::rhiContext(c);
       ctx.cmd().fillBuffer(ctx.buffer(target), 0, 4, i);
     });
+    if (gKeyedJobs) node.recordingFixed();
   } else {
     node.setJob([](JobContext&) {});  // empty job: the executor's own cost is what is measured
   }
@@ -115,24 +121,41 @@ void addCounters(benchmark::State& state, const rhi::ExecutableGraph& graph, uin
       static_cast<double>(count), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
-template <FrameGraph (*Shape)(uint32_t), bool Labels = false, bool Recording = false>
+enum class Keys { None, Reuse, RecordEveryFrame };
+
+template <FrameGraph (*Shape)(uint32_t), bool Labels = false, bool Recording = false, Keys keys = Keys::None>
 void executeOnly(benchmark::State& state) {
   const auto count = static_cast<uint32_t>(state.range(0));
   const auto queues = static_cast<uint32_t>(state.range(1));
   const bool separate = state.range(2) != 0;
   rhi::Device& device = benchDevice(Labels);
   gRecordingJobs = Recording;
-  auto graph = device.compile(Shape(count), {.name = "bench", .queues = queues, .separateQueues = separate, .timestamps = true});
-  gRecordingJobs = false;
-  device.wait(device.execute(*graph));  // warm: first-use allocations out of the way
+  gKeyedJobs = keys != Keys::None;
+  auto graph = device.compile(Shape(count), {.name = "bench",
+                                             .queues = queues,
+                                             .separateQueues = separate,
+                                             .timestamps = true,
+                                             .recordEveryFrame = keys == Keys::RecordEveryFrame});
+  gRecordingJobs = gKeyedJobs = false;
+  // Warm: first-use allocations out of the way, and every frame-in-flight slot recorded once.
+  for (int i = 0; i < 3; ++i) device.wait(device.execute(*graph));
+  double recordMs = 0.0;
+  double submitMs = 0.0;
   for (auto _ : state) {
     const rhi::RunTicket ticket = device.execute(*graph);
     state.PauseTiming();
+    recordMs += graph->lastHostTimes().recordMs;
+    submitMs += graph->lastHostTimes().submitMs;
     device.wait(ticket);
     graph->takeTimings();
     state.ResumeTiming();
   }
   addCounters(state, *graph, count);
+  const auto perExecution = [&](double ms) {
+    return benchmark::Counter(ms * 1000.0, benchmark::Counter::kAvgIterations);
+  };
+  state.counters["record_us"] = perExecution(recordMs);
+  state.counters["submit_us"] = perExecution(submitMs);
 }
 
 template <FrameGraph (*Shape)(uint32_t)>
@@ -165,6 +188,18 @@ BENCHMARK(executeAndWait<chain>)->Name("ExecuteAndWait/chain")->Apply(shapes);
 BENCHMARK(executeAndWait<layered>)->Name("ExecuteAndWait/layered")->Apply(shapes);
 BENCHMARK(executeOnly<chain, false, true>)->Name("ExecuteRecording/chain")->Apply(shapes);
 BENCHMARK(executeOnly<layered, false, true>)->Name("ExecuteRecording/layered")->Apply(shapes);
+// Kept command buffers against recording every frame: the same keyed graph, 500 and 1,000 nodes.
+void reuseShapes(benchmark::internal::Benchmark* bench) {
+  bench->ArgNames({"nodes", "Q", "separate"});
+  for (int64_t queues : {1, 3}) {
+    for (int64_t nodes : {500, 1000}) bench->Args({nodes, queues, 0});
+  }
+  bench->Unit(benchmark::kMicrosecond);
+}
+BENCHMARK(executeOnly<layered, false, true, Keys::Reuse>)->Name("ExecuteRecording/layered_reuse")->Apply(reuseShapes);
+BENCHMARK(executeOnly<layered, false, true, Keys::RecordEveryFrame>)
+    ->Name("ExecuteRecording/layered_record_every_frame")
+    ->Apply(reuseShapes);
 BENCHMARK(executeOnly<layered, true>)
     ->Name("Execute/layered_with_labels")
     ->ArgNames({"nodes", "Q", "separate"})

@@ -72,7 +72,13 @@ void printSummary(const harness::RunResult& run, const std::string& out) {
                                p.unstable ? "  unstable" : "");
     }
   }
-  std::cout << fmt::format("  {:<28} {:>9.4f} ms GPU, {:.4f} ms CPU\n", "frame", run.frameGpu.median, run.frameCpu.median);
+  std::cout << fmt::format("  {:<28} {:>9.4f} ms GPU, {:.4f} ms CPU", "frame", run.frameGpu.median,
+                           run.frameCpu.median);
+  if (const auto recorded = run.stats.find("nodes_recorded"); recorded != run.stats.end()) {
+    std::cout << fmt::format(" (recorded {:g} / reused {:g} nodes, submit {:.4f} ms)", recorded->second,
+                             run.stats.at("nodes_reused"), run.frameSubmit.median);
+  }
+  std::cout << "\n";
   if (run.device.hostTimestamps) std::cout << "  note: " << harness::timestampSourceNote(run.device) << "\n";
   if (run.checkedFinite) {
     const auto* bad = run.firstNonFinite();

@@ -29,6 +29,9 @@ class FakeWorkload : public render::Workload {
     t.passes.push_back({"Debug", "graphics", true, 0.0, -1.0});
     t.gpuFrameMs = 1.1 + 2 * f;
     t.cpuFrameMs = 2.0 + f;
+    t.submitMs = 0.5;
+    t.nodesRecorded = rendered_ <= 2 ? 3 : 1;  // every node in the first two frames, then one
+    t.nodesReused = 3 - t.nodesRecorded;
     pending_.push_back(t);
     if (pending_.size() <= latency_) return {};
     render::FrameTiming ready = pending_.front();

@@ -30,6 +30,19 @@ TEST(RunLoop, DropsWarmupAndKeepsMeasuredFramesInOrder) {
   EXPECT_TRUE(run.passes[0].startMs.size() == 5u);
 }
 
+TEST(RunLoop, KeepsNodesRecordedAndReusedAndSubmitTimePerFrame) {
+  testing::FakeWorkload workload;
+  const RunResult run = runBenchmark(workload, RunOptions{0, 5, kDefaultUnstableSpread, {}});
+  EXPECT_EQ(run.nodesRecorded, (std::vector<double>{3, 3, 1, 1, 1}));
+  EXPECT_EQ(run.nodesReused, (std::vector<double>{0, 0, 2, 2, 2}));
+  EXPECT_DOUBLE_EQ(run.stats.at("nodes_recorded"), 1.0);  // medians
+  EXPECT_DOUBLE_EQ(run.stats.at("nodes_reused"), 2.0);
+  const nlohmann::json json = toJson(run);
+  EXPECT_EQ(json["samples"]["nodes_recorded"].size(), 5u);
+  EXPECT_DOUBLE_EQ(json["frame_submit_ms"]["median"].get<double>(), 0.5);
+  EXPECT_TRUE(json.contains("frame_cpu_ms"));  // unchanged beside it
+}
+
 TEST(RunLoop, CulledPassesHaveNoSamples) {
   testing::FakeWorkload workload;
   const RunResult run = runBenchmark(workload, RunOptions{1, 4, kDefaultUnstableSpread, {}});

@@ -122,6 +122,7 @@ NodeBuilder FrameGraph::addNode(std::string_view name, NodeType type, QueueClass
   nodes_.push_back({std::string(name), type, queue, false});
   attachments_.emplace_back();
   jobs_.emplace_back();
+  recordingKeys_.emplace_back();
   if (useStart_.empty()) useStart_.push_back(0);  // a moved-from graph being reused
   useStart_.push_back(useStart_.back());          // the new node's end, moved on by each of its uses
   return NodeBuilder(*this, node);
@@ -231,6 +232,11 @@ NodeBuilder& NodeBuilder::sideEffect() {
 
 NodeBuilder& NodeBuilder::setJob(Job job) {
   graph_->jobs_[node_] = std::move(job);
+  return *this;
+}
+
+NodeBuilder& NodeBuilder::recordingDependsOn(RecordingKey key) {
+  graph_->recordingKeys_[node_] = std::move(key);
   return *this;
 }
 

@@ -97,6 +97,11 @@ void summarizeRun(RunResult& run, double unstableSpread) {
   }
   run.frameGpu = summarize(run.frameGpuMs);
   run.frameCpu = summarize(run.frameCpuMs);
+  run.frameSubmit = summarize(run.frameSubmitMs);
+  if (!run.nodesRecorded.empty()) {
+    run.stats["nodes_recorded"] = summarize(run.nodesRecorded).median;
+    run.stats["nodes_reused"] = summarize(run.nodesReused).median;
+  }
 }
 
 nlohmann::json toJson(const RunResult& run) {
@@ -117,16 +122,31 @@ nlohmann::json toJson(const RunResult& run) {
       {"tool_version", run.toolVersion},
       {"scene", run.scene},
       {"scene_hash", run.sceneHash},
-      {"device", {{"name", run.device.name}, {"driver", run.device.driver}, {"type", run.device.type},
-                  {"api_version", run.device.apiVersion}, {"timestamp_period_ns", run.device.timestampPeriodNs},
-                  {"host_timestamps", run.device.hostTimestamps}}},
-      {"config", {{"width", run.config.width}, {"height", run.config.height}, {"msaa", run.config.msaa},
-                  {"frames", run.config.frames}, {"warmup", run.config.warmup}, {"knobs", knobs}}},
+      {"device",
+       {{"name", run.device.name},
+        {"driver", run.device.driver},
+        {"type", run.device.type},
+        {"api_version", run.device.apiVersion},
+        {"timestamp_period_ns", run.device.timestampPeriodNs},
+        {"host_timestamps", run.device.hostTimestamps}}},
+      {"config",
+       {{"width", run.config.width},
+        {"height", run.config.height},
+        {"msaa", run.config.msaa},
+        {"frames", run.config.frames},
+        {"warmup", run.config.warmup},
+        {"knobs", knobs}}},
       {"stats", stats},
       {"passes", passes},
       {"frame_gpu_ms", toJson(run.frameGpu)},
       {"frame_cpu_ms", toJson(run.frameCpu)},
-      {"samples", {{"frame_gpu_ms", run.frameGpuMs}, {"frame_cpu_ms", run.frameCpuMs}}},
+      {"frame_submit_ms", toJson(run.frameSubmit)},
+      {"samples",
+       {{"frame_gpu_ms", run.frameGpuMs},
+        {"frame_cpu_ms", run.frameCpuMs},
+        {"frame_submit_ms", run.frameSubmitMs},
+        {"nodes_recorded", run.nodesRecorded},
+        {"nodes_reused", run.nodesReused}}},
       {"harness", toJson(run.overhead)},
   };
   j["budget"] = run.budget ? toJson(*run.budget)

@@ -68,6 +68,11 @@ void appendMeasurements(RunResult& total, const RunResult& round) {
   }
   total.frameGpuMs.insert(total.frameGpuMs.end(), round.frameGpuMs.begin(), round.frameGpuMs.end());
   total.frameCpuMs.insert(total.frameCpuMs.end(), round.frameCpuMs.begin(), round.frameCpuMs.end());
+  for (auto [to, from] :
+       {std::pair{&total.frameSubmitMs, &round.frameSubmitMs}, std::pair{&total.nodesRecorded, &round.nodesRecorded},
+        std::pair{&total.nodesReused, &round.nodesReused}}) {
+    to->insert(to->end(), from->begin(), from->end());
+  }
   HarnessOverhead& o = total.overhead;
   o.loopWallMs += round.overhead.loopWallMs;
   o.workloadCallsMs += round.overhead.workloadCallsMs;

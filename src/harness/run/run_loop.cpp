@@ -35,6 +35,9 @@ void appendFrame(RunResult& run, std::map<std::string, std::size_t>& index, cons
   }
   run.frameGpuMs.push_back(frame.gpuFrameMs);
   run.frameCpuMs.push_back(frame.cpuFrameMs);
+  run.frameSubmitMs.push_back(frame.submitMs);
+  run.nodesRecorded.push_back(frame.nodesRecorded);
+  run.nodesReused.push_back(frame.nodesReused);
 }
 
 void finalizeColumns(RunResult& run) {

@@ -127,6 +127,7 @@ class SceneUploader {
       }
       for (const auto& mip : mips) cmd.copyBufferToTexture(staging, mip.target, mip.stagingOffset, mip.mip);
     });
+    node.recordingFixed();
     rhi::GraphOptions options;
     options.name = "scene upload";
     options.timestamps = false;

@@ -48,6 +48,7 @@ ImageReadback::ImageReadback(rhi::Device& device, rhi::TextureId texture, graph:
     auto& ctx = rhi::rhiContext(context);
     ctx.cmd().copyTextureToBuffer(ctx.texture(source), ctx.buffer(target));
   });
+  node.recordingFixed();
   rhi::GraphOptions options;
   options.name = "image readback";
   options.timestamps = false;

@@ -242,6 +242,7 @@ class SceneWorkload final : public Workload {
     rhi::GraphOptions options;
     options.name = "frame";
     if (!settings_.asyncCompute) options.queues = 1;
+    options.recordEveryFrame = settings_.recordEveryFrame;
     if (!settings_.slowPass.empty()) {
       std::vector<std::string> passes;
       for (const auto& node : graph.nodes()) passes.push_back(node.name);

@@ -95,6 +95,7 @@ void BloomFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
       dispatchOver(cmd, sizes[level - 1]);
     }
   });
+  node.recordingFixed();
   board.set(BloomOutput{levels[1]});
 }
 

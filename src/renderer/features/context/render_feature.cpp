@@ -145,6 +145,7 @@ void declareReadback(graph::FrameGraph& graph, std::string_view nodeName, graph:
     auto& ctx = rhi::rhiContext(context);
     ctx.cmd().copyBuffer(ctx.buffer(source), ctx.buffer(target), bytes);
   });
+  node.recordingFixed();
 }
 
 }  // namespace fgb::features

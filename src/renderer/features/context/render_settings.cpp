@@ -106,6 +106,8 @@ const std::vector<RendererKnob>& rendererKnobs() {
       // tests against the same depths); this makes it recover clusters (tests: same image).
       flag("debug.occlusion_hold_back", &S::occlusionHoldBack,
            "render.occlusion: phase 1 also holds back every other cluster for phase 2 (tests)", CostOnly, "0"),
+      flag("debug.record_every_frame", &S::recordEveryFrame, "record every node every frame (0: reuse unchanged ones)",
+           CostOnly, "0"),
       // The passes whose shaders can write a NaN on request (tests of --check-finite).
       text("debug.inject_nan", KnobType::Word, {"none", "Mesh Render", "Bloom"}, &S::injectNanPass,
            "pass that writes a NaN (tests of --check-finite)", Content),

@@ -30,6 +30,7 @@ struct RenderSettings {
   // through FeatureInit (scene_workload/render_paths.cpp reads the knob).
   VisBacking visBacking = VisBacking::Auto;     // render.vis_backing = auto | buffer | image
   bool occlusion = false;             // render.occlusion: two-phase HiZ cluster culling (visbuffer)
+  bool recordEveryFrame = false;      // debug.record_every_frame: no reuse of kept command buffers
   bool occlusionHoldBack = false;     // debug.occlusion_hold_back: phase 1 also holds back odd clusters
   uint32_t ssaa = 1;                  // render.ssaa: scene passes at ssaa*width x ssaa*height
   bool depthPrepass = false;          // render.depth_prepass

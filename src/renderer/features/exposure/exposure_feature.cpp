@@ -46,6 +46,7 @@ void ExposureFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
     cmd.push(update);
     cmd.dispatch(1);
   });
+  node.recordingFixed();
 }
 
 }  // namespace fgb::features

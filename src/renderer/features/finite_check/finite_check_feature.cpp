@@ -77,6 +77,7 @@ void FiniteCheckFeature::declareCheck(graph::FrameGraph& graph, const Checked& c
                          (written.extent.height + FGB_FINITE_CHECK_GROUP_SIZE - 1) / FGB_FINITE_CHECK_GROUP_SIZE);
     }
   });
+  node.recordingFixed();
 }
 
 void FiniteCheckFeature::declare(graph::FrameGraph& graph, Blackboard& /*board*/) {
@@ -91,6 +92,7 @@ void FiniteCheckFeature::declare(graph::FrameGraph& graph, Blackboard& /*board*/
     auto& ctx = rhi::rhiContext(context);
     ctx.cmd().fillBuffer(ctx.buffer(counters), 0, bytes, 0);
   });
+  reset.recordingFixed();
   for (uint32_t slot = 0; slot < checked_.size(); ++slot) declareCheck(graph, checked_[slot], slot, counters);
 
   readback_ =
@@ -109,6 +111,7 @@ void FiniteCheckFeature::declare(graph::FrameGraph& graph, Blackboard& /*board*/
     auto& ctx = rhi::rhiContext(context);
     ctx.cmd().copyBuffer(ctx.buffer(counters), ctx.buffer(target), bytes);
   });
+  copy.recordingFixed();
 }
 
 std::vector<PassFiniteCounts> FiniteCheckFeature::counts() const {

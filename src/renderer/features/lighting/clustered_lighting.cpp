@@ -55,6 +55,9 @@ graph::BufferHandle ClusteredLighting::declareBounds(graph::FrameGraph& graph) {
     state->built = true;
     state->builtFor = projection;
   });
+  node.recordingDependsOn([state = boundsState_, projection = scene_->constants.proj] {
+    return static_cast<uint64_t>(state->built && state->builtFor == projection);  // what the job tests
+  });
   return bounds;
 }
 
@@ -82,6 +85,7 @@ void ClusteredLighting::declare(graph::FrameGraph& graph, Blackboard& board) {
     ctx.cmd().push(push);
     ctx.cmd().dispatch(groups[0], groups[1], groups[2]);  // one invocation per cluster
   });
+  node.recordingFixed();
   declareReadback(graph, "Light Stats Readback", lists.counts, countsReadback_, "cluster counts readback",
                   uint64_t{4} * clusterCount_);
   board.set(lists);

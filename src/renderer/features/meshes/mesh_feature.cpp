@@ -143,6 +143,7 @@ MeshCullOutputs MeshFeature::declareCull(graph::FrameGraph& graph) {
     ctx.cmd().copyBuffer(templ, ctx.buffer(commands), commandBytes);
     ctx.cmd().fillBuffer(ctx.buffer(stats), 0, kStatsBytes, 0);
   });
+  reset.recordingFixed();
 
   auto cull = graph.addNode("Mesh Frustum Cull", graph::NodeType::Compute);
   out.commands = cull.write(out.commands, Access::StorageReadWrite);
@@ -182,6 +183,7 @@ MeshCullOutputs MeshFeature::declareCull(graph::FrameGraph& graph) {
     ctx.cmd().push(compact);
     ctx.cmd().dispatch(kBatchCount);
   });
+  cull.recordingFixed();
   return out;
 }
 
@@ -228,6 +230,7 @@ void MeshFeature::declareDraw(graph::FrameGraph& graph, Blackboard& board, std::
     cmd.push(push);
     drawBatches(ctx, scene, cull, batches, drawCount);
   });
+  node.recordingFixed();
 }
 
 void MeshFeature::declareDepthPrepass(graph::FrameGraph& graph, Blackboard& board, const MeshCullOutputs& cull) {
@@ -249,6 +252,7 @@ void MeshFeature::declareDepthPrepass(graph::FrameGraph& graph, Blackboard& boar
     ctx.cmd().push(push);
     drawBatches(ctx, scene, cull, batches, drawCount);
   });
+  node.recordingFixed();
 }
 
 void MeshFeature::declare(graph::FrameGraph& graph, Blackboard& board) {

@@ -114,6 +114,7 @@ void ParticleFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
     auto& ctx = rhi::rhiContext(context);
     ctx.cmd().copyBuffer(templ, ctx.buffer(args), kArgsBytes);
   });
+  reset.recordingFixed();
 
   auto emit = graph.addNode("Particle Emit", graph::NodeType::Compute);
   pool = emit.write(pool, Access::StorageReadWrite);
@@ -143,6 +144,7 @@ void ParticleFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
     ctx.cmd().push(push);
     ctx.cmd().dispatch((push.poolSize + FGB_PARTICLE_GROUP_SIZE - 1) / FGB_PARTICLE_GROUP_SIZE);
   });
+  update.recordingFixed();
 
   auto& targets = board.get<FrameTargets>();
   auto render = addForwardPass(graph, targets, "Particle Render", false, depthTest_);
@@ -168,6 +170,7 @@ void ParticleFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
     ctx.cmd().bindIndexBuffer(quad, 0, rhi::IndexType::Uint32);
     ctx.cmd().drawIndexedIndirect(ctx.buffer(args), 0, 1, sizeof(gpu::DrawCommand));
   });
+  render.recordingFixed();
 }
 
 void ParticleFeature::addStats(std::map<std::string, double>& stats) const {

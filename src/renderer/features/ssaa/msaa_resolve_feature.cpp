@@ -10,7 +10,7 @@ void declareResolve(graph::FrameGraph& graph, FrameTargets& targets) {
   graph::TextureHandle samples;
   targets.hdr = node.addColorTargetWithResolve(targets.color, targets.hdr, &samples, graph::LoadOp::Load);
   targets.color = samples;
-  node.setJob([](graph::JobContext&) {});
+  node.setJob([](graph::JobContext&) {}).recordingFixed();
 }
 
 }  // namespace
@@ -18,7 +18,8 @@ void declareResolve(graph::FrameGraph& graph, FrameTargets& targets) {
 void MsaaResolveFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
   auto& targets = board.get<FrameTargets>();
   if (targets.colorResolved) throw std::logic_error("MSAA Resolve declared twice");
-  if (!targets.colorCleared) addForwardPass(graph, targets, "Clear", true).setJob([](graph::JobContext&) {});
+  if (!targets.colorCleared)
+    addForwardPass(graph, targets, "Clear", true).setJob([](graph::JobContext&) {}).recordingFixed();
   if (targets.samples > 1) declareResolve(graph, targets);
   targets.colorResolved = true;
 }

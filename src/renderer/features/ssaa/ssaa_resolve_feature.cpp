@@ -32,6 +32,7 @@ void SsaaResolveFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
     ctx.cmd().push(push);
     recordPostPass(ctx.cmd(), form, extent);
   });
+  node.recordingFixed();
 }
 
 }  // namespace fgb::features

@@ -44,6 +44,7 @@ void TonemapFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
     ctx.cmd().push(push);
     recordPostPass(ctx.cmd(), form, extent);
   });
+  node.recordingFixed();
 }
 
 }  // namespace fgb::features

@@ -235,6 +235,7 @@ void VisBufferFeature::declareClear(graph::FrameGraph& graph, Buffers& b) const 
     }
     for (const auto counters : zeroed) ctx.cmd().fillBuffer(ctx.buffer(counters), 0, sizeof(VisCounters), 0);
   });
+  node.recordingFixed();
 }
 
 void VisBufferFeature::declareClusterCull(graph::FrameGraph& graph, Buffers& b) const {
@@ -280,6 +281,7 @@ void VisBufferFeature::declareClusterCull(graph::FrameGraph& graph, Buffers& b) 
     cmd.push(gpu::ArgsPush{push.counters, ctx.storageBufferIndex(args), FGB_VIS_RASTER_GROUP_SIZE, jobCapacity});
     cmd.dispatch(1);
   });
+  if (!occlusion_) node.recordingFixed();  // else the job reads ctx.execution()
 }
 
 // Phase 2 of render.occlusion: the clusters phase 1 held back, tested again against this frame's
@@ -317,6 +319,7 @@ void VisBufferFeature::declareClusterCullLate(graph::FrameGraph& graph, Buffers&
         gpu::ArgsPush{push.counters, ctx.storageBufferIndex(b.late.cullArgs), FGB_VIS_RASTER_GROUP_SIZE, jobCapacity});
     cmd.dispatch(1);
   });
+  node.recordingFixed();
 }
 
 void VisBufferFeature::declareTriangleFilter(graph::FrameGraph& graph, Buffers& b, VisPhase& phase) const {
@@ -357,6 +360,7 @@ void VisBufferFeature::declareTriangleFilter(graph::FrameGraph& graph, Buffers& 
                               b.extent.width, b.extent.height});
     cmd.dispatch(1);
   });
+  node.recordingFixed();
 }
 
 void VisBufferFeature::declareRaster(graph::FrameGraph& graph, Buffers& b, const VisPhase& phase) const {
@@ -387,6 +391,7 @@ void VisBufferFeature::declareRaster(graph::FrameGraph& graph, Buffers& b, const
     cmd.push(tiles);
     cmd.dispatchIndirect(ctx.buffer(args), kTileArgsOffset);
   });
+  node.recordingFixed();
 }
 
 // The HiZ pyramid of the visibility buffer's depths as they are now: after phase 1's raster for
@@ -417,6 +422,7 @@ void VisBufferFeature::declareHizBuild(graph::FrameGraph& graph, Buffers& b, boo
                    (height + FGB_HIZ_GROUP_SIZE - 1) / FGB_HIZ_GROUP_SIZE);
     }
   });
+  node.recordingFixed();
 }
 
 // Material Shade also copies the culling counters to the host (statistics). A node of its own
@@ -470,6 +476,7 @@ void VisBufferFeature::declareShade(graph::FrameGraph& graph, Blackboard& board,
     cmd.dispatch((b.extent.width + FGB_VIS_SHADE_GROUP_SIZE - 1) / FGB_VIS_SHADE_GROUP_SIZE,
                  (b.extent.height + FGB_VIS_SHADE_GROUP_SIZE - 1) / FGB_VIS_SHADE_GROUP_SIZE);
   });
+  node.recordingFixed();
   targets.color = targets.hdr;  // single-sampled: later forward passes load the shaded image
   targets.colorCleared = true;
   // No depth attachment is written: the later colour passes test against this buffer in their

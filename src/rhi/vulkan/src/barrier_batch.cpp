@@ -54,6 +54,10 @@ void BarrierBatch::record(VkCommandBuffer cmd) {
   info.bufferMemoryBarrierCount = static_cast<uint32_t>(buffers_.size());
   info.pBufferMemoryBarriers = buffers_.data();
   vkCmdPipelineBarrier2(cmd, &info);
+  clear();
+}
+
+void BarrierBatch::clear() {
   images_.clear();
   buffers_.clear();
   for (const uint32_t resource : resources_) slotOf_[resource] = kNone;

@@ -27,6 +27,8 @@ class BarrierBatch {
   [[nodiscard]] const std::vector<VkBufferMemoryBarrier2>& buffers() const { return buffers_; }
   // Records every queued barrier into `cmd` (one call) and empties the batch.
   void record(VkCommandBuffer cmd);
+  // Empties the batch without recording: a kept command buffer recorded these barriers already.
+  void clear();
 
  private:
   static constexpr uint32_t kNone = ~0u;

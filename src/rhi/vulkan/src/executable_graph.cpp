@@ -45,6 +45,7 @@ VulkanGraph::VulkanGraph(VulkanDevice& device, graph::FrameGraph&& graph, const 
     mapQueues(options.queues, options.separateQueues);
     compiled_ = graph::compile(declaration_, compileOptions());
     jobs_ = declaration_.takeJobs();
+    recordingKeys_ = declaration_.takeRecordingKeys();
     createResources();
     translateBarriers();
     translateRendering();
@@ -52,6 +53,7 @@ VulkanGraph::VulkanGraph(VulkanDevice& device, graph::FrameGraph&& graph, const 
     createSpin();
     createSyncAndSlots();
     createScopedSets();
+    hashStaticKeys();
   } catch (...) {
     release();  // the destructor will not run
     throw;
@@ -456,17 +458,21 @@ void VulkanGraph::createSyncAndSlots() {
   for (auto& slot : slots_) {
     for (uint32_t q = 0; q < logicalQueues_; ++q) {
       auto info = vkStruct<VkCommandPoolCreateInfo>(VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO);
-      info.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
+      // Buffers are kept across executions and recorded again one by one (begin resets one).
+      info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
       info.queueFamilyIndex = device_.queues()[deviceQueueOf_[q]].family;
       VkCommandPool pool = VK_NULL_HANDLE;
       check(vkCreateCommandPool(device, &info, nullptr, &pool), "vkCreateCommandPool");
       slot.pools.emplace_back(device, pool, vkDestroyCommandPool);
     }
-    slot.commandBuffers.resize(compiled_.submits.size());
-    slot.recorded.assign(compiled_.submits.size(), 0);
-    for (uint32_t s = 0; s < compiled_.submits.size(); ++s) {
+    slot.commandBuffers.resize(steps_.size());
+    slot.recorded.assign(steps_.size(), 0);
+    slot.started.assign(steps_.size(), 0);
+    slot.keys.assign(steps_.size(), 0);
+    slot.reusable.assign(steps_.size(), 0);
+    for (uint32_t s = 0; s < steps_.size(); ++s) {
       auto info = vkStruct<VkCommandBufferAllocateInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO);
-      info.commandPool = slot.pools[compiled_.submits[s].queue].get();
+      info.commandPool = slot.pools[steps_[s].logicalQueue].get();
       info.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
       info.commandBufferCount = 1;
       check(vkAllocateCommandBuffers(device, &info, &slot.commandBuffers[s]), "vkAllocateCommandBuffers");
@@ -480,6 +486,26 @@ void VulkanGraph::createSyncAndSlots() {
       slot.queries = Owned<VkQueryPool>(device, pool, vkDestroyQueryPool);
       vkResetQueryPool(device, pool, 0, info.queryCount);
     }
+  }
+}
+
+// What the compiled graph fixes about each step's recording, hashed once: its node, the physical
+// resources it uses (transients and imports alike), its render extent and whether it closes its
+// submit. (Keys are compared within one compiled graph only, so this guards nothing today; it
+// keeps the key complete should kept buffers ever outlive a recompile.)
+void VulkanGraph::hashStaticKeys() {
+  for (const auto& submit : compiled_.submits) {
+    if (submit.stepCount > 0) steps_[submit.firstStep + submit.stepCount - 1].lastOfSubmit = true;
+  }
+  const auto mix = graph::hashCombine;
+  for (Step& step : steps_) {
+    uint64_t key = mix(step.node, step.lastOfSubmit);
+    key = mix(mix(key, step.extent.width), step.extent.height);
+    for (const graph::ResourceAccess& use : declaration_.accesses(step.node)) {
+      key = mix(mix(key, buffers_[use.resource].index), textures_[use.resource].index);
+      key = mix(key, static_cast<uint64_t>(use.access));
+    }
+    step.staticKey = key;
   }
 }
 

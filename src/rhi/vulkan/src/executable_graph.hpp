@@ -40,6 +40,9 @@ class VulkanGraph final : public rhi::ExecutableGraph {
   void waitForAll() const;
   [[nodiscard]] uint32_t id() const { return id_; }
   [[nodiscard]] const std::vector<TimelinePoint>& lastPoints() const { return lastPoints_; }
+  // The primary command buffer of `step` (a compiled step) as the latest execution submitted it;
+  // null when the step recorded nothing. Steps can so be submitted one by one (pass calibration).
+  [[nodiscard]] VkCommandBuffer stepCommandBuffer(uint32_t step) const;
 
   // Used by the job context.
   [[nodiscard]] rhi::BufferId bufferOf(graph::BufferHandle handle) const;
@@ -69,11 +72,19 @@ class VulkanGraph final : public rhi::ExecutableGraph {
     bool rendering = false;
     VkRenderingInfo renderingInfo = vkStruct<VkRenderingInfo>(VK_STRUCTURE_TYPE_RENDERING_INFO);
     graph::Extent extent{};
+    bool lastOfSubmit = false;  // the submit's remaining barriers are recorded at its end
+    uint64_t staticKey = 0;     // what the graph fixes about the step's recording (hashStaticKeys)
   };
+  // Per frame in flight. Every step has its own primary command buffer, kept from one execution of
+  // the slot to the next: it is recorded again only when the step's key changed (stepKey), else
+  // submitted as it is.
   struct Slot {
-    std::vector<Owned<VkCommandPool>> pools;  // per logical queue
-    std::vector<VkCommandBuffer> commandBuffers;  // per compiled submit
-    std::vector<uint8_t> recorded;                // per compiled submit: anything recorded (else not begun)
+    std::vector<Owned<VkCommandPool>> pools;      // per logical queue (buffers reset one by one)
+    std::vector<VkCommandBuffer> commandBuffers;  // per step
+    std::vector<uint8_t> recorded;                // per step: the buffer holds commands (else it is not submitted)
+    std::vector<uint8_t> started;                 // per step: the node's prologue ran (it did work; see endStep)
+    std::vector<uint64_t> keys;                   // per step: the key the buffer was recorded under
+    std::vector<uint8_t> reusable;                // per step: keys[step] is valid (the step has a key)
     Owned<VkQueryPool> queries;
     uint64_t execution = 0;
     bool pending = false;
@@ -95,13 +106,19 @@ class VulkanGraph final : public rhi::ExecutableGraph {
   void createSyncAndSlots();
   void createScopedSets();
   void createSpin();
+  void hashStaticKeys();
   // executor.cpp
-  void recordSubmit(Slot& slot, uint32_t submitIndex, uint64_t execution);
-  void recordStep(uint32_t stepIndex, uint64_t execution);
+  void runSubmit(Slot& slot, uint32_t submitIndex, uint64_t execution);
+  [[nodiscard]] bool keyOf(uint32_t stepIndex, uint64_t& key) const;
+  [[nodiscard]] uint64_t stepKey(uint32_t stepIndex, uint64_t userKey) const;
+  void recordStep(Slot& slot, uint32_t stepIndex, uint64_t execution, bool lastOfSubmit);
+  void replayStep(const Slot& slot, uint32_t stepIndex, bool lastOfSubmit);
   VkCommandBuffer commandBufferForRecording();
   void beginStep();  // the deferred prologue of the step being recorded
   void endStep(bool recorded);
+  void markHeapsTouched(const Step& step);
   void queueBarriers(BarrierList list);
+  void flushBarriers();  // records the queued barriers into the step's buffer (replaying: drops them)
   void submitAll(const Slot& slot, uint64_t execution, rhi::RunMode mode);
   uint64_t timelineBase(uint64_t execution) const { return (execution + 1) * valuesPerExecution_; }
   // timestamps.cpp
@@ -114,6 +131,7 @@ class VulkanGraph final : public rhi::ExecutableGraph {
   graph::FrameGraph declaration_;
   graph::CompiledGraph compiled_;
   std::vector<graph::Job> jobs_;  // per node, moved out of the declaration
+  std::vector<graph::RecordingKey> recordingKeys_;  // per node, moved out of the declaration
 
   uint32_t logicalQueues_ = 1;
   std::vector<uint32_t> deviceQueueOf_;     // per logical queue
@@ -147,13 +165,19 @@ class VulkanGraph final : public rhi::ExecutableGraph {
   // Recording state of the current execution (executor.cpp).
   struct Recording {
     Slot* slot = nullptr;
-    uint32_t submit = 0;
-    VkCommandBuffer cmd = VK_NULL_HANDLE;  // begun lazily: commandBufferForRecording()
+    VkCommandBuffer cmd = VK_NULL_HANDLE;  // the step's buffer, begun lazily: commandBufferForRecording()
+    VkCommandBufferUsageFlags usage = 0;   // one-time submit unless the buffer may be kept
     VkQueryPool queries = VK_NULL_HANDLE;
     uint32_t step = 0;
   } recording_;
   BarrierBatch pendingBarriers_;
-  std::vector<uint8_t> heapTouched_;  // per heap: a recorded command used it in this execution
+  // Hash of the barrier references queued into pendingBarriers_ since it was last emptied: with the
+  // elision state, all that decides which barriers a step's buffer begins (and ends) with.
+  uint64_t pendingSignature_ = 0;
+  bool replaying_ = false;            // host state follows a kept buffer: barriers are dropped, not recorded
+  std::vector<uint8_t> heapTouched_;  // per heap: a submitted command used it in this execution
+  uint32_t stepsRecorded_ = 0;        // in the current execution
+  uint32_t stepsReused_ = 0;
 
   // Scratch for submission, reused every execution (no per-frame allocation once warm).
   std::vector<VkSubmitInfo2> submitInfos_;

@@ -1,6 +1,7 @@
-// Running compiled graphs: record every step in order (barriers, debug label, timestamps, dynamic
-// rendering, the node's job; all but the job deferred until the job's first command, so nodes
-// that record nothing cost nothing), submit per the plan with one timeline semaphore per logical queue,
+// Running compiled graphs: record every step in order into its own command buffer (barriers, debug
+// label, timestamps, dynamic rendering, the node's job; all but the job deferred until the job's
+// first command, so nodes that record nothing cost nothing) or submit the step's kept buffer again
+// when its recording key is unchanged, submit per the plan with one timeline semaphore per logical queue,
 // and chain executions — of the same graph (frames in flight) and of sequential graphs.
 #include "executable_graph.hpp"
 #include "translate.hpp"
@@ -44,6 +45,8 @@ class VulkanJobContext final : public rhi::JobContext {
   graph::Extent extent_{1, 1, 1};
 };
 
+constexpr auto mix = graph::hashCombine;
+
 VkPipelineStageFlags2 waitStages(graph::StageMask stages) {
   const VkPipelineStageFlags2 vk = toVkStages(stages);
   return vk == VK_PIPELINE_STAGE_2_NONE ? VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT : vk;
@@ -72,11 +75,12 @@ uint64_t VulkanGraph::submit(rhi::RunMode mode) {
   // Reading query results can still block on lavapipe (it takes the queue's lock while the queue
   // runs the previous frame), so that counts as throttling, not as the frame's recording.
   const auto unblocked = Clock::now();
-  for (const auto& pool : slot.pools) check(vkResetCommandPool(device_.device(), pool.get(), 0), "vkResetCommandPool");
+  // Kept command buffers write the same queries again: reset them on the host, as every execution.
   if (slot.queries) vkResetQueryPool(device_.device(), slot.queries.get(), 0, queryCount_);
 
   std::fill(heapTouched_.begin(), heapTouched_.end(), 0);
-  for (uint32_t s = 0; s < compiled_.submits.size(); ++s) recordSubmit(slot, s, execution);
+  stepsRecorded_ = stepsReused_ = 0;
+  for (uint32_t s = 0; s < compiled_.submits.size(); ++s) runSubmit(slot, s, execution);
   const auto recorded = Clock::now();
   submitAll(slot, execution, mode);
 
@@ -85,44 +89,68 @@ uint64_t VulkanGraph::submit(rhi::RunMode mode) {
   slot.timed = static_cast<bool>(slot.queries);
   ++executions_;
   const auto milliseconds = [](Clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); };
-  hostTimes_ = {milliseconds(unblocked - start), milliseconds(recorded - unblocked), milliseconds(Clock::now() - recorded)};
+  hostTimes_ = {milliseconds(unblocked - start), milliseconds(recorded - unblocked),
+                milliseconds(Clock::now() - recorded), stepsRecorded_, stepsReused_};
   return execution;
 }
 
-// A submit's command buffer is begun only when something is recorded into it: a submit of nodes
-// that record nothing is submitted without one (its semaphore wait and signal still order the
-// queues).
-void VulkanGraph::recordSubmit(Slot& slot, uint32_t submitIndex, uint64_t execution) {
+// Each step of the submit is recorded into its own buffer, or its kept buffer is reused. Host
+// state (queued barriers, touched heaps) moves on the same way either way, so the next step's key
+// sees what its commands would be.
+void VulkanGraph::runSubmit(Slot& slot, uint32_t submitIndex, uint64_t execution) {
   const graph::Submit& submit = compiled_.submits[submitIndex];
   recording_.slot = &slot;
-  recording_.submit = submitIndex;
-  recording_.cmd = VK_NULL_HANDLE;
   recording_.queries = slot.queries.get();
-  for (uint32_t s = submit.firstStep; s < submit.firstStep + submit.stepCount; ++s) recordStep(s, execution);
-  // Releases to other queues and final import states must be recorded before the submit signals.
-  if (!pendingBarriers_.empty()) pendingBarriers_.record(commandBufferForRecording());
-  slot.recorded[submitIndex] = recording_.cmd != VK_NULL_HANDLE;
-  if (recording_.cmd != VK_NULL_HANDLE) check(vkEndCommandBuffer(recording_.cmd), "vkEndCommandBuffer");
+  for (uint32_t s = submit.firstStep; s < submit.firstStep + submit.stepCount; ++s) {
+    uint64_t key = 0;
+    const bool keyed = keyOf(s, key);
+    if (keyed && slot.reusable[s] && slot.keys[s] == key) {
+      replayStep(slot, s, steps_[s].lastOfSubmit);
+      ++stepsReused_;
+      continue;
+    }
+    recordStep(slot, s, execution, steps_[s].lastOfSubmit);
+    slot.keys[s] = key;
+    slot.reusable[s] = keyed;
+    ++stepsRecorded_;
+  }
 }
 
-VkCommandBuffer VulkanGraph::commandBufferForRecording() {
-  if (recording_.cmd != VK_NULL_HANDLE) return recording_.cmd;
-  const VkCommandBuffer cmd = recording_.slot->commandBuffers[recording_.submit];
-  auto begin = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
-  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-  check(vkBeginCommandBuffer(cmd, &begin), "vkBeginCommandBuffer");
-  commandBuffer_.begin(VK_NULL_HANDLE);  // forget descriptor bindings of the previous buffer
-  commandBuffer_.begin(cmd);
-  recording_.cmd = cmd;
-  return cmd;
+// False when the step must be recorded whatever happened before: its node declared no key
+// (NodeBuilder::recordingDependsOn), or debug.record_every_frame is on. Else `key` is its key now.
+bool VulkanGraph::keyOf(uint32_t stepIndex, uint64_t& key) const {
+  const graph::RecordingKey& userKey = recordingKeys_[steps_[stepIndex].node];
+  if (options_.recordEveryFrame || !userKey) return false;
+  key = stepKey(stepIndex, userKey());
+  return true;
 }
 
-// A step: its "before" barriers are queued; its prologue (barriers, label, begin timestamp, and
-// dynamic rendering for graphics nodes with attachments) runs before its first command; its job
-// records; its "after" barriers are queued for the next step that records work.
-void VulkanGraph::recordStep(uint32_t stepIndex, uint64_t execution) {
+// A step's commands are a function of: its job (the node's key), what the graph fixes (resources,
+// extent, query indices, labels: staticKey), the barriers queued before it (pendingSignature_),
+// which of its barriers are elided (heapTouched_ of their heaps, which depends on whether earlier
+// steps did work) and the slow-pass spin's iterations (calibrated over the first executions).
+uint64_t VulkanGraph::stepKey(uint32_t stepIndex, uint64_t userKey) const {
+  const Step& step = steps_[stepIndex];
+  uint64_t key = mix(mix(step.staticKey, userKey), pendingSignature_);
+  for (const BarrierList list : {step.before, step.after}) {
+    for (uint32_t i = list.first; i < list.first + list.count; ++i) {
+      const BarrierRef& ref = barrierRefs_[i];
+      if (ref.elidable) key = mix(key, heapTouched_[ref.heap]);
+    }
+  }
+  if (stepIndex == slowStep_) key = mix(key, spin_->iterations());
+  return key;
+}
+
+// A step's buffer is begun only when something is recorded into it: a step that records nothing
+// is not submitted (its barriers move on to the next step that records; the submit's semaphore
+// wait and signal still order the queues).
+void VulkanGraph::recordStep(Slot& slot, uint32_t stepIndex, uint64_t execution, bool lastOfSubmit) {
   const Step& step = steps_[stepIndex];
   recording_.step = stepIndex;
+  recording_.cmd = VK_NULL_HANDLE;
+  recording_.usage =
+      recordingKeys_[step.node] && !options_.recordEveryFrame ? 0 : VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   queueBarriers(step.before);
   commandBuffer_.beginNode([](void* graph) { static_cast<VulkanGraph*>(graph)->beginStep(); }, this, step.rendering);
   // Attachments are accessed by vkCmdBeginRendering itself (load and store operations): a node
@@ -136,8 +164,50 @@ void VulkanGraph::recordStep(uint32_t stepIndex, uint64_t execution) {
     if (step.rendering) context.setExtent(step.extent);
     job(context);
   }
-  endStep(commandBuffer_.endNode());
+  const bool started = commandBuffer_.endNode();
+  endStep(started);
   queueBarriers(step.after);
+  // Releases to other queues and final import states must be recorded before the submit signals.
+  if (lastOfSubmit && !pendingBarriers_.empty()) flushBarriers();
+  slot.started[stepIndex] = started;
+  slot.recorded[stepIndex] = recording_.cmd != VK_NULL_HANDLE;
+  if (recording_.cmd != VK_NULL_HANDLE) check(vkEndCommandBuffer(recording_.cmd), "vkEndCommandBuffer");
+}
+
+// The kept buffer of a step is submitted again: move the host state on as recording did (its key
+// was the same, so it decided the same), dropping the barriers it holds.
+void VulkanGraph::replayStep(const Slot& slot, uint32_t stepIndex, bool lastOfSubmit) {
+  const Step& step = steps_[stepIndex];
+  replaying_ = true;
+  queueBarriers(step.before);
+  if (slot.started[stepIndex]) {
+    flushBarriers();  // the prologue recorded them
+    markHeapsTouched(step);
+    if (stepIndex == slowStep_) recording_.slot->spinIterations = spin_->iterations();
+  }
+  queueBarriers(step.after);
+  if (lastOfSubmit && !pendingBarriers_.empty()) flushBarriers();
+  replaying_ = false;
+}
+
+VkCommandBuffer VulkanGraph::commandBufferForRecording() {
+  if (recording_.cmd != VK_NULL_HANDLE) return recording_.cmd;
+  const VkCommandBuffer cmd = recording_.slot->commandBuffers[recording_.step];
+  auto begin = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
+  begin.flags = recording_.usage;
+  check(vkBeginCommandBuffer(cmd, &begin), "vkBeginCommandBuffer");  // resets what it held
+  commandBuffer_.begin(VK_NULL_HANDLE);  // forget descriptor bindings of the previous buffer
+  commandBuffer_.begin(cmd);
+  recording_.cmd = cmd;
+  return cmd;
+}
+
+void VulkanGraph::flushBarriers() {
+  if (replaying_)
+    pendingBarriers_.clear();
+  else
+    pendingBarriers_.record(commandBufferForRecording());
+  pendingSignature_ = 0;
 }
 
 void VulkanGraph::beginStep() {
@@ -150,7 +220,7 @@ void VulkanGraph::beginStep() {
               label.color);
     vkCmdBeginDebugUtilsLabelEXT(cmd, &label);
   }
-  pendingBarriers_.record(cmd);
+  flushBarriers();
   if (recording_.queries != VK_NULL_HANDLE && timestampMask_[step.logicalQueue] != 0) {
     vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, recording_.queries, recording_.step * 2);
   }
@@ -182,7 +252,17 @@ void VulkanGraph::endStep(bool recorded) {
     vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, recording_.queries, recording_.step * 2 + 1);
   }
   if (device_.debugLabels()) vkCmdEndDebugUtilsLabelEXT(cmd);
+  markHeapsTouched(step);
+}
+
+void VulkanGraph::markHeapsTouched(const Step& step) {
   for (uint32_t i = step.firstHeap; i < step.firstHeap + step.heapCount; ++i) heapTouched_[stepHeaps_[i]] = 1;
+}
+
+VkCommandBuffer VulkanGraph::stepCommandBuffer(uint32_t step) const {
+  if (executions_ == 0) return VK_NULL_HANDLE;
+  const Slot& slot = slots_[(executions_ - 1) % slots_.size()];
+  return slot.recorded.at(step) ? slot.commandBuffers[step] : VK_NULL_HANDLE;
 }
 
 // A same-layout barrier on graph-owned memory that no recorded command has touched yet in this
@@ -197,9 +277,11 @@ void VulkanGraph::queueBarriers(BarrierList list) {
       return ref.image ? pendingBarriers_.add(ref.resource, imageBarriers_[ref.index])
                        : pendingBarriers_.add(ref.resource, bufferBarriers_[ref.index]);
     };
-    if (add()) continue;
-    pendingBarriers_.record(commandBufferForRecording());
-    if (!add()) throw DeviceError("internal: a barrier could not be queued after the batch was recorded");
+    if (!add()) {
+      flushBarriers();
+      if (!add()) throw DeviceError("internal: a barrier could not be queued after the batch was recorded");
+    }
+    pendingSignature_ = mix(pendingSignature_, i + 1);
   }
 }
 
@@ -215,7 +297,8 @@ void VulkanGraph::submitAll(const Slot& slot, uint64_t execution, rhi::RunMode m
   waitInfos_.clear();
   waitInfos_.reserve(waitCount);
   signalInfos_.assign(submits.size(), vkStruct<VkSemaphoreSubmitInfo>(VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO));
-  commandInfos_.assign(submits.size(), vkStruct<VkCommandBufferSubmitInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO));
+  commandInfos_.assign(steps_.size(),
+                       vkStruct<VkCommandBufferSubmitInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO));
   submitInfos_.clear();
 
   std::vector<bool> firstOnQueue(logicalQueues_, true);
@@ -252,13 +335,18 @@ void VulkanGraph::submitAll(const Slot& slot, uint64_t execution, rhi::RunMode m
     signal.semaphore = timelines_[submit.queue].get();
     signal.value = base + submit.signalValue;
     signal.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-    commandInfos_[s].commandBuffer = slot.commandBuffers[s];
+    // The buffers of the submit's steps that hold commands, in step order, from its first step's
+    // place in commandInfos_ on.
+    uint32_t buffers = 0;
+    for (uint32_t step = submit.firstStep; step < submit.firstStep + submit.stepCount; ++step) {
+      if (slot.recorded[step]) commandInfos_[submit.firstStep + buffers++].commandBuffer = slot.commandBuffers[step];
+    }
 
     auto info = vkStruct<VkSubmitInfo2>(VK_STRUCTURE_TYPE_SUBMIT_INFO_2);
     info.waitSemaphoreInfoCount = static_cast<uint32_t>(waitInfos_.size() - firstWait);
     info.pWaitSemaphoreInfos = info.waitSemaphoreInfoCount ? &waitInfos_[firstWait] : nullptr;
-    info.commandBufferInfoCount = slot.recorded[s] ? 1 : 0;
-    info.pCommandBufferInfos = &commandInfos_[s];
+    info.commandBufferInfoCount = buffers;
+    info.pCommandBufferInfos = buffers ? &commandInfos_[submit.firstStep] : nullptr;
     info.signalSemaphoreInfoCount = 1;
     info.pSignalSemaphoreInfos = &signal;
     submitInfos_.push_back(info);

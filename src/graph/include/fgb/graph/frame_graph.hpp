@@ -116,6 +116,14 @@ class JobContext {
   virtual ~JobContext() = default;
 };
 using Job = std::function<void(JobContext&)>;
+// What a job's recording depends on (NodeBuilder::recordingDependsOn): a hash of every host value
+// the job reads while recording. A backend may keep a node's recorded commands and submit them
+// again while this key (and what the backend itself knows of the node) is unchanged.
+using RecordingKey = std::function<uint64_t()>;
+// Folds `value` into `hash`, for recording keys (order matters: (a, b) and (b, a) differ).
+constexpr uint64_t hashCombine(uint64_t hash, uint64_t value) {
+  return (hash ^ (value + 0x9e3779b97f4a7c15ull + (hash << 6) + (hash >> 2))) * 0xff51afd7ed558ccdull;
+}
 
 struct ResourceDecl {
   std::string name;
@@ -173,6 +181,14 @@ class NodeBuilder {
   // A side-effect node is never culled and keeps everything it reads alive (readbacks, debug dumps).
   NodeBuilder& sideEffect();
   NodeBuilder& setJob(Job job);
+  // The job's recording depends only on `key()` (evaluated before each execution) and on what the
+  // graph itself fixes (resources, extents): its commands may be recorded once and reused while
+  // the key stays equal. Without it the job records every execution (the safe default).
+  NodeBuilder& recordingDependsOn(RecordingKey key);
+  // The job reads no host state that changes after declaration (a constant key).
+  NodeBuilder& recordingFixed() {
+    return recordingDependsOn([] { return uint64_t{0}; });
+  }
 
   [[nodiscard]] uint32_t index() const { return node_; }
 
@@ -212,6 +228,10 @@ class FrameGraph {
   // Moves the jobs out (indexed by node; empty where none was set): the backend keeps them when it
   // builds an executable graph.
   std::vector<Job> takeJobs() { return std::exchange(jobs_, std::vector<Job>(nodes_.size())); }
+  // Likewise the recording keys (empty where the node declared none).
+  std::vector<RecordingKey> takeRecordingKeys() {
+    return std::exchange(recordingKeys_, std::vector<RecordingKey>(nodes_.size()));
+  }
 
  private:
   friend class NodeBuilder;
@@ -231,6 +251,7 @@ class FrameGraph {
   std::vector<uint32_t> useStart_;
   std::vector<NodeAttachments> attachments_;  // by node
   std::vector<Job> jobs_;                     // by node; empty where none was set
+  std::vector<RecordingKey> recordingKeys_;   // by node; empty where none was declared
 };
 
 }  // namespace fgb::graph

@@ -24,7 +24,7 @@ class GraphFrameTimer {
   // with no passes when none is ready yet (timestamps of frame N normally arrive during N+1).
   FrameTiming execute(rhi::Device& device, rhi::ExecutableGraph& graph) {
     const rhi::RunTicket ticket = device.execute(graph);
-    recordMs_[ticket.execution] = graph.lastHostTimes().recordMs;
+    hostTimes_[ticket.execution] = graph.lastHostTimes();
     collect(graph);
     if (ready_.empty()) return {};
     FrameTiming oldest = std::move(ready_.front());
@@ -60,15 +60,19 @@ class GraphFrameTimer {
                               timed ? timings.nodeMs[i] : 0.0, timed ? timings.nodeStartMs[i] : -1.0});
     }
     frame.gpuFrameMs = timings.gpuMs;
-    if (const auto recorded = recordMs_.find(timings.execution); recorded != recordMs_.end()) {
-      frame.cpuFrameMs = recorded->second;
-      recordMs_.erase(recorded);
+    if (const auto host = hostTimes_.find(timings.execution); host != hostTimes_.end()) {
+      frame.cpuFrameMs = host->second.recordMs;
+      frame.submitMs = host->second.submitMs;
+      frame.nodesRecorded = host->second.nodesRecorded;
+      frame.nodesReused = host->second.nodesReused;
+      hostTimes_.erase(host);
     }
     return frame;
   }
 
   std::deque<FrameTiming> ready_;
-  std::unordered_map<uint64_t, double> recordMs_;  // host recording time by execution, until its timings arrive
+  // Host times (recording, submit, nodes recorded/reused) by execution, until its timings arrive.
+  std::unordered_map<uint64_t, rhi::ExecutableGraph::HostTimes> hostTimes_;
 };
 
 }  // namespace fgb::render

@@ -66,6 +66,9 @@ struct FrameTiming {
   // features' jobs). Not the time blocked while the GPU finishes an earlier frame in flight, nor
   // vkQueueSubmit, which on lavapipe may execute the frame itself (GPU time showing up on the host).
   double cpuFrameMs = 0.0;
+  double submitMs = 0.0;       // vkQueueSubmit of the frame (host)
+  uint32_t nodesRecorded = 0;  // compiled nodes whose job recorded this frame
+  uint32_t nodesReused = 0;    // compiled nodes whose kept commands were submitted again
 };
 
 // Linear RGBA float pixels, row-major, top row first.

@@ -67,6 +67,9 @@ struct GraphOptions {
   bool cull = true;
   bool alias = true;
   bool timestamps = true;
+  // debug.record_every_frame: run every node's job every execution, ignoring the recording keys
+  // (graph::NodeBuilder::recordingDependsOn) that otherwise let a node's kept commands be reused.
+  bool recordEveryFrame = false;
   // When set, graph::compile() adds its stages' times to it (CompileOptions::profile).
   graph::CompileProfile* compileProfile = nullptr;
   // Test aid (debug.slow_pass): the alive node named `slowNode` also runs, inside its timestamps and
@@ -112,6 +115,10 @@ class ExecutableGraph {
     double throttleMs = 0.0;
     double recordMs = 0.0;
     double submitMs = 0.0;
+    // Compiled nodes whose job ran (recorded) and whose kept commands were submitted again
+    // without running it (reused; see NodeBuilder::recordingDependsOn). They add up to the steps.
+    uint32_t nodesRecorded = 0;
+    uint32_t nodesReused = 0;
   };
   [[nodiscard]] virtual HostTimes lastHostTimes() const = 0;
   // Timings of finished executions not taken yet, oldest first. Never waits for the GPU: results

@@ -59,6 +59,10 @@ struct RunResult {
   std::vector<PassRecord> passes;  // declaration order
   std::vector<double> frameGpuMs, frameCpuMs;
   Summary frameGpu, frameCpu;
+  // Per measured frame: vkQueueSubmit's host time, and the nodes recorded and reused (kept
+  // command buffers). Their medians land in frameSubmit and stats nodes_recorded/nodes_reused.
+  std::vector<double> frameSubmitMs, nodesRecorded, nodesReused;
+  Summary frameSubmit;
   HarnessOverhead overhead;
   std::optional<BudgetResult> budget;
   std::optional<GoldenResult> golden;

@@ -74,6 +74,9 @@ void printSummary(const harness::RunResult& run, const std::string& out) {
   }
   std::cout << fmt::format("  {:<28} {:>9.4f} ms GPU, {:.4f} ms CPU\n", "frame", run.frameGpu.median, run.frameCpu.median);
   if (run.device.hostTimestamps) std::cout << "  note: " << harness::timestampSourceNote(run.device) << "\n";
+  std::cout << "  clock: " << harness::describeWallClock(run.wallClock) << "\n";
+  if (!run.deviceState.source.empty()) std::cout << "  " << harness::describeDeviceState(run.deviceState) << "\n";
+  if (run.deviceState.clocksChanged()) std::cerr << "warning: the GPU's clocks changed during measurement\n";
   if (run.checkedFinite) {
     const auto* bad = run.firstNonFinite();
     std::cout << "  non-finite: " << (bad ? "first produced by " + bad->pass : std::string("none")) << "\n";

@@ -60,6 +60,7 @@ class GraphFrameTimer {
                               timed ? timings.nodeMs[i] : 0.0, timed ? timings.nodeStartMs[i] : -1.0});
     }
     frame.gpuFrameMs = timings.gpuMs;
+    frame.gpuFrameStartMs = timings.startMs;
     if (const auto recorded = recordMs_.find(timings.execution); recorded != recordMs_.end()) {
       frame.cpuFrameMs = recorded->second;
       recordMs_.erase(recorded);

@@ -65,6 +65,21 @@ TEST(WallClock, ClockChangeComesFirst) {
   EXPECT_FALSE(state.clocksChanged());
 }
 
+TEST(WallClock, RoundsAddUpWeightedByFrames) {
+  const auto first = frames(10, 1.0, 0.0, 0.05);
+  const auto second = frames(30, 2.0, 0.0, 0.05);
+  WallClock total = checkWallClock(first, 10.0, {});
+  DeviceState state;
+  std::vector<double> spans(10, 1.0), host(40, 0.05);
+  spans.resize(40, 2.0);
+  appendWallClock(total, state, checkWallClock(second, 60.0, {}), {}, spans, host);
+  EXPECT_EQ(total.frames, 40u);
+  EXPECT_NEAR(total.wallMsPerFrame, 70.0 / 40.0, 1e-12);
+  EXPECT_NEAR(total.spanMs, 2.0, 1e-12);
+  EXPECT_NEAR(total.meanSpanMs, 1.75, 1e-12);
+  EXPECT_TRUE(total.reason.empty()) << total.reason;
+}
+
 TEST(DeviceProbe, WithoutTheLibrarySaysWhy) {
   setenv("FGBENCH_NVML_LIBRARY", "/nonexistent/libnvidia-ml.so.1", 1);
   const DeviceProbe probe(render::DeviceDescription{});

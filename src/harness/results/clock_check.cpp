@@ -76,6 +76,28 @@ WallClock checkWallClock(const std::vector<FrameClock>& frames, double wallMs, c
   return clock;
 }
 
+void appendWallClock(WallClock& total, DeviceState& totalState, const WallClock& round, const DeviceState& roundState,
+                     const std::vector<double>& allSpansMs, const std::vector<double>& allHostMs) {
+  if (round.frames == 0) return;
+  if (total.frames == 0) {
+    total = round;
+    totalState = roundState;
+    return;
+  }
+  const double before = total.frames, added = round.frames, frames = before + added;
+  total.wallMsPerFrame = (total.wallMsPerFrame * before + round.wallMsPerFrame * added) / frames;
+  if (total.betweenFramesMs && round.betweenFramesMs) {
+    total.betweenFramesMs = (*total.betweenFramesMs * before + *round.betweenFramesMs * added) / frames;
+  }
+  total.frames += round.frames;
+  total.spanMs = medianOf(allSpansMs);
+  total.meanSpanMs = meanOf(allSpansMs);
+  total.hostMsPerFrame = medianOf(allHostMs);
+  if (!totalState.start) totalState = roundState;
+  totalState.end = roundState.end;
+  total.reason = total.slowerThanSpan() > kWallSlowerThanSpan ? reasonFor(total, totalState) : "";
+}
+
 nlohmann::json toJson(const WallClock& clock) {
   nlohmann::json json{{"frames", clock.frames},
                       {"wall_ms_per_frame", clock.wallMsPerFrame},

@@ -58,6 +58,12 @@ struct FrameClock {
 // frames) or uneven frames (slow frames lift the mean span above the median).
 WallClock checkWallClock(const std::vector<FrameClock>& frames, double wallMs, const DeviceState& state);
 
+// Two rounds of measurement of one configuration as one (until-stable runs measure in rounds):
+// wall time and time between frames weighted by frames; spans and host times over all frames;
+// the device state from the first round's start to the last round's end; the reason again.
+void appendWallClock(WallClock& total, DeviceState& totalState, const WallClock& round, const DeviceState& roundState,
+                     const std::vector<double>& allSpansMs, const std::vector<double>& allHostMs);
+
 nlohmann::json toJson(const WallClock& clock);
 nlohmann::json toJson(const DeviceState& state);
 // The terminal's and report's lines: "span 0.930 ms, wall 0.874 ms per frame (frames overlap)".

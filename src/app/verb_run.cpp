@@ -1,23 +1,24 @@
 // `fgbench run SCENE`: warm-up + measured frames, per-pass GPU timings, images, graph dumps and
 // reports into --out DIR; optional budget and golden checks (exit 1 when either fails).
-#include "verb.hpp"
+#include <fmt/format.h>
 
+#include <cmath>
 #include <fgb/core/error.hpp>
-#include <fgb/harness/results/budget.hpp>
-#include <fgb/harness/report/dart.hpp>
-#include <fgb/harness/results/golden.hpp>
 #include <fgb/harness/base/json_io.hpp>
 #include <fgb/harness/base/progress.hpp>
+#include <fgb/harness/report/dart.hpp>
 #include <fgb/harness/report/report.hpp>
+#include <fgb/harness/results/budget.hpp>
+#include <fgb/harness/results/compare_runs.hpp>
+#include <fgb/harness/results/golden.hpp>
 #include <fgb/harness/run/render_path.hpp>
 #include <fgb/harness/run/run_loop.hpp>
 #include <fgb/harness/run/run_outputs.hpp>
 #include <fgb/renderer/workload.hpp>
-
-#include <fmt/format.h>
-
 #include <iostream>
 #include <optional>
+
+#include "verb.hpp"
 
 namespace fgb::app {
 namespace {
@@ -31,7 +32,25 @@ struct RunVerbOptions {
   std::string golden;
   bool dart = false;
   bool untilStable = false;
+  std::string detect;  // --detect: the change to be able to detect, "2%" or "0.02"
 };
+
+// --detect 2% | 0.02: a relative change in (0, 1).
+double parseDetect(const std::string& text) {
+  const bool percent = !text.empty() && text.back() == '%';
+  const std::string number = percent ? text.substr(0, text.size() - 1) : text;
+  double value = 0.0;
+  std::size_t used = 0;
+  try {
+    value = std::stod(number, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != number.size()) throw InputError("--detect " + text + ": not a number (e.g. 2% or 0.02)");
+  if (percent) value /= 100.0;
+  if (!(value > 0.0 && value < 1.0)) throw InputError("--detect " + text + ": must lie between 0 and 100%");
+  return value;
+}
 
 // A golden fixes what it was rendered with; options the user did not give follow it, so that
 // `run --golden` compares like with like.
@@ -53,6 +72,10 @@ harness::RunArtifacts render(const RunVerbOptions& o, const std::map<std::string
   request.warmup = o.common.warmup;
   request.frames = o.common.frames;
   if (o.untilStable) request.untilStable = harness::StabilityRule{};
+  if (!o.detect.empty()) {
+    request.untilStable = harness::StabilityRule{};
+    request.untilStable->relativeHalfWidth = harness::halfWidthForDetectable(parseDetect(o.detect));
+  }
   request.graphDumps = true;
   request.progress = [&](uint32_t done, uint32_t total) { bar.update(done, total); };
   harness::RunArtifacts a = harness::renderConfiguration(render::openWorkload, request);
@@ -68,7 +91,10 @@ void printSummary(const harness::RunResult& run, const std::string& out) {
     if (p.culled) {
       std::cout << fmt::format("  {:<28} culled\n", p.name);
     } else {
-      std::cout << fmt::format("  {:<28} {:>9.4f} ms (p5 {:.4f}, p95 {:.4f}){}\n", p.name, p.gpu.median, p.gpu.p5, p.gpu.p95,
+      const double detectable = harness::detectableFromFrames(p.samplesMs);
+      std::cout << fmt::format("  {:<28} {:>9.4f} ms (p5 {:.4f}, p95 {:.4f}{}){}\n", p.name, p.gpu.median, p.gpu.p5,
+                               p.gpu.p95,
+                               std::isfinite(detectable) ? fmt::format(", detects {:.1f}%", 100.0 * detectable) : "",
                                p.unstable ? "  unstable" : "");
     }
   }
@@ -80,6 +106,9 @@ void printSummary(const harness::RunResult& run, const std::string& out) {
   }
   std::cout << "\n";
   if (run.device.hostTimestamps) std::cout << "  note: " << harness::timestampSourceNote(run.device) << "\n";
+  std::cout << "  clock: " << harness::describeWallClock(run.wallClock) << "\n";
+  if (!run.deviceState.source.empty()) std::cout << "  " << harness::describeDeviceState(run.deviceState) << "\n";
+  if (run.deviceState.clocksChanged()) std::cerr << "warning: the GPU's clocks changed during measurement\n";
   if (run.checkedFinite) {
     const auto* bad = run.firstNonFinite();
     std::cout << "  non-finite: " << (bad ? "first produced by " + bad->pass : std::string("none")) << "\n";
@@ -153,6 +182,10 @@ static VerbRegistrar reg(20, [](CLI::App& app) {
   sub->add_flag("--dart", options->dart, "Print <DartMeasurement> tags for CTest/CDash");
   sub->add_flag("--until-stable", options->untilStable,
                 "Measure until the 95% CI of the median frame time is within +-2% (--frames is the cap)");
+  sub->add_option("--detect", options->detect,
+                  "Measure until a change this small in the frame time is detectable (e.g. 2% or 0.02; alpha 0.05, "
+                  "power 0.8, against the frames' own noise: compare-runs adds the run-to-run noise); --frames is "
+                  "the cap");
   return Verb{sub, [sub, options] { return runVerb(*sub, *options); }};
 });
 

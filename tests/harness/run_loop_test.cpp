@@ -43,6 +43,19 @@ TEST(RunLoop, KeepsNodesRecordedAndReusedAndSubmitTimePerFrame) {
   EXPECT_TRUE(json.contains("frame_cpu_ms"));  // unchanged beside it
 }
 
+TEST(RunLoop, TimesTheMeasuredFramesByTheWallClock) {
+  testing::FakeWorkload workload;
+  const RunResult run = runBenchmark(workload, RunOptions{2, 6, kDefaultUnstableSpread, {}});
+  EXPECT_EQ(run.wallClock.frames, 6u);
+  EXPECT_GT(run.wallClock.wallMsPerFrame, 0.0);
+  EXPECT_DOUBLE_EQ(run.wallClock.spanMs, run.frameGpu.median);
+  EXPECT_FALSE(run.deviceState.unavailable.empty());  // the fake device has no NVML device
+  const nlohmann::json json = toJson(run);
+  EXPECT_EQ(json.at("wall_clock").at("frames"), 6);
+  EXPECT_TRUE(json.at("device_state").at("source").is_null());
+  EXPECT_TRUE(json.at("passes").at(0).contains("detectable_relative"));
+}
+
 TEST(RunLoop, CulledPassesHaveNoSamples) {
   testing::FakeWorkload workload;
   const RunResult run = runBenchmark(workload, RunOptions{1, 4, kDefaultUnstableSpread, {}});

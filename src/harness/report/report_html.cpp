@@ -133,6 +133,7 @@ std::string htmlReport(const RunResult& run, const ReportImages& images) {
   html += fmt::format("<p class=\"note\">unstable: (p95 − p5) / median above {:g}; read such medians with care.</p>\n",
                       kDefaultUnstableSpread);
   html += "<p class=\"note\">" + escapeXml(hostOverheadNote(run)) + "</p>\n";
+  html += "<p class=\"note\">" + escapeXml(wallClockNote(run)) + "</p>\n";
   html += "<h2>Budget</h2>\n" + budgetHtml(run);
   html += "<h2>Golden image</h2>\n" + goldenHtml(run);
   return html + "</body></html>\n";

@@ -113,6 +113,12 @@ std::string hostOverheadNote(const RunResult& run) {
       o.perFrameUs, o.workloadCallsMs, o.readbackMs, o.encodeMs);
 }
 
+std::string wallClockNote(const RunResult& run) {
+  return "Timer against the clock: the frame's span is its first to its last GPU timestamp; the wall time per "
+         "frame is the measured frames' wall time, submitted back to back with one wait at the end. " +
+         describeWallClock(run.wallClock) + ". " + describeDeviceState(run.deviceState) + ".";
+}
+
 std::string markdownReport(const RunResult& run) {
   std::string out = fmt::format("# fgbench report: {}\n\n", run.scene);
   out += fmt::format("- Device: {} ({}), driver {}, Vulkan {}\n", run.device.name, run.device.type, run.device.driver,
@@ -130,6 +136,7 @@ std::string markdownReport(const RunResult& run) {
   out += "## Timings (ms)\n\n" + passTable(run) + "\n";
   out += fmt::format("Unstable: (p95 − p5) / median > {:.0f}%.\n\n", kDefaultUnstableSpread * 100.0);
   out += hostOverheadNote(run) + "\n\n";
+  out += wallClockNote(run) + "\n\n";
   out += finiteSection(run);
   out += budgetSection(run) + "\n" + goldenSection(run);
   return out;

@@ -129,6 +129,21 @@ double studentTQuantile(double p, double df) {
 
 double normalQuantile(double p) { return invert(normalCdf, p, -40.0, 40.0); }
 
+namespace {
+// detectable = this factor * the median's relative 95% half-width.
+double detectPerHalfWidth() {
+  return (normalQuantile(1.0 - kDetectAlpha) + normalQuantile(kDetectPower)) * std::sqrt(2.0) / normalQuantile(0.975);
+}
+}  // namespace
+
+double detectableFromFrames(const std::vector<double>& samples) {
+  return detectPerHalfWidth() * medianConfidenceInterval(samples).relativeHalfWidth();
+}
+
+double halfWidthForDetectable(double detectable) {
+  return detectable / detectPerHalfWidth();
+}
+
 // --- the comparison ---
 
 namespace {

@@ -1,11 +1,10 @@
-#include <fgb/harness/results/timings.hpp>
-
-#include <fgb/core/error.hpp>
-#include <fgb/harness/base/json_io.hpp>
-
 #include <fmt/format.h>
 
 #include <cmath>
+#include <fgb/core/error.hpp>
+#include <fgb/harness/base/json_io.hpp>
+#include <fgb/harness/results/compare_runs.hpp>
+#include <fgb/harness/results/timings.hpp>
 
 namespace fgb::harness {
 namespace {
@@ -109,6 +108,8 @@ nlohmann::json toJson(const RunResult& run) {
   for (const auto& p : run.passes) {
     nlohmann::json entry{{"name", p.name}, {"queue", p.queue}, {"culled", p.culled}, {"gpu_ms", toJson(p.gpu)},
                          {"unstable", p.unstable}, {"samples_ms", p.samplesMs}};
+    if (const double detectable = detectableFromFrames(p.samplesMs); std::isfinite(detectable))
+      entry["detectable_relative"] = detectable;
     if (!p.startMs.empty()) entry["start_ms"] = p.startMs;
     if (p.nonFinite) entry["non_finite"] = toJson(*p.nonFinite);
     passes.push_back(std::move(entry));
@@ -148,6 +149,8 @@ nlohmann::json toJson(const RunResult& run) {
         {"nodes_recorded", run.nodesRecorded},
         {"nodes_reused", run.nodesReused}}},
       {"harness", toJson(run.overhead)},
+      {"wall_clock", toJson(run.wallClock)},
+      {"device_state", toJson(run.deviceState)},
   };
   j["budget"] = run.budget ? toJson(*run.budget)
                            : nlohmann::json{{"file", ""}, {"verdict", "none"}, {"over", nlohmann::json::array()}};

@@ -78,6 +78,8 @@ void appendMeasurements(RunResult& total, const RunResult& round) {
   o.workloadCallsMs += round.overhead.workloadCallsMs;
   o.harnessMs += round.overhead.harnessMs;
   o.perFrameUs = after ? o.harnessMs * 1000.0 / static_cast<double>(after) : 0.0;
+  appendWallClock(total.wallClock, total.deviceState, round.wallClock, round.deviceState, total.frameGpuMs,
+                  total.frameCpuMs);
   summarizeRun(total);
 }
 

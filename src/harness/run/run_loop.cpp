@@ -1,9 +1,8 @@
-#include <fgb/harness/run/run_loop.hpp>
-
+#include <chrono>
 #include <fgb/core/error.hpp>
 #include <fgb/core/knob_registry.hpp>
-
-#include <chrono>
+#include <fgb/harness/run/device_probe.hpp>
+#include <fgb/harness/run/run_loop.hpp>
 #include <map>
 
 namespace fgb::harness {
@@ -48,6 +47,12 @@ void finalizeColumns(RunResult& run) {
   }
 }
 
+std::vector<FrameClock> frameClocks(const std::vector<render::FrameTiming>& measured) {
+  std::vector<FrameClock> clocks;
+  for (const auto& frame : measured) clocks.push_back({frame.gpuFrameMs, frame.gpuFrameStartMs, frame.cpuFrameMs});
+  return clocks;
+}
+
 }  // namespace
 
 RunResult runBenchmark(render::Workload& workload, const RunOptions& options) {
@@ -55,21 +60,33 @@ RunResult runBenchmark(render::Workload& workload, const RunOptions& options) {
   std::vector<render::FrameTiming> timings;
   timings.reserve(total);
   double workloadMs = 0.0;
-
-  const auto loopStart = Clock::now();
-  for (uint32_t i = 0; i < total; ++i) {
+  const auto collect = [&](std::vector<render::FrameTiming> late) {
+    for (auto& timing : late) {
+      if (hasTimings(timing)) timings.push_back(std::move(timing));
+    }
+  };
+  const auto render = [&](uint32_t frame) {
     const auto before = Clock::now();
     render::FrameTiming timing = workload.renderFrame();
     workloadMs += millisecondsBetween(before, Clock::now());
     if (hasTimings(timing)) timings.push_back(std::move(timing));
-    if (options.progress) options.progress(i + 1, total);
-  }
+    if (options.progress) options.progress(frame + 1, total);
+  };
+
+  const DeviceProbe probe(workload.device());
+  const auto loopStart = Clock::now();
+  for (uint32_t i = 0; i < options.warmup; ++i) render(i);
+  // The measured frames start on an idle device and end with one wait: their wall time per frame
+  // is the throughput the spans are checked against (frames in flight may overlap on the GPU).
+  collect(workload.finish());
+  const std::optional<DeviceSample> startState = probe.sample();
+  const auto measureStart = Clock::now();
+  for (uint32_t i = options.warmup; i < total; ++i) render(i);
   const auto beforeFinish = Clock::now();
-  for (auto& late : workload.finish()) {
-    if (hasTimings(late)) timings.push_back(std::move(late));
-  }
+  collect(workload.finish());
   const auto loopEnd = Clock::now();
   workloadMs += millisecondsBetween(beforeFinish, loopEnd);
+  const std::optional<DeviceSample> endState = probe.sample();
 
   if (timings.size() < total) {
     throw DeviceError("the workload returned timings for " + std::to_string(timings.size()) + " of " +
@@ -89,6 +106,12 @@ RunResult runBenchmark(render::Workload& workload, const RunOptions& options) {
   }
   finalizeColumns(run);
   summarizeRun(run, options.unstableSpread);
+  run.deviceState.source = probe.available() ? "nvml" : "";
+  run.deviceState.unavailable = probe.unavailable();
+  run.deviceState.start = startState;
+  run.deviceState.end = endState;
+  const std::vector<render::FrameTiming> measured(timings.begin() + options.warmup, timings.begin() + total);
+  run.wallClock = checkWallClock(frameClocks(measured), millisecondsBetween(measureStart, loopEnd), run.deviceState);
 
   run.overhead.loopWallMs = millisecondsBetween(loopStart, loopEnd);
   run.overhead.workloadCallsMs = workloadMs;

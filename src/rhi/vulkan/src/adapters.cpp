@@ -58,6 +58,8 @@ std::string missingRequirement(VkPhysicalDevice device, uint32_t apiVersion) {
 
 rhi::AdapterInfo describeAdapter(VkPhysicalDevice device, uint32_t index) {
   auto driver = vkStruct<VkPhysicalDeviceDriverProperties>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES);
+  auto ids = vkStruct<VkPhysicalDeviceIDProperties>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ID_PROPERTIES);
+  driver.pNext = &ids;
   auto properties = vkStruct<VkPhysicalDeviceProperties2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2);
   properties.pNext = &driver;
   vkGetPhysicalDeviceProperties2(device, &properties);
@@ -73,6 +75,7 @@ rhi::AdapterInfo describeAdapter(VkPhysicalDevice device, uint32_t index) {
   info.maxImageDimension2D = p.limits.maxImageDimension2D;
   // CPU implementations (lavapipe) read the host clock for "GPU" timestamps.
   info.hostTimestamps = p.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+  info.uuid = hexUuid(ids.deviceUUID);  // finds this device in the driver's tools (NVML on NVIDIA)
 
   uint32_t familyCount = 0;
   vkGetPhysicalDeviceQueueFamilyProperties(device, &familyCount, nullptr);

@@ -12,14 +12,8 @@ namespace fgb::vulkan {
 namespace {
 
 std::string fileName(const VkPhysicalDeviceProperties& properties) {
-  std::string uuid;
-  for (const uint8_t byte : properties.pipelineCacheUUID) {
-    static constexpr char kHex[] = "0123456789abcdef";
-    uuid += kHex[byte >> 4];
-    uuid += kHex[byte & 15];
-  }
   return std::to_string(properties.vendorID) + "-" + std::to_string(properties.deviceID) + "-" +
-         std::to_string(properties.driverVersion) + "-" + uuid + ".vkpipelinecache";
+         std::to_string(properties.driverVersion) + "-" + hexUuid(properties.pipelineCacheUUID) + ".vkpipelinecache";
 }
 
 std::vector<char> readFile(const std::filesystem::path& path) {

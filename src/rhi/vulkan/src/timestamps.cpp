@@ -52,6 +52,7 @@ void VulkanGraph::collectTimings(Slot& slot) {
     latestEnd = std::max(latestEnd, (end - reference) & mask);
   }
   timings.gpuMs = static_cast<double>(latestEnd) * periodMs;
+  if (haveReference) timings.startMs = static_cast<double>(reference) * periodMs;
   if (spin_ && available(slowStep_) && results[static_cast<size_t>(steps_.size()) * 4 + 1] != 0) {
     // debug.slow_pass: begin .. own end .. end (after the spin).
     const uint64_t mask = timestampMask_[steps_[slowStep_].logicalQueue];

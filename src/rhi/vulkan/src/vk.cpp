@@ -4,6 +4,16 @@
 
 namespace fgb::vulkan {
 
+std::string hexUuid(const uint8_t (&uuid)[VK_UUID_SIZE]) {
+  static constexpr char kHex[] = "0123456789abcdef";
+  std::string hex;
+  for (const uint8_t byte : uuid) {
+    hex += kHex[byte >> 4];
+    hex += kHex[byte & 15];
+  }
+  return hex;
+}
+
 std::string_view toString(VkResult result) {
   switch (result) {
     case VK_SUCCESS: return "VK_SUCCESS";

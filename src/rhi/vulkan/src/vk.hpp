@@ -12,6 +12,9 @@ namespace fgb::vulkan {
 
 std::string_view toString(VkResult result);
 
+// A device's 16-byte UUID (pipelineCacheUUID, deviceUUID) as 32 lowercase hex digits.
+std::string hexUuid(const uint8_t (&uuid)[VK_UUID_SIZE]);
+
 // A zero-initialised Vulkan structure with its sType set.
 template <class T>
 T vkStruct(VkStructureType type) {

@@ -8,9 +8,9 @@
 namespace fgb::render {
 
 inline DeviceDescription describeDevice(const rhi::AdapterInfo& adapter) {
-  return {adapter.index,          adapter.name,         adapter.driver,
-          adapter.type,           adapter.apiVersion,   adapter.timestampPeriodNs,
-          adapter.hostTimestamps, adapter.queueFamilies};
+  return {adapter.index,          adapter.name,          adapter.driver,
+          adapter.type,           adapter.apiVersion,    adapter.timestampPeriodNs,
+          adapter.hostTimestamps, adapter.queueFamilies, adapter.uuid};
 }
 
 }  // namespace fgb::render

@@ -22,6 +22,7 @@ struct DeviceDescription {
   double timestampPeriodNs = 1.0;
   bool hostTimestamps = false;  // true where GPU timestamps are really the host clock (lavapipe)
   std::vector<std::string> queueFamilies;  // "0: graphics|compute|transfer x1" ...
+  std::string uuid;                        // 32 hex digits (Vulkan deviceUUID): finds the device in the driver's tools
 };
 
 struct WorkloadConfig {
@@ -62,6 +63,9 @@ struct PassTiming {
 struct FrameTiming {
   std::vector<PassTiming> passes;  // every declared pass, in declaration order
   double gpuFrameMs = 0.0;         // first pass start to last pass end on the GPU
+  // The first pass start on the device's timestamp clock (ms): differences between frames give
+  // the GPU's idle time between them. -1 where unknown.
+  double gpuFrameStartMs = -1.0;
   // Host time the frame costs: recording its command buffers (the frame graph's executor and the
   // features' jobs). Not the time blocked while the GPU finishes an earlier frame in flight, nor
   // vkQueueSubmit, which on lavapipe may execute the frame itself (GPU time showing up on the host).

@@ -26,6 +26,7 @@ struct AdapterInfo {
   double timestampPeriodNs = 1.0;
   uint32_t timestampValidBits = 64;
   bool hostTimestamps = false; // the device's "GPU" clock is the host clock (CPU implementations)
+  std::string uuid;            // VkPhysicalDeviceIDProperties::deviceUUID as 32 hex digits
   uint32_t maxImageDimension2D = 0;  // the largest width or height of a 2D image
   std::vector<std::string> queueFamilies;  // "0: graphics|compute|transfer x1"
   bool usable = true;          // meets the backend's requirements (Vulkan 1.3 features)
@@ -100,6 +101,9 @@ struct GraphTimings {
   std::vector<double> nodeMs;  // per declared node; 0 for culled nodes
   std::vector<double> nodeStartMs;  // per declared node, from the execution's first timestamp; -1 if none
   double gpuMs = 0.0;          // first node start to last node end
+  // The first node start on the device's timestamp clock, in ms: only differences between
+  // executions mean something (the GPU's idle time between frames). -1 if nothing was timed.
+  double startMs = -1.0;
 };
 
 class ExecutableGraph {

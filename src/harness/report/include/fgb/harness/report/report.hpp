@@ -33,6 +33,8 @@ std::string timestampSourceNote(const render::DeviceDescription& device);
 // Host time around rendering (start-up and its phases, loop overhead, readback, encoding), apart
 // from GPU time; the same sentence in both reports.
 std::string hostOverheadNote(const RunResult& run);
+// The span against the wall time per frame, and the device's clocks (where sampled), in words.
+std::string wallClockNote(const RunResult& run);
 
 std::string escapeXml(const std::string& text);
 std::string msaaLabel(uint32_t msaa);  // "4", or "scene default" for 0

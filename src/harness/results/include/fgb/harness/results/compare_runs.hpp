@@ -112,4 +112,16 @@ double studentTQuantile(double p, double df);
 // Standard normal quantile.
 double normalQuantile(double p);
 
+// What one run's frames can detect: the smallest relative change of the median that a one-sided
+// test at `alpha` finds with probability `power` between two runs of this many frames with this
+// frame-to-frame noise, (z(1 - alpha) + z(power)) * sqrt(2) * se, the median's standard error se
+// taken from its 95% interval (half-width / 1.96). Frames of one run share its load, so between
+// builds compare-runs' run-to-run noise applies on top: this is the floor, not the promise.
+// +inf when the interval is not usable (too few frames, a zero median).
+inline constexpr double kDetectAlpha = 0.05, kDetectPower = 0.8;
+double detectableFromFrames(const std::vector<double>& samples);
+// The median's relative 95% half-width at which detectableFromFrames gives `detectable`
+// (`--detect` for `--until-stable`).
+double halfWidthForDetectable(double detectable);
+
 }  // namespace fgb::harness

@@ -3,14 +3,13 @@
 #pragma once
 
 #include <fgb/harness/results/budget.hpp>
+#include <fgb/harness/results/clock_check.hpp>
 #include <fgb/harness/results/golden.hpp>
 #include <fgb/harness/stats/stats.hpp>
 #include <fgb/renderer/workload.hpp>
-
-#include <nlohmann/json.hpp>
-
 #include <filesystem>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -64,6 +63,8 @@ struct RunResult {
   std::vector<double> frameSubmitMs, nodesRecorded, nodesReused;
   Summary frameSubmit;
   HarnessOverhead overhead;
+  WallClock wallClock;      // the spans against the wall time per measured frame
+  DeviceState deviceState;  // clocks and temperature at the start and end of measurement
   std::optional<BudgetResult> budget;
   std::optional<GoldenResult> golden;
   bool checkedFinite = false;                       // --check-finite was on

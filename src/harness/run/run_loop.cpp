@@ -49,7 +49,7 @@ void finalizeColumns(RunResult& run) {
 
 std::vector<FrameClock> frameClocks(const std::vector<render::FrameTiming>& measured) {
   std::vector<FrameClock> clocks;
-  for (const auto& frame : measured) clocks.push_back({frame.gpuFrameMs, frame.gpuFrameStartMs, frame.cpuFrameMs});
+  for (const auto& frame : measured) clocks.push_back({frame.gpuFrameMs, frame.gpuFrameStartMs, frame.cpuFrameMs + frame.submitMs});
   return clocks;
 }
 

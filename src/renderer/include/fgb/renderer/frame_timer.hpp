@@ -60,19 +60,13 @@ class GraphFrameTimer {
                               timed ? timings.nodeMs[i] : 0.0, timed ? timings.nodeStartMs[i] : -1.0});
     }
     frame.gpuFrameMs = timings.gpuMs;
-<<<<<<< HEAD
+    frame.gpuFrameStartMs = timings.startMs;
     if (const auto host = hostTimes_.find(timings.execution); host != hostTimes_.end()) {
       frame.cpuFrameMs = host->second.recordMs;
       frame.submitMs = host->second.submitMs;
       frame.nodesRecorded = host->second.nodesRecorded;
       frame.nodesReused = host->second.nodesReused;
       hostTimes_.erase(host);
-=======
-    frame.gpuFrameStartMs = timings.startMs;
-    if (const auto recorded = recordMs_.find(timings.execution); recorded != recordMs_.end()) {
-      frame.cpuFrameMs = recorded->second;
-      recordMs_.erase(recorded);
->>>>>>> timer
     }
     return frame;
   }

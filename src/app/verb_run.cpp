@@ -33,6 +33,8 @@ struct RunVerbOptions {
   bool dart = false;
   bool untilStable = false;
   std::string detect;  // --detect: the change to be able to detect, "2%" or "0.02"
+  bool noIsolate = false;
+  int isolateFrames = -1;  // -1: defaultIsolatedFrames(frames)
 };
 
 // --detect 2% | 0.02: a relative change in (0, 1).
@@ -77,6 +79,10 @@ harness::RunArtifacts render(const RunVerbOptions& o, const std::map<std::string
     request.untilStable->relativeHalfWidth = harness::halfWidthForDetectable(parseDetect(o.detect));
   }
   request.graphDumps = true;
+  if (!o.noIsolate) {
+    request.isolateFrames =
+        o.isolateFrames >= 0 ? static_cast<uint32_t>(o.isolateFrames) : harness::defaultIsolatedFrames(request.frames);
+  }
   request.progress = [&](uint32_t done, uint32_t total) { bar.update(done, total); };
   harness::RunArtifacts a = harness::renderConfiguration(render::openWorkload, request);
   bar.finish();
@@ -91,10 +97,11 @@ void printSummary(const harness::RunResult& run, const std::string& out) {
     if (p.culled) {
       std::cout << fmt::format("  {:<28} culled\n", p.name);
     } else {
-      const double detectable = harness::detectableFromFrames(p.samplesMs);
-      std::cout << fmt::format("  {:<28} {:>9.4f} ms (p5 {:.4f}, p95 {:.4f}{}){}\n", p.name, p.gpu.median, p.gpu.p5,
-                               p.gpu.p95,
-                               std::isfinite(detectable) ? fmt::format(", detects {:.1f}%", 100.0 * detectable) : "",
+      const double detectable = harness::detectableFromFrames(p.judgedSamples());
+      std::cout << fmt::format("  {:<28} {:>9.4f} ms (p5 {:.4f}, p95 {:.4f}){}{}{}{}\n", p.name, p.gpu.median, p.gpu.p5,
+                               p.gpu.p95, p.hasIsolated() ? fmt::format("  isolated {:.4f}", p.isolated.median) : "",
+                               p.criticalShare >= 0.0 ? fmt::format("  critical {:.0f}%", 100.0 * p.criticalShare) : "",
+                               std::isfinite(detectable) ? fmt::format("  detects {:.1f}%", 100.0 * detectable) : "",
                                p.unstable ? "  unstable" : "");
     }
   }
@@ -113,7 +120,7 @@ void printSummary(const harness::RunResult& run, const std::string& out) {
     const auto* bad = run.firstNonFinite();
     std::cout << "  non-finite: " << (bad ? "first produced by " + bad->pass : std::string("none")) << "\n";
   }
-  if (run.budget) std::cout << "  budget: " << run.budget->verdict << "\n";
+  if (run.budget) std::cout << "  budget: " << run.budget->verdict << " (" << run.budget->judgedOn() << ")\n";
   if (run.golden) std::cout << "  golden: " << run.golden->verdict << "\n";
   std::cout << "  results in " << out << "\n";
 }
@@ -182,6 +189,12 @@ static VerbRegistrar reg(20, [](CLI::App& app) {
   sub->add_flag("--dart", options->dart, "Print <DartMeasurement> tags for CTest/CDash");
   sub->add_flag("--until-stable", options->untilStable,
                 "Measure until the 95% CI of the median frame time is within +-2% (--frames is the cap)");
+  sub->add_flag(
+      "--no-isolate", options->noIsolate,
+      "Skip the calibration that times each pass alone on an idle device (isolated cost, critical-path share)");
+  sub->add_option("--isolate-frames", options->isolateFrames,
+                  "Calibration frames for the isolated costs (default: a quarter of --frames, 3 to 16; 0 skips)")
+      ->check(CLI::Range(0, 1024));
   sub->add_option("--detect", options->detect,
                   "Measure until a change this small in the frame time is detectable (e.g. 2% or 0.02; alpha 0.05, "
                   "power 0.8, against the frames' own noise: compare-runs adds the run-to-run noise); --frames is "

@@ -267,3 +267,37 @@ TEST(CompareRuns, LoadsTimingsJsonAndRejectsBadOnes) {
 
 }  // namespace
 }  // namespace fgb::harness
+
+namespace fgb::harness {
+namespace {
+
+// Runs whose "Bloom" span is unchanged but whose isolated cost grew 20% (or the reverse).
+LoadedTimings isolatedTimings(double span, double isolated, double phase) {
+  LoadedTimings t = timings({{"Bloom", span}}, phase);
+  t.passes.front().isolatedMs = samplesAround(isolated, 16, phase);
+  t.passes.front().isolated = summarize(t.passes.front().isolatedMs);
+  return t;
+}
+
+TEST(CompareRuns, JudgesIsolatedCostsWhereEveryRunHasThem) {
+  std::vector<LoadedTimings> before, after;
+  for (int r = 0; r < 4; ++r) {
+    before.push_back(isolatedTimings(0.4, 0.2, 0.3 * r));
+    after.push_back(isolatedTimings(0.4, 0.24, 0.3 * r + 0.1));
+  }
+  const RunsComparison c = compareRuns(before, after, withNoiseClass("discrete"));
+  EXPECT_EQ(c.passCost, "isolated");
+  EXPECT_EQ(row(c, "Bloom").verdict, "slower");
+  EXPECT_THAT(formatTable(c), HasSubstr("isolated cost"));
+
+  // One side without isolated costs (an older file): spans, which did not change, and a note.
+  std::vector<LoadedTimings> spansOnly;
+  for (int r = 0; r < 4; ++r) spansOnly.push_back(timings({{"Bloom", 0.4}}, 0.3 * r));
+  const RunsComparison fallback = compareRuns(spansOnly, after, withNoiseClass("discrete"));
+  EXPECT_EQ(fallback.passCost, "span");
+  EXPECT_EQ(row(fallback, "Bloom").verdict, "same");
+  EXPECT_THAT(fallback.warnings.back(), HasSubstr("judged by their spans"));
+}
+
+}  // namespace
+}  // namespace fgb::harness

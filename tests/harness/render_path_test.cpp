@@ -109,12 +109,12 @@ TEST(RenderPath, AppendingKeepsPassesSeenInOnlyOneRound) {
   RunResult total, round;
   total.frameGpuMs = {1, 1};
   total.frameCpuMs = {1, 1};
-  total.passes.push_back(PassRecord{"A", "graphics", false, {1, 1}, {}, {}, false, {}});
-  total.passes.push_back(PassRecord{"C", "graphics", true, {}, {}, {}, false, {}});
+  total.passes.push_back(passRecord("A", "graphics", false, {1, 1}));
+  total.passes.push_back(passRecord("C", "graphics", true));
   round.frameGpuMs = {2};
   round.frameCpuMs = {2};
-  round.passes.push_back(PassRecord{"B", "compute", false, {5}, {}, {}, false, {}});
-  round.passes.push_back(PassRecord{"C", "graphics", false, {7}, {}, {}, false, {}});
+  round.passes.push_back(passRecord("B", "compute", false, {5}));
+  round.passes.push_back(passRecord("C", "graphics", false, {7}));
   appendMeasurements(total, round);
   ASSERT_EQ(total.passes.size(), 3u);
   EXPECT_EQ(total.findPass("A")->samplesMs, (std::vector<double>{1, 1, 0}));

@@ -56,6 +56,53 @@ TEST(RunLoop, TimesTheMeasuredFramesByTheWallClock) {
   EXPECT_TRUE(json.at("passes").at(0).contains("detectable_relative"));
 }
 
+// A workload that can isolate passes: each alone costs less than its span (no queue sharing),
+// and "Cull" and "Draw" form a chain with "Cull" first.
+class IsolatingWorkload : public testing::FakeWorkload {
+ public:
+  render::FrameTiming renderIsolatedFrame() override {
+    render::FrameTiming t;
+    t.passes.push_back({"Cull", "compute", false, 0.05, 0.0});
+    t.passes.push_back({"Draw <main>", "graphics", false, 0.5, 0.05});
+    t.passes.push_back({"Debug", "graphics", true, 0.0, -1.0});
+    ++isolated;
+    return t;
+  }
+  std::vector<double> criticalPathShares(const std::vector<double>& costMs) const override {
+    const double length = costMs[0] + costMs[1];
+    return {costMs[0] / length, costMs[1] / length, 0.0};
+  }
+  int isolated = 0;
+};
+
+TEST(RunLoop, CalibrationGivesIsolatedCostsAndCriticalShares) {
+  IsolatingWorkload workload;
+  RunResult run = runBenchmark(workload, RunOptions{1, 4, kDefaultUnstableSpread, {}});
+  calibrateIsolated(workload, run, 3);
+  EXPECT_EQ(workload.isolated, 3);
+  EXPECT_EQ(run.isolatedFrames, 3u);
+  const PassRecord* cull = run.findPass("Cull");
+  ASSERT_NE(cull, nullptr);
+  EXPECT_EQ(cull->isolatedMs, (std::vector<double>{0.05, 0.05, 0.05}));
+  EXPECT_NEAR(cull->criticalShare, 0.05 / 0.55, 1e-12);
+  EXPECT_FALSE(run.findPass("Debug")->hasIsolated());
+  // Budgets judge the isolated cost; the JSON carries both.
+  EXPECT_EQ(run.medians().passCost, "isolated");
+  EXPECT_DOUBLE_EQ(run.medians().passMs.at("Cull"), 0.05);
+  const nlohmann::json json = toJson(run);
+  EXPECT_DOUBLE_EQ(json.at("passes").at(0).at("isolated_ms").at("median").get<double>(), 0.05);
+  EXPECT_EQ(json.at("isolation").at("frames"), 3);
+}
+
+TEST(RunLoop, NoCalibrationWhereTheWorkloadCannotIsolate) {
+  testing::FakeWorkload workload;
+  RunResult run = runBenchmark(workload, RunOptions{1, 4, kDefaultUnstableSpread, {}});
+  calibrateIsolated(workload, run, 3);
+  EXPECT_EQ(run.isolatedFrames, 0u);
+  EXPECT_EQ(run.medians().passCost, "span");
+  EXPECT_FALSE(run.passes.front().hasIsolated());
+}
+
 TEST(RunLoop, CulledPassesHaveNoSamples) {
   testing::FakeWorkload workload;
   const RunResult run = runBenchmark(workload, RunOptions{1, 4, kDefaultUnstableSpread, {}});

@@ -34,6 +34,22 @@ std::string verdictSpan(const std::string& verdict) {
   return fmt::format(R"(<span class="{}">{}</span>)", cls, escapeXml(verdict));
 }
 
+std::string isolatedTableHtml(const RunResult& run) {
+  std::string html = fmt::format(
+      "<p class=\"note\">Span: first to last timestamp in the measured frames (queues overlap there). Isolated: "
+      "the pass alone on an idle device ({} calibration frames, medians). Critical path: how much shorter the "
+      "frame's longest chain through the compiled schedule would be without the pass.</p>\n<table><tr><th>pass</th>"
+      "<th>span</th><th>isolated</th><th>critical path</th></tr>\n",
+      run.isolatedFrames);
+  for (const auto& p : run.passes) {
+    if (p.culled || !p.hasIsolated()) continue;
+    html +=
+        fmt::format("<tr><td>{}</td><td>{:.4f}</td><td>{:.4f}</td><td>{}</td></tr>\n", escapeXml(p.name), p.gpu.median,
+                    p.isolated.median, p.criticalShare >= 0.0 ? fmt::format("{:.1f}%", 100.0 * p.criticalShare) : "–");
+  }
+  return html + "</table>\n";
+}
+
 std::string passRows(const RunResult& run) {
   std::string rows;
   auto cells = [](const Summary& s) {
@@ -134,6 +150,7 @@ std::string htmlReport(const RunResult& run, const ReportImages& images) {
                       kDefaultUnstableSpread);
   html += "<p class=\"note\">" + escapeXml(hostOverheadNote(run)) + "</p>\n";
   html += "<p class=\"note\">" + escapeXml(wallClockNote(run)) + "</p>\n";
+  if (run.isolatedFrames > 0) html += "<h2>Span, isolated cost and critical path</h2>\n" + isolatedTableHtml(run);
   html += "<h2>Budget</h2>\n" + budgetHtml(run);
   html += "<h2>Golden image</h2>\n" + goldenHtml(run);
   return html + "</body></html>\n";

@@ -39,6 +39,24 @@ std::string passTable(const RunResult& run) {
   return out;
 }
 
+// The calibration: each pass's span beside its isolated cost and its critical-path share.
+std::string isolatedSection(const RunResult& run) {
+  if (run.isolatedFrames == 0) return "";
+  std::string out = fmt::format(
+      "## Span, isolated cost and critical path\n\nSpan: the pass's first to last timestamp in the measured frames "
+      "(queues overlap there). Isolated: the pass alone on an idle device ({} calibration frames, medians). Critical "
+      "path: how much shorter the frame's longest chain through the compiled schedule (data, queue order, "
+      "semaphore waits; isolated costs) would be without the pass.\n\n| pass | span | isolated | critical path |\n"
+      "|---|---:|---:|---:|\n",
+      run.isolatedFrames);
+  for (const auto& p : run.passes) {
+    if (p.culled || !p.hasIsolated()) continue;
+    out += fmt::format("| {} | {:.4f} | {:.4f} | {} |\n", p.name, p.gpu.median, p.isolated.median,
+                       p.criticalShare >= 0.0 ? fmt::format("{:.1f}%", 100.0 * p.criticalShare) : "–");
+  }
+  return out + "\n";
+}
+
 // --check-finite: the first pass that wrote a bad value, and every checked pass's counts.
 std::string finiteSection(const RunResult& run) {
   if (!run.checkedFinite) return "";
@@ -56,7 +74,8 @@ std::string finiteSection(const RunResult& run) {
 std::string budgetSection(const RunResult& run) {
   if (!run.budget) return "## Budget\n\nNo budget given (`--budget FILE`).\n";
   const auto& b = *run.budget;
-  std::string out = fmt::format("## Budget: {}\n\nVerdict: **{}** (tolerance {:.0f}%).\n\n", b.file, b.verdict, b.tolerance * 100.0);
+  std::string out = fmt::format("## Budget: {}\n\nVerdict: **{}** (tolerance {:.0f}%; {}).\n\n", b.file, b.verdict,
+                                b.tolerance * 100.0, b.judgedOn());
   for (const auto* line : b.failing()) {
     if (line->status == "missing") {
       out += fmt::format("- {}: budget {:.3f} ms, not measured (pass absent or culled)\n", line->pass, line->budgetMs);
@@ -134,6 +153,7 @@ std::string markdownReport(const RunResult& run) {
     out += "\n";
   }
   out += "## Timings (ms)\n\n" + passTable(run) + "\n";
+  out += isolatedSection(run);
   out += fmt::format("Unstable: (p95 − p5) / median > {:.0f}%.\n\n", kDefaultUnstableSpread * 100.0);
   out += hostOverheadNote(run) + "\n\n";
   out += wallClockNote(run) + "\n\n";

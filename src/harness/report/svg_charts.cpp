@@ -92,10 +92,23 @@ std::string passBarsSvg(const RunResult& run) {
                        escapeXml(p.name + (p.culled ? " (culled)" : "")));
     if (p.culled) continue;
     const std::optional<double> budget = budgetFor(run, p.name);
-    const bool over = budget && p.gpu.median > *budget;
-    svg += fmt::format(R"(<rect class="bar" x="{}" y="{}" width="{:.1f}" height="14" fill="{}"><title>{}: median {:.4f} ms</title></rect>)" "\n",
-                       kLabelWidth, y, std::max(1.0, xOf(p.gpu.median) - kLabelWidth), over ? "#c0392b" : queueColor(p.queue),
-                       escapeXml(p.name), p.gpu.median);
+    // The bar is the cost budgets judge: isolated where the run was calibrated, the span else; a
+    // span longer than the isolated cost shows as a faint extension (time the pass waited or shared).
+    const double judged = p.hasIsolated() ? p.isolated.median : p.gpu.median;
+    const bool over = budget && judged > *budget;
+    if (p.hasIsolated() && p.gpu.median > judged) {
+      svg += fmt::format(
+          R"(<rect class="span-extension" x="{:.1f}" y="{}" width="{:.1f}" height="14" fill="{}" opacity="0.3"><title>{}: span {:.4f} ms</title></rect>)"
+          "\n",
+          xOf(judged), y, std::max(0.5, xOf(p.gpu.median) - xOf(judged)), queueColor(p.queue), escapeXml(p.name),
+          p.gpu.median);
+    }
+    svg += fmt::format(
+        R"(<rect class="bar" x="{}" y="{}" width="{:.1f}" height="14" fill="{}"><title>{}: {} {:.4f} ms{}</title></rect>)"
+        "\n",
+        kLabelWidth, y, std::max(1.0, xOf(judged) - kLabelWidth), over ? "#c0392b" : queueColor(p.queue),
+        escapeXml(p.name), p.hasIsolated() ? "isolated median" : "median", judged,
+        p.hasIsolated() ? fmt::format(", span {:.4f} ms", p.gpu.median) : "");
     if (p.gpu.n > 1) {
       svg += fmt::format(R"(<line x1="{:.1f}" y1="{}" x2="{:.1f}" y2="{}" stroke="#222"/>)" "\n", xOf(p.gpu.p5), y + 7,
                          xOf(p.gpu.p95), y + 7);
@@ -106,9 +119,11 @@ std::string passBarsSvg(const RunResult& run) {
     }
   }
   const std::string scale = axis.logarithmic ? "ms, log scale" : "ms";
-  svg += queueLegend(run, 10, height - 2,
-                     run.budget ? scale + " · bar: median, line: p5–p95 · dashed: budget, red: over budget"
-                                : scale + " · bar: median, line: p5–p95");
+  svg +=
+      queueLegend(run, 10, height - 2,
+                  (run.isolatedFrames > 0 ? scale + " · bar: isolated cost (pass alone), faint: span, line: span p5–p95"
+                                          : scale + " · bar: median, line: p5–p95") +
+                      (run.budget ? " · dashed: budget, red: over budget" : ""));
   return svg + "</svg>\n";
 }
 

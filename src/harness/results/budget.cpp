@@ -87,6 +87,7 @@ BudgetResult checkBudget(const Budget& budget, const MeasuredMedians& measured, 
   BudgetResult result;
   result.file = budget.file;
   result.tolerance = tolerance >= 0.0 ? tolerance : budget.tolerance;
+  result.passCost = measured.passCost;
   for (const auto& [pass, ms] : budget.passesMs) {
     const auto [median, summed] = measuredFor(pass, measured.passMs);
     result.lines.push_back(judge(pass, ms, result.tolerance, median));
@@ -106,6 +107,12 @@ BudgetResult checkBudget(const Budget& budget, const MeasuredMedians& measured, 
   return result;
 }
 
+std::string BudgetResult::judgedOn() const {
+  return passCost == "isolated" ? "passes judged on isolated costs"
+                                : "passes judged on spans (no isolated costs in this run: --no-isolate, or a "
+                                  "timings.json from before the calibration)";
+}
+
 nlohmann::json toJson(const BudgetResult& result) {
   nlohmann::json over = nlohmann::json::array();
   nlohmann::json lines = nlohmann::json::array();
@@ -121,8 +128,13 @@ nlohmann::json toJson(const BudgetResult& result) {
     if (line.status != "ok") over.push_back(entry);
     lines.push_back(std::move(entry));
   }
-  return {{"file", result.file}, {"verdict", result.verdict}, {"tolerance", result.tolerance},
-          {"over", over}, {"lines", lines}, {"warnings", result.warnings}};
+  return {{"file", result.file},
+          {"verdict", result.verdict},
+          {"tolerance", result.tolerance},
+          {"pass_cost", result.passCost},
+          {"over", over},
+          {"lines", lines},
+          {"warnings", result.warnings}};
 }
 
 }  // namespace fgb::harness

@@ -190,7 +190,15 @@ Side sideOf(const std::vector<LoadedTimings>& runs, Samples samplesOf) {
   return side;
 }
 
-Side passSide(const std::vector<LoadedTimings>& runs, const std::string& pass) {
+// Isolated costs are judged only where every run has them (a run of --no-isolate, or a
+// timings.json from before the calibration, has spans alone).
+bool everyRunIsolated(const std::vector<LoadedTimings>& runs) {
+  return std::all_of(runs.begin(), runs.end(), [](const LoadedTimings& run) {
+    return std::any_of(run.passes.begin(), run.passes.end(), [](const PassRecord& p) { return p.hasIsolated(); });
+  });
+}
+
+Side passSide(const std::vector<LoadedTimings>& runs, const std::string& pass, bool isolated) {
   return sideOf(runs, [&](const LoadedTimings& run, Side& side) -> const std::vector<double>* {
     const PassRecord* p = find(run, pass);
     if (p == nullptr) {
@@ -201,7 +209,7 @@ Side passSide(const std::vector<LoadedTimings>& runs, const std::string& pass) {
       side.culled = true;
       return nullptr;
     }
-    return &p->samplesMs;
+    return isolated ? &p->isolatedMs : &p->samplesMs;
   });
 }
 
@@ -350,9 +358,16 @@ RunsComparison compareRuns(const std::vector<LoadedTimings>& before, const std::
   for (const auto& run : before)
     for (const auto& p : run.passes) addName(p.name);
 
+  result.passCost = everyRunIsolated(before) && everyRunIsolated(after) ? "isolated" : "span";
+  if (result.passCost == "span" && (everyRunIsolated(before) || everyRunIsolated(after))) {
+    result.warnings.push_back(
+        "passes judged by their spans: the runs of one side have no isolated costs (older timings.json files or "
+        "runs with --no-isolate)");
+  }
+  const bool isolated = result.passCost == "isolated";
   for (const auto& name : names) {
-    const Side old = passSide(before, name);
-    const Side now = passSide(after, name);
+    const Side old = passSide(before, name, isolated);
+    const Side now = passSide(after, name, isolated);
     if (old.runMedians.empty() && !old.culled) {
       PassComparison row = marker(name, "added");
       row.after = summarize(now.frames.empty() ? std::vector<double>{} : now.frames.front());
@@ -455,11 +470,14 @@ std::string formatTable(const RunsComparison& c) {
                     percent(r.detectable, 10), r.pSlower, r.verdict == "unknown" ? "unknown: add runs" : r.verdict);
   }
   out += fmt::format(
-      "({} vs {} runs; per pass each run's median, geometric mean over runs; one-sided test of the log change against "
+      "({} vs {} runs; per pass each run's median{}, geometric mean over runs; one-sided test of the log change "
+      "against "
       "the run-to-run noise (the runs' own, or the '{}' model's {:.1f}% + {} ms when larger), alpha {}; a change "
       "counts when >= {:.1f}% and >= {} ms; detectable: the change found with probability {})\n",
-      c.beforeRuns, c.afterRuns, c.model.deviceClass, c.model.relative * 100.0, c.model.absoluteMs, c.options.alpha,
-      c.options.minEffect * 100.0, c.options.minAbsMs, c.options.power);
+      c.beforeRuns, c.afterRuns,
+      c.passCost == "isolated" ? " isolated cost (each pass alone on an idle device)" : " span", c.model.deviceClass,
+      c.model.relative * 100.0, c.model.absoluteMs, c.options.alpha, c.options.minEffect * 100.0, c.options.minAbsMs,
+      c.options.power);
   std::string unknown;
   for (const auto& r : c.rows) {
     if (r.verdict == "unknown") unknown += fmt::format(" {} {:+.1f}%;", r.pass, r.deltaRelative * 100.0);

@@ -80,7 +80,9 @@ const render::NonFiniteCounts* RunResult::firstNonFinite() const {
 MeasuredMedians RunResult::medians() const {
   MeasuredMedians m;
   for (const auto& p : passes) {
-    if (!p.culled && p.gpu.n > 0) m.passMs[p.name] = p.gpu.median;
+    if (p.culled || p.gpu.n == 0) continue;
+    m.passMs[p.name] = p.hasIsolated() ? p.isolated.median : p.gpu.median;
+    if (p.hasIsolated()) m.passCost = "isolated";
   }
   if (frameGpu.n > 0) m.frameMs = frameGpu.median;
   m.width = config.width;
@@ -111,6 +113,11 @@ nlohmann::json toJson(const RunResult& run) {
     if (const double detectable = detectableFromFrames(p.samplesMs); std::isfinite(detectable))
       entry["detectable_relative"] = detectable;
     if (!p.startMs.empty()) entry["start_ms"] = p.startMs;
+    if (p.hasIsolated()) {
+      entry["isolated_ms"] = toJson(p.isolated);
+      entry["isolated_samples_ms"] = p.isolatedMs;
+    }
+    if (p.criticalShare >= 0.0) entry["critical_path_share"] = p.criticalShare;
     if (p.nonFinite) entry["non_finite"] = toJson(*p.nonFinite);
     passes.push_back(std::move(entry));
   }
@@ -149,6 +156,7 @@ nlohmann::json toJson(const RunResult& run) {
         {"nodes_recorded", run.nodesRecorded},
         {"nodes_reused", run.nodesReused}}},
       {"harness", toJson(run.overhead)},
+      {"isolation", {{"frames", run.isolatedFrames}, {"calibration_ms", run.overhead.calibrationMs}}},
       {"wall_clock", toJson(run.wallClock)},
       {"device_state", toJson(run.deviceState)},
   };
@@ -203,6 +211,10 @@ LoadedTimings loadTimings(const std::filesystem::path& path) {
         throw InputError(path.string() + ": field '" + where + ".samples_ms' is missing (per-frame samples are needed to test significance)");
       }
       p.samplesMs = readSamples(passes[i], "samples_ms", path, where);
+      if (passes[i].contains("isolated_samples_ms")) {
+        p.isolatedMs = readSamples(passes[i], "isolated_samples_ms", path, where);
+        p.isolated = summarize(p.isolatedMs);
+      }
     }
     p.gpu = summarize(p.samplesMs);
     t.passes.push_back(std::move(p));

@@ -15,7 +15,7 @@ PassRecord& passNamed(RunResult& run, const PassRecord& like, std::size_t frames
   }
   // A pass first seen now did not run in the earlier frames: culled there, so it is culled overall
   // only if it is culled now too.
-  run.passes.push_back(PassRecord{like.name, like.queue, like.culled, {}, {}, {}, false, {}});
+  run.passes.push_back(passRecord(like.name, like.queue, like.culled));
   run.passes.back().samplesMs.assign(framesBefore, 0.0);
   return run.passes.back();
 }
@@ -150,6 +150,10 @@ RunArtifacts renderConfiguration(const WorkloadOpener& open, const RenderRequest
     a.graphFull = renderer.workload().graphviz(render::GraphDetail::Full);
   }
   a.run = renderer.result();
+  if (request.isolateFrames > 0) {
+    calibrateIsolated(renderer.workload(), a.run, request.isolateFrames);
+    renderer.checkValidation();
+  }
   a.run.overhead.readbackMs = readbackMs;
   a.run.scene = request.workload.scenePath;
   a.run.sceneHash = sceneHash(request.workload.scenePath);

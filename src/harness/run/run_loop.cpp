@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <chrono>
 #include <fgb/core/error.hpp>
 #include <fgb/core/knob_registry.hpp>
@@ -21,7 +22,7 @@ void appendFrame(RunResult& run, std::map<std::string, std::size_t>& index, cons
   const std::size_t frameNumber = run.frameGpuMs.size();
   for (const auto& pass : frame.passes) {
     auto [it, inserted] = index.try_emplace(pass.name, run.passes.size());
-    if (inserted) run.passes.push_back(PassRecord{pass.name, pass.queue, pass.culled, {}, {}, {}, false, {}});
+    if (inserted) run.passes.push_back(passRecord(pass.name, pass.queue, pass.culled));
     PassRecord& record = run.passes[it->second];
     record.culled = record.culled && pass.culled;  // culled only if culled in every frame
     // Keep columns aligned with frames even if a pass first appears late.
@@ -118,6 +119,47 @@ RunResult runBenchmark(render::Workload& workload, const RunOptions& options) {
   run.overhead.harnessMs = std::max(0.0, run.overhead.loopWallMs - workloadMs);
   run.overhead.perFrameUs = total ? run.overhead.harnessMs * 1000.0 / total : 0.0;
   return run;
+}
+
+uint32_t defaultIsolatedFrames(uint32_t frames) {
+  return std::clamp(frames / 4, 3u, 16u);
+}
+
+void calibrateIsolated(render::Workload& workload, RunResult& run, uint32_t frames) {
+  const auto start = Clock::now();
+  std::vector<render::FrameTiming> isolated;
+  for (uint32_t i = 0; i < frames; ++i) {
+    render::FrameTiming timing = workload.renderIsolatedFrame();
+    if (!hasTimings(timing)) break;  // the workload cannot isolate passes
+    isolated.push_back(std::move(timing));
+  }
+  run.overhead.calibrationMs = millisecondsBetween(start, Clock::now());
+  if (isolated.empty()) return;
+  run.isolatedFrames = static_cast<uint32_t>(isolated.size());
+  std::vector<double> costs;  // per declared pass (FrameTiming's order)
+  for (const auto& pass : isolated.front().passes) {
+    PassRecord* record = nullptr;
+    for (auto& candidate : run.passes) {
+      if (candidate.name == pass.name) record = &candidate;
+    }
+    std::vector<double> samples;
+    for (const auto& frame : isolated) {
+      for (const auto& p : frame.passes) {
+        if (p.name == pass.name && !p.culled) samples.push_back(p.gpuMs);
+      }
+    }
+    const Summary summary = summarize(samples);
+    costs.push_back(summary.median);
+    if (record == nullptr || record->culled) continue;
+    record->isolatedMs = std::move(samples);
+    record->isolated = summary;
+  }
+  const std::vector<double> shares = workload.criticalPathShares(costs);
+  for (std::size_t i = 0; i < shares.size() && i < isolated.front().passes.size(); ++i) {
+    for (auto& record : run.passes) {
+      if (record.name == isolated.front().passes[i].name && !record.culled) record.criticalShare = shares[i];
+    }
+  }
 }
 
 std::map<std::string, std::string> parseKnobs(const std::vector<std::string>& assignments) {

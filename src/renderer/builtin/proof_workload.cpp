@@ -2,14 +2,14 @@
 // through GraphFrameTimer, as the scene workload), images read back from the last frame.
 #include "proof_workload.hpp"
 
-#include "pixels.hpp"
-
 #include <fgb/core/error.hpp>
+#include <fgb/graph/critical_path.hpp>
+#include <fgb/graph/dot.hpp>
 #include <fgb/renderer/describe_device.hpp>
 #include <fgb/renderer/frame_timer.hpp>
-#include <fgb/graph/dot.hpp>
 #include <fgb/vulkan/backend.hpp>
 
+#include "pixels.hpp"
 
 namespace fgb::render {
 namespace {
@@ -35,6 +35,10 @@ class ProofWorkload final : public Workload {
 
   FrameTiming renderFrame() override { return timer_.execute(*device_, *graph_); }
   std::vector<FrameTiming> finish() override { return timer_.finish(*device_, *graph_); }
+  FrameTiming renderIsolatedFrame() override { return timer_.executeIsolated(*device_, *graph_); }
+  std::vector<double> criticalPathShares(const std::vector<double>& costMs) const override {
+    return graph::criticalPath(graph::schedulePredecessors(graph_->compiled()), costMs).shareOfPath;
+  }
 
   ImageRGBA32F readHdr() override {
     device_->waitIdle();

@@ -1,15 +1,9 @@
 // SceneWorkload: a scene file rendered by the render features through one compiled frame graph.
-#include "gpu_upload.hpp"
-#include "image_readback.hpp"
-
-#include "render_paths.hpp"
-
-#include "../features/context/render_feature.hpp"
-#include "../features/finite_check/finite_check_feature.hpp"
-#include "../features/exposure/exposure_feature.hpp"
-
+#include <algorithm>
+#include <array>
 #include <fgb/core/error.hpp>
 #include <fgb/core/stopwatch.hpp>
+#include <fgb/graph/critical_path.hpp>
 #include <fgb/graph/dot.hpp>
 #include <fgb/renderer/describe_device.hpp>
 #include <fgb/renderer/frame_timer.hpp>
@@ -18,11 +12,15 @@
 #include <fgb/scene/load.hpp>
 #include <fgb/scene/stats.hpp>
 #include <fgb/vulkan/backend.hpp>
-
-#include <algorithm>
-#include <array>
 #include <filesystem>
 #include <iostream>
+
+#include "../features/context/render_feature.hpp"
+#include "../features/exposure/exposure_feature.hpp"
+#include "../features/finite_check/finite_check_feature.hpp"
+#include "gpu_upload.hpp"
+#include "image_readback.hpp"
+#include "render_paths.hpp"
 
 namespace fgb::render {
 namespace {
@@ -139,6 +137,10 @@ class SceneWorkload final : public Workload {
 
   FrameTiming renderFrame() override { return timer_.execute(*device_, *graph_); }
   std::vector<FrameTiming> finish() override { return timer_.finish(*device_, *graph_); }
+  FrameTiming renderIsolatedFrame() override { return timer_.executeIsolated(*device_, *graph_); }
+  std::vector<double> criticalPathShares(const std::vector<double>& costMs) const override {
+    return graph::criticalPath(graph::schedulePredecessors(graph_->compiled()), costMs).shareOfPath;
+  }
 
   ImageRGBA32F readHdr() override { return hdrReadback_->read(); }
   ImageRGBA32F readDisplay() override { return displayReadback_->read(); }

@@ -120,6 +120,9 @@ class VulkanGraph final : public rhi::ExecutableGraph {
   void queueBarriers(BarrierList list);
   void flushBarriers();  // records the queued barriers into the step's buffer (replaying: drops them)
   void submitAll(const Slot& slot, uint64_t execution, rhi::RunMode mode);
+  // RunMode::Isolated (isolated.cpp): one node per submit, each waited for before the next.
+  void submitIsolated(const Slot& slot, uint64_t execution);
+  void finishSubmission(uint64_t execution, rhi::RunMode mode);
   uint64_t timelineBase(uint64_t execution) const { return (execution + 1) * valuesPerExecution_; }
   // timestamps.cpp
   void collectTimings(Slot& slot);

@@ -82,7 +82,11 @@ uint64_t VulkanGraph::submit(rhi::RunMode mode) {
   stepsRecorded_ = stepsReused_ = 0;
   for (uint32_t s = 0; s < compiled_.submits.size(); ++s) runSubmit(slot, s, execution);
   const auto recorded = Clock::now();
-  submitAll(slot, execution, mode);
+  if (mode == rhi::RunMode::Isolated) {
+    submitIsolated(slot, execution);
+  } else {
+    submitAll(slot, execution, mode);
+  }
 
   slot.execution = execution;
   slot.pending = true;
@@ -364,11 +368,18 @@ void VulkanGraph::submitAll(const Slot& slot, uint64_t execution, rhi::RunMode m
     first = end;
   }
 
+  finishSubmission(execution, mode);
+}
+
+// The execution's completion points: what later executions and sequential runs wait for.
+void VulkanGraph::finishSubmission(uint64_t execution, rhi::RunMode mode) {
   lastPoints_.clear();
   for (uint32_t q = 0; q < logicalQueues_; ++q) {
-    if (compiled_.submitsPerQueue[q] > 0) lastPoints_.push_back({timelines_[q].get(), base + compiled_.submitsPerQueue[q]});
+    if (compiled_.submitsPerQueue[q] > 0) {
+      lastPoints_.push_back({timelines_[q].get(), timelineBase(execution) + compiled_.submitsPerQueue[q]});
+    }
   }
-  if (mode == rhi::RunMode::Sequential) tail = lastPoints_;
+  if (mode != rhi::RunMode::Async) device_.sequentialTail() = lastPoints_;
 }
 
 bool VulkanGraph::isComplete(uint64_t execution) const {

@@ -32,6 +32,16 @@ class GraphFrameTimer {
     return oldest;
   }
 
+  // Executes `graph` once with each node alone on an idle device (rhi::RunMode::Isolated) and
+  // returns that frame's timings, its passes' isolated costs. Frames not handed back yet are
+  // dropped: calibrate after finish().
+  FrameTiming executeIsolated(rhi::Device& device, rhi::ExecutableGraph& graph) {
+    const rhi::RunTicket ticket = device.execute(graph, rhi::RunMode::Isolated);
+    hostTimes_[ticket.execution] = graph.lastHostTimes();
+    std::vector<FrameTiming> done = finish(device, graph);
+    return done.empty() ? FrameTiming{} : std::move(done.back());
+  }
+
   // Waits for the device and returns the timings of every frame not handed back yet.
   std::vector<FrameTiming> finish(rhi::Device& device, rhi::ExecutableGraph& graph) {
     device.waitIdle();

@@ -105,6 +105,18 @@ class Workload {
   virtual FrameTiming renderFrame() = 0;
   // Waits for the GPU, returns timings of frames not yet returned (empty if none).
   virtual std::vector<FrameTiming> finish() = 0;
+  // Calibration: renders one frame with each pass alone on an idle device, in the compiled order,
+  // and returns its timings: each pass's isolated cost. Call after finish(). A workload that
+  // cannot returns a timing without passes.
+  virtual FrameTiming renderIsolatedFrame() { return {}; }
+  // Critical-path shares: per declared pass (declaration order), how much shorter the frame's
+  // longest chain through the compiled schedule (data edges, queue order, semaphore waits) would
+  // be if the pass cost nothing, as a share of it, with `costMs` per pass (isolated costs). Empty
+  // when the workload has no schedule.
+  virtual std::vector<double> criticalPathShares(const std::vector<double>& costMs) const {
+    (void)costMs;
+    return {};
+  }
   // The last frame's HDR image (before tone mapping) and the tone-mapped display image (linear
   // values in [0,1]; the PNG writer applies the sRGB curve).
   virtual ImageRGBA32F readHdr() = 0;

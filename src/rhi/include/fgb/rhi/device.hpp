@@ -88,6 +88,10 @@ struct GraphOptions {
 enum class RunMode : uint8_t {
   Sequential,  // waits for the previous sequential run to finish on the GPU (timeline-chained)
   Async,       // no ordering with other graphs; completion is polled or reported by a callback
+  // Calibration: the device goes idle first, then each node is submitted alone and waited for
+  // before the next, so its timestamps give its cost on an otherwise idle GPU. The same recorded
+  // work as a Sequential run (kept command buffers are reused). Complete when execute() returns.
+  Isolated,
 };
 
 struct RunTicket {

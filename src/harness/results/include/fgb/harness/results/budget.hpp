@@ -41,13 +41,18 @@ struct BudgetResult {
   std::string verdict = "none";  // "pass" | "fail" | "none"
   double tolerance = 0.0;
   std::vector<BudgetLine> lines;
+  std::string passCost = "span";      // what the pass lines judged: "isolated" costs or "span"s
   std::vector<std::string> warnings;  // e.g. resolution differs from the budget's
 
   std::vector<const BudgetLine*> failing() const;
+  // "judged on isolated costs" or "judged on spans (the run has no isolated costs: --no-isolate or
+  // an older timings.json)", for the terminal and the reports.
+  [[nodiscard]] std::string judgedOn() const;
 };
 
 struct MeasuredMedians {
   std::map<std::string, double> passMs;  // measured (not culled) passes only
+  std::string passCost = "span";         // "isolated" where the run was calibrated, else "span"
   std::optional<double> frameMs;
   uint32_t width = 0, height = 0, msaa = 0;
 };

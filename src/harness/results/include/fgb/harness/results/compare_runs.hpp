@@ -85,6 +85,9 @@ struct RunsComparison {
   CompareRunsOptions options;
   RunNoise model;
   std::size_t beforeRuns = 0, afterRuns = 0;
+  // What the pass rows judge: "isolated" costs where every run has them, else "span"s (the
+  // frame row always judges the frame's span).
+  std::string passCost = "span";
   std::vector<std::string> warnings;
   [[nodiscard]] bool anySlower() const;
   [[nodiscard]] bool anyUnknown() const;

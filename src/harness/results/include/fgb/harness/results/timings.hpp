@@ -27,7 +27,27 @@ struct PassRecord {
   Summary gpu;
   bool unstable = false;
   std::optional<render::NonFiniteCounts> nonFinite;  // --check-finite: this pass's counts (last frame)
+  // The calibration (Workload::renderIsolatedFrame): the pass alone on an idle device, one sample
+  // per calibration frame; empty without one (--no-isolate, older timings.json files).
+  std::vector<double> isolatedMs;
+  Summary isolated;
+  // How much shorter the frame's critical path would be without the pass (share of its length,
+  // over the compiled schedule weighted by isolated medians); < 0 when unknown.
+  double criticalShare = -1.0;
+  // What budgets and compare-runs judge: the isolated median where there is one, else the span's.
+  [[nodiscard]] bool hasIsolated() const { return !isolatedMs.empty(); }
+  [[nodiscard]] const std::vector<double>& judgedSamples() const { return hasIsolated() ? isolatedMs : samplesMs; }
 };
+
+// A pass record with its name, queue and culled flag (and samples, for tests); the rest empty.
+inline PassRecord passRecord(std::string name, std::string queue, bool culled, std::vector<double> samplesMs = {}) {
+  PassRecord record;
+  record.name = std::move(name);
+  record.queue = std::move(queue);
+  record.culled = culled;
+  record.samplesMs = std::move(samplesMs);
+  return record;
+}
 
 // Host time around rendering, reported apart from GPU time: opening the workload (start-up, with
 // its phases), the measured loop (wall time, time inside the workload's calls, and the harness'
@@ -41,6 +61,7 @@ struct HarnessOverhead {
   double perFrameUs = 0.0;
   double readbackMs = 0.0;
   double encodeMs = 0.0;  // EXR + PNG
+  double calibrationMs = 0.0;  // the isolated-cost calibration frames, after the measured loop
 };
 
 struct RunConfig {
@@ -63,6 +84,7 @@ struct RunResult {
   std::vector<double> frameSubmitMs, nodesRecorded, nodesReused;
   Summary frameSubmit;
   HarnessOverhead overhead;
+  uint32_t isolatedFrames = 0;  // calibration frames behind PassRecord::isolatedMs (0: none)
   WallClock wallClock;      // the spans against the wall time per measured frame
   DeviceState deviceState;  // clocks and temperature at the start and end of measurement
   std::optional<BudgetResult> budget;

@@ -45,6 +45,9 @@ struct RenderRequest {
   uint32_t warmup = 8;
   uint32_t frames = 64;                      // measured frames; the cap when untilStable is set
   std::optional<StabilityRule> untilStable;  // sample until stable instead of exactly `frames`
+  // Calibration frames after the images were read (each pass alone on an idle device: the
+  // isolated costs and critical-path shares); 0 skips it.
+  uint32_t isolateFrames = 0;
   bool graphDumps = false;                   // fill graphBrief / graphFull
   ProgressCallback progress;                 // after every frame: (rendered, planned); may be empty
 };

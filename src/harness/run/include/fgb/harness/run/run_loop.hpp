@@ -28,6 +28,15 @@ struct RunOptions {
 // timings than frames rendered.
 RunResult runBenchmark(render::Workload& workload, const RunOptions& options);
 
+// The calibration: `frames` frames with each pass alone on an idle device (after the measured
+// frames and after the images were read: it renders frames of its own). Fills the passes'
+// isolated samples and summaries, and their critical-path shares over the compiled schedule
+// weighted by the isolated medians. Nothing when the workload cannot isolate passes.
+void calibrateIsolated(render::Workload& workload, RunResult& run, uint32_t frames);
+
+// The calibration frames of a run measuring `frames` frames: a quarter of them, 3 to 16.
+uint32_t defaultIsolatedFrames(uint32_t frames);
+
 // "--set key=value" arguments as a map; a malformed one is InputError naming it.
 std::map<std::string, std::string> parseKnobs(const std::vector<std::string>& assignments);
 

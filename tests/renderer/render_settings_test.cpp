@@ -128,12 +128,14 @@ TEST(RenderSettings, EveryKnobLandsInItsField) {
                                 {"particles.seed", "1073741824"},
                                 {"lighting.max_per_cluster", "1024"},
                                 {"debug.occlusion_hold_back", "true"},
+                                {"debug.record_every_frame", "1"},
                                 {"debug.view", "off"},
                                 {"debug.inject_nan", "Mesh Render"}});
   EXPECT_EQ(settings.bloomMips, 3u);
   EXPECT_EQ(settings.particleSeedOffset, 1u << 30);
   EXPECT_EQ(settings.maxLightsPerCluster, 1024u);
   EXPECT_TRUE(settings.occlusionHoldBack);
+  EXPECT_TRUE(settings.recordEveryFrame);
   EXPECT_EQ(settings.debugView, DebugView::None);
   EXPECT_EQ(settings.injectNanPass, "Mesh Render");
   applyRendererKnobs(settings, {{"debug.inject_nan", "none"}, {"debug.slow_pass", "none"}});

@@ -177,8 +177,12 @@ TEST_P(SameLayout, DroppingSameLayoutBarriersIsCaughtBySynchronizationValidation
   bool readAfterWrite = false;
   bool writeAfterWrite = false;
   for (const auto& message : device_->validationLog()) {
-    readAfterWrite |= message.find("SYNC-HAZARD-READ-AFTER-WRITE") != std::string::npos;
-    writeAfterWrite |= message.find("SYNC-HAZARD-WRITE-AFTER-WRITE") != std::string::npos;
+    // Record-time messages are named SYNC-HAZARD-...; newer layers' submit-time ones (hazards
+    // between the per-step command buffers of one submit) say "..._AFTER_... hazard detected".
+    readAfterWrite |= message.find("SYNC-HAZARD-READ-AFTER-WRITE") != std::string::npos ||
+                      message.find("READ_AFTER_WRITE hazard") != std::string::npos;
+    writeAfterWrite |= message.find("SYNC-HAZARD-WRITE-AFTER-WRITE") != std::string::npos ||
+                       message.find("WRITE_AFTER_WRITE hazard") != std::string::npos;
   }
   EXPECT_TRUE(readAfterWrite) << "expected a read-after-write hazard";
   EXPECT_TRUE(writeAfterWrite) << "expected a write-after-write hazard";

@@ -111,8 +111,8 @@ class VulkanGraph final : public rhi::ExecutableGraph {
   void runSubmit(Slot& slot, uint32_t submitIndex, uint64_t execution);
   [[nodiscard]] bool keyOf(uint32_t stepIndex, uint64_t& key) const;
   [[nodiscard]] uint64_t stepKey(uint32_t stepIndex, uint64_t userKey) const;
-  void recordStep(Slot& slot, uint32_t stepIndex, uint64_t execution, bool lastOfSubmit);
-  void replayStep(const Slot& slot, uint32_t stepIndex, bool lastOfSubmit);
+  void recordStep(Slot& slot, uint32_t stepIndex, uint64_t execution);
+  void replayStep(const Slot& slot, uint32_t stepIndex);
   VkCommandBuffer commandBufferForRecording();
   void beginStep();  // the deferred prologue of the step being recorded
   void endStep(bool recorded);

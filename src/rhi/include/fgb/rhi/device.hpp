@@ -116,9 +116,10 @@ class ExecutableGraph {
   [[nodiscard]] virtual const graph::FrameGraph& declaration() const = 0;
   [[nodiscard]] virtual const graph::CompiledGraph& compiled() const = 0;
   [[nodiscard]] virtual uint64_t executions() const = 0;
-  // Host time of the latest execution: blocked waiting for a frame in flight to finish
-  // (throttling), recording its command buffers, and vkQueueSubmit (on lavapipe that call may
-  // run the work itself, so it says little about host cost there).
+  // Host time of the latest execution: blocked waiting for a frame in flight to finish and
+  // reading and resetting its queries (throttling), recording its command buffers, and
+  // vkQueueSubmit (on lavapipe that call may run the work itself, so it says little about host
+  // cost there).
   struct HostTimes {
     double throttleMs = 0.0;
     double recordMs = 0.0;

@@ -54,6 +54,7 @@ harness::RunArtifacts render(const RunVerbOptions& o, const std::map<std::string
   request.frames = o.common.frames;
   if (o.untilStable) request.untilStable = harness::StabilityRule{};
   request.graphDumps = true;
+  request.slowestFrames = 3;  // along a camera path: the report's thumbnails
   request.progress = [&](uint32_t done, uint32_t total) { bar.update(done, total); };
   harness::RunArtifacts a = harness::renderConfiguration(render::openWorkload, request);
   bar.finish();

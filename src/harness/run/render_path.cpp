@@ -68,6 +68,7 @@ void appendMeasurements(RunResult& total, const RunResult& round) {
   }
   total.frameGpuMs.insert(total.frameGpuMs.end(), round.frameGpuMs.begin(), round.frameGpuMs.end());
   total.frameCpuMs.insert(total.frameCpuMs.end(), round.frameCpuMs.begin(), round.frameCpuMs.end());
+  total.framePathTimeS.insert(total.framePathTimeS.end(), round.framePathTimeS.begin(), round.framePathTimeS.end());
   HarnessOverhead& o = total.overhead;
   o.loopWallMs += round.overhead.loopWallMs;
   o.workloadCallsMs += round.overhead.workloadCallsMs;
@@ -115,6 +116,25 @@ RenderedImages ConfigurationRenderer::readImages() {
   return {fromRendered(workload_->readHdr()), fromRendered(workload_->readDisplay())};
 }
 
+namespace {
+
+// The slowest path frames again, each opened alone as a still view at its path time: the frame it
+// was (camera.time renders the same image the path does at that time).
+std::vector<SlowFrame> renderSlowestFrames(const WorkloadOpener& open, const RenderRequest& request,
+                                           const RunResult& run) {
+  std::vector<SlowFrame> frames;
+  for (const std::size_t f : run.slowestFrames(request.slowestFrames)) {
+    render::WorkloadConfig config = request.workload;
+    config.knobs["camera.time"] = fmt::format("{}", run.framePathTimeS[f]);
+    ConfigurationRenderer still(open, config);
+    still.warmUp(1);
+    frames.push_back({f, run.framePathTimeS[f], still.readImages().display});
+  }
+  return frames;
+}
+
+}  // namespace
+
 RunArtifacts renderConfiguration(const WorkloadOpener& open, const RenderRequest& request) {
   ConfigurationRenderer renderer(open, request.workload);
   const uint32_t planned = request.warmup + request.frames;
@@ -153,6 +173,7 @@ RunArtifacts renderConfiguration(const WorkloadOpener& open, const RenderRequest
                   measuredFrames(a.run),
                   request.warmup,
                   request.workload.knobs};
+  if (request.slowestFrames > 0) a.slowest = renderSlowestFrames(open, request, a.run);
   return a;
 }
 

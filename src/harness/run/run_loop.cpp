@@ -35,6 +35,7 @@ void appendFrame(RunResult& run, std::map<std::string, std::size_t>& index, cons
   }
   run.frameGpuMs.push_back(frame.gpuFrameMs);
   run.frameCpuMs.push_back(frame.cpuFrameMs);
+  if (frame.pathTimeS >= 0.0) run.framePathTimeS.push_back(frame.pathTimeS);
 }
 
 void finalizeColumns(RunResult& run) {

@@ -9,6 +9,7 @@
 #include <fgb/renderer/workload.hpp>
 #include <fgb/rhi/device.hpp>
 #include <string>
+#include <tuple>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -22,15 +23,21 @@ class GraphFrameTimer {
  public:
   // Executes `graph` once and returns the oldest frame whose timings are complete, or a timing
   // with no passes when none is ready yet (timestamps of frame N normally arrive during N+1).
-  FrameTiming execute(rhi::Device& device, rhi::ExecutableGraph& graph) {
+  // `updateMs`: host time spent writing this frame's per-frame values, counted as its CPU time.
+  // `pathTimeS`: the frame's camera-path time (FrameTiming::pathTimeS).
+  FrameTiming execute(rhi::Device& device, rhi::ExecutableGraph& graph, double updateMs = 0.0,
+                      double pathTimeS = -1.0) {
     const rhi::RunTicket ticket = device.execute(graph);
-    recordMs_[ticket.execution] = graph.lastHostTimes().recordMs;
+    lastTicket_ = ticket;
+    recordMs_[ticket.execution] = {updateMs + graph.lastHostTimes().recordMs, pathTimeS};
     collect(graph);
     if (ready_.empty()) return {};
     FrameTiming oldest = std::move(ready_.front());
     ready_.pop_front();
     return oldest;
   }
+
+  [[nodiscard]] const rhi::RunTicket& lastTicket() const { return lastTicket_; }
 
   // Waits for the device and returns the timings of every frame not handed back yet.
   std::vector<FrameTiming> finish(rhi::Device& device, rhi::ExecutableGraph& graph) {
@@ -61,14 +68,16 @@ class GraphFrameTimer {
     }
     frame.gpuFrameMs = timings.gpuMs;
     if (const auto recorded = recordMs_.find(timings.execution); recorded != recordMs_.end()) {
-      frame.cpuFrameMs = recorded->second;
+      std::tie(frame.cpuFrameMs, frame.pathTimeS) = recorded->second;
       recordMs_.erase(recorded);
     }
     return frame;
   }
 
+  rhi::RunTicket lastTicket_;
   std::deque<FrameTiming> ready_;
-  std::unordered_map<uint64_t, double> recordMs_;  // host recording time by execution, until its timings arrive
+  // Host time (update + recording) and path time by execution, until its timings arrive.
+  std::unordered_map<uint64_t, std::pair<double, double>> recordMs_;
 };
 
 }  // namespace fgb::render

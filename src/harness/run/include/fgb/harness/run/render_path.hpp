@@ -46,6 +46,9 @@ struct RenderRequest {
   uint32_t frames = 64;                      // measured frames; the cap when untilStable is set
   std::optional<StabilityRule> untilStable;  // sample until stable instead of exactly `frames`
   bool graphDumps = false;                   // fill graphBrief / graphFull
+  // Along a camera path: render this many of the slowest measured frames again, each alone at its
+  // path time (camera.time=T, its particles simulated to T), for the report's thumbnails.
+  uint32_t slowestFrames = 0;
   ProgressCallback progress;                 // after every frame: (rendered, planned); may be empty
 };
 

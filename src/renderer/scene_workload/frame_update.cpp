@@ -104,7 +104,8 @@ FrameClock FrameClock::of(const scene::Scene& scene, double timeStep) {
   clock.flies = !scene.cameraPath.empty() && !scene.stillTime;
   if (scene.stillTime) {
     clock.stillTime = *scene.stillTime;
-    clock.stillSteps = uint64_t(std::llround(*scene.stillTime / timeStep)) + 1;
+    // Without emitters nothing is simulated: the frame at T needs no frames before it.
+    if (!scene.emitters.empty()) clock.stillSteps = uint64_t(std::llround(*scene.stillTime / timeStep)) + 1;
   }
   return clock;
 }

@@ -27,7 +27,7 @@ struct FrameClock {
   double timeStep = 1.0 / 60.0;
   bool flies = false;                  // the scene has a camera path and no camera.time
   double stillTime = 0.0;              // camera.time (0 without it)
-  std::optional<uint64_t> stillSteps;  // camera.time: the executions that simulate
+  std::optional<uint64_t> stillSteps;  // camera.time with particles: the executions that simulate
 
   static FrameClock of(const scene::Scene& scene, double timeStep);
   [[nodiscard]] double pathTime(uint64_t execution) const { return flies ? double(execution) * timeStep : stillTime; }

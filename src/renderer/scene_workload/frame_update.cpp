@@ -117,8 +117,12 @@ FrameUpdate::FrameUpdate(rhi::Device& device, features::GpuScene& gpu, const sce
 void FrameUpdate::write(uint64_t execution) {
   const scene::Camera camera = scene_.cameraPath.at(scene_.camera, clock_.pathTime(execution));
   const features::FrameBuffers& frame = gpu_.frame(execution);
-  gpu::FrameConstants constants = makeFrameConstants(scene_, camera, settings_);
-  constants.buffers = gpu_.constants.buffers;
+  const CameraKey key{camera.position, camera.target, camera.verticalFovDeg};
+  if (!lastCamera_ || lastCamera_->first != key) {
+    lastCamera_.emplace(key, makeFrameConstants(scene_, camera, settings_));
+    lastCamera_->second.buffers = gpu_.constants.buffers;
+  }
+  gpu::FrameConstants constants = lastCamera_->second;
   const bool simulates = clock_.simulates(execution);
   // A still view at camera.time holds its particles at its last simulated step (emits nothing).
   const uint64_t step = simulates ? execution : *clock_.stillSteps - 1;

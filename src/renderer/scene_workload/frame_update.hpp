@@ -53,6 +53,13 @@ class FrameUpdate {
   const features::RenderSettings& settings_;
   FrameClock clock_;
   std::array<std::optional<glm::dvec3>, features::kFramesInFlight> writtenFor_;  // camera position
+  // The last camera's constants (without the per-frame step): a still camera computes them once.
+  struct CameraKey {
+    glm::dvec3 position{0.0}, target{0.0};
+    float fov = 0.0f;
+    bool operator==(const CameraKey&) const = default;
+  };
+  std::optional<std::pair<CameraKey, gpu::FrameConstants>> lastCamera_;
 };
 
 }  // namespace fgb::render

@@ -13,9 +13,10 @@ layout(push_constant) uniform Push { MeshCullPush pc; };
 bool insideFrustum(vec3 boxMin, vec3 boxMax) {
   if (boxMin.x > boxMax.x) return false;  // empty box
   for (int i = 0; i < 6; ++i) {
-    vec3 n = pc.planes[i].xyz;
+    vec4 plane = fgbFrames[pc.frame].frame.frustumPlanes[i];
+    vec3 n = plane.xyz;
     vec3 positive = mix(boxMin, boxMax, greaterThanEqual(n, vec3(0.0)));
-    if (dot(n, positive) + pc.planes[i].w < 0.0) return false;
+    if (dot(n, positive) + plane.w < 0.0) return false;
   }
   return true;
 }

@@ -12,8 +12,8 @@ layout(push_constant) uniform Push { ParticleEmitPush pc; };
 void main() {
   Emitter e = fgbEmitters[pc.emitters].emitters[gl_WorkGroupID.x];
   // Deterministic spawn count: particles due by the end of this frame minus those due before it.
-  uint due = uint(floor(float(pc.frameIndex + 1u) * PARTICLE_DT * e.positionRate.w));
-  uint before = uint(floor(float(pc.frameIndex) * PARTICLE_DT * e.positionRate.w));
+  uint due = uint(floor(float(PARTICLE_STEP + 1u) * PARTICLE_DT * e.positionRate.w));
+  uint before = uint(floor(float(PARTICLE_STEP) * PARTICLE_DT * e.positionRate.w));
   uint spawn = due - before;
   for (uint i = gl_LocalInvocationIndex; i < spawn; i += 64u) {
     int top = int(atomicAdd(fgbUints[pc.freeList].values[0], uint(-1)));
@@ -22,7 +22,7 @@ void main() {
       return;
     }
     uint slot = fgbUints[pc.freeList].values[uint(top)];
-    uint rng = e.seed.x * 9781u + pc.frameIndex * 6271u + i * 31u + gl_WorkGroupID.x;
+    uint rng = e.seed.x * 9781u + PARTICLE_STEP * 6271u + i * 31u + gl_WorkGroupID.x;
     float cosTheta = mix(1.0, e.directionCone.w, random01(rng));
     float sinTheta = sqrt(max(1.0 - cosTheta * cosTheta, 0.0));
     float phi = 2.0 * PI * random01(rng);

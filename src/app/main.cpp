@@ -41,6 +41,10 @@ void addCommonOptions(CLI::App& command, CommonOptions& options) {
                    "maximum on the GPU (timings.json passes[i].non_finite; the report names the first bad pass)");
   command.add_flag("--validation", options.validation,
                    "Enable Vulkan validation (+ synchronization validation); any message fails with exit 3");
+  command.add_option("--time-step", options.timeStep,
+                     "Seconds between frames: the camera along its path (camera.path) and the particles' step "
+                     "(default: the scene's render.time_step, else 1/60)")
+      ->check(CLI::Range(1e-6, 60.0));
 }
 
 const KnobRegistry& knobRegistry() {
@@ -70,6 +74,7 @@ render::WorkloadConfig workloadConfig(const std::string& scene, const CommonOpti
   config.msaa = common.msaa;
   config.validation = common.validation;
   config.checkFinite = common.checkFinite;
+  config.timeStep = common.timeStep;
   config.knobs = knobs;
   return config;
 }

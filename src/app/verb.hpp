@@ -30,6 +30,7 @@ struct CommonOptions {
   bool quiet = false;
   bool validation = false;
   bool checkFinite = false;  // --check-finite
+  double timeStep = 0.0;  // --time-step: seconds between frames (0: the scene's render.time_step, else 1/60)
 };
 
 // Adds the common rendering options to a subcommand, bound to `options`.

@@ -83,6 +83,7 @@ harness::RunArtifacts render(const RunVerbOptions& o, const std::map<std::string
     request.isolateFrames =
         o.isolateFrames >= 0 ? static_cast<uint32_t>(o.isolateFrames) : harness::defaultIsolatedFrames(request.frames);
   }
+  request.slowestFrames = 3;  // along a camera path: the report's thumbnails
   request.progress = [&](uint32_t done, uint32_t total) { bar.update(done, total); };
   harness::RunArtifacts a = harness::renderConfiguration(render::openWorkload, request);
   bar.finish();

@@ -144,3 +144,25 @@ TEST(Budget, APassSplitIntoPartsIsCheckedAgainstTheirSum) {
 
 }  // namespace
 }  // namespace fgb::harness
+
+namespace fgb::harness {
+namespace {
+
+TEST(Budget, FrameP99IsJudgedLikeTheMedian) {
+  Budget budget;
+  budget.passesMs = {{"Mesh Render", 3.0}};
+  budget.frameP99Ms = 4.0;
+  budget.tolerance = 0.0;
+  MeasuredMedians measured;
+  measured.passMs = {{"Mesh Render", 2.0}};
+  measured.frameP99Ms = 4.5;  // the slow frames along a path go over
+  const BudgetResult result = checkBudget(budget, measured);
+  EXPECT_EQ(result.verdict, "fail");
+  ASSERT_EQ(result.failing().size(), 1u);
+  EXPECT_EQ(result.failing()[0]->pass, "(frame p99)");
+  measured.frameP99Ms = 3.9;
+  EXPECT_EQ(checkBudget(budget, measured).verdict, "pass");
+}
+
+}  // namespace
+}  // namespace fgb::harness

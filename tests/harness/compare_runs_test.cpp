@@ -299,5 +299,26 @@ TEST(CompareRuns, JudgesIsolatedCostsWhereEveryRunHasThem) {
   EXPECT_THAT(fallback.warnings.back(), HasSubstr("judged by their spans"));
 }
 
+TEST(CompareRuns, PathRunsAreComparedFrameByFrame) {
+  const std::vector<double> times{0.0, 0.5, 1.0, 1.5};
+  auto path = [&](std::vector<double> frameMs) {
+    LoadedTimings t = timings({{"Draw", 1.0}}, 0.0);
+    t.framePathTimeS = times;
+    t.frameGpuMs = std::move(frameMs);
+    return t;
+  };
+  const RunsComparison c = compareRuns(std::vector{path({1, 2, 3, 4}), path({1, 2, 3, 4})},
+                                       std::vector{path({1, 2, 6, 4}), path({1, 2, 6, 4})});
+  ASSERT_EQ(c.pathFrames.size(), 4u);
+  EXPECT_DOUBLE_EQ(c.pathFrames[2].ratio(), 2.0);  // the frame at 1 s doubled
+  EXPECT_DOUBLE_EQ(c.pathFrames[2].pathTimeS, 1.0);
+  EXPECT_THAT(formatTable(c), HasSubstr("frame 2 (t=1 s) 3.0000 -> 6.0000 ms"));
+  EXPECT_EQ(toJson(c)["path_frames"].size(), 4u);
+  // Runs of different paths (or still cameras) are not compared frame by frame.
+  LoadedTimings other = path({1, 2, 3, 4});
+  other.framePathTimeS = {0.0, 1.0, 2.0, 3.0};
+  EXPECT_TRUE(compareRuns(std::vector{path({1, 2, 3, 4})}, std::vector{other}).pathFrames.empty());
+}
+
 }  // namespace
 }  // namespace fgb::harness

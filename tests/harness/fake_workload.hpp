@@ -32,6 +32,12 @@ class FakeWorkload : public render::Workload {
     t.submitMs = 0.5;
     t.nodesRecorded = rendered_ <= 2 ? 3 : 1;  // every node in the first two frames, then one
     t.nodesReused = 3 - t.nodesRecorded;
+    if (pathStep_ > 0.0) {
+      t.pathTimeS = pathStep_ * static_cast<double>(rendered_ - 1);
+      // Along the path, frame 2 (counting warm-up) is the slowest and frame 4 the next.
+      if (rendered_ - 1 == 2) t.gpuFrameMs = 100.0;
+      if (rendered_ - 1 == 4) t.gpuFrameMs = 50.0;
+    }
     pending_.push_back(t);
     if (pending_.size() <= latency_) return {};
     render::FrameTiming ready = pending_.front();
@@ -57,9 +63,12 @@ class FakeWorkload : public render::Workload {
   void setNonFiniteCounts(std::vector<render::NonFiniteCounts> counts) { nonFinite_ = std::move(counts); }
 
   void dropOneTimingOnFinish() { dropOnFinish_ = true; }
+  // Frames fly a camera path, frame e (warm-up included) at e * step seconds.
+  void flyPath(double step) { pathStep_ = step; }
   // Every frame takes the same time (frame 0's), so a median's interval is as narrow as can be.
   void constantTimes() { constantTimes_ = true; }
   std::size_t rendered() const { return rendered_; }
+  double pathStep_ = 0.0;
 
  private:
   static render::ImageRGBA32F image(float v) {

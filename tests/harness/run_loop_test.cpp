@@ -103,6 +103,41 @@ TEST(RunLoop, NoCalibrationWhereTheWorkloadCannotIsolate) {
   EXPECT_FALSE(run.passes.front().hasIsolated());
 }
 
+TEST(RunLoop, CameraPathFramesKeepTheirTimesAndSlowestFrames) {
+  testing::FakeWorkload workload;
+  workload.flyPath(0.5);
+  RunOptions options;
+  options.warmup = 1;
+  options.frames = 6;
+  RunResult run = runBenchmark(workload, options);
+  summarizeRun(run);
+  ASSERT_EQ(run.framePathTimeS.size(), 6u);
+  EXPECT_DOUBLE_EQ(run.framePathTimeS.front(), 0.5);  // frame 1: the warm-up frame 0 was at 0 s
+  EXPECT_DOUBLE_EQ(run.framePathTimeS.back(), 3.0);
+  // Measured frames 1 and 3 are executions 2 and 4, the slowest; then the last, slower than the rest.
+  EXPECT_EQ(run.slowestFrames(3), (std::vector<std::size_t>{1, 3, 5}));
+  EXPECT_DOUBLE_EQ(run.frameGpu.max, 100.0);
+  EXPECT_GT(run.frameGpu.p99, run.frameGpu.p95);
+  const auto json = toJson(run);
+  EXPECT_EQ(json["path"]["slowest"][0]["path_time_s"], 1.0);
+  EXPECT_EQ(json["path"]["slowest"].size(), 3u);
+  EXPECT_EQ(json["samples"]["path_time_s"].size(), 6u);
+  EXPECT_TRUE(json["frame_gpu_ms"].contains("p99"));
+  EXPECT_NE(markdownReport(run).find("`--set camera.time=1`"), std::string::npos);
+}
+
+TEST(RunLoop, StillCameraHasNoPathSection) {
+  testing::FakeWorkload workload;
+  RunOptions options;
+  options.frames = 4;
+  RunResult run = runBenchmark(workload, options);
+  summarizeRun(run);
+  EXPECT_TRUE(run.framePathTimeS.empty());
+  EXPECT_TRUE(run.slowestFrames(3).empty());
+  EXPECT_FALSE(toJson(run).contains("path"));
+  EXPECT_EQ(markdownReport(run).find("Camera path"), std::string::npos);
+}
+
 TEST(RunLoop, CulledPassesHaveNoSamples) {
   testing::FakeWorkload workload;
   const RunResult run = runBenchmark(workload, RunOptions{1, 4, kDefaultUnstableSpread, {}});

@@ -38,7 +38,9 @@ scene::Scene makeScene() {
 TEST(DrawGroups, GroupsSharedMeshesAndSortsTransparentBackToFront) {
   const auto s = makeScene();
   features::GpuScene gpu;
-  buildDrawGroups(s, glm::vec3(0.0f, 0.0f, 10.0f), gpu);
+  DrawOrder order = drawOrder(s, glm::dvec3(0.0, 0.0, 10.0));
+  gpu.groups = order.groups;
+  gpu.instanceOrder = order.instanceOrder;
   ASSERT_EQ(gpu.groups.size(), 4u);  // opaque mesh 0, masked mesh 1, two transparent
   EXPECT_EQ(gpu.groups[0].drawClass, DrawClass::Opaque);
   EXPECT_EQ(gpu.groups[0].capacity, 2u);
@@ -56,6 +58,15 @@ TEST(DrawGroups, GroupsSharedMeshesAndSortsTransparentBackToFront) {
   EXPECT_EQ(expectedSlot, s.instances.size());
   EXPECT_EQ(gpu.groupRange(DrawClass::Transparent), std::make_pair(2u, 2u));
   EXPECT_EQ(gpu.groupRange(DrawClass::Masked), std::make_pair(1u, 1u));
+  // From the other end (a camera path's later frame) the transparent order turns around; the
+  // groups' slots and sizes, which recorded commands use, stay.
+  const DrawOrder behind = drawOrder(s, glm::dvec3(0.0, 0.0, -100.0));
+  EXPECT_EQ(behind.instanceOrder[behind.groups[2].firstSlot], 1u);
+  EXPECT_EQ(behind.instanceOrder[behind.groups[3].firstSlot], 3u);
+  for (size_t g = 0; g < behind.groups.size(); ++g) {
+    EXPECT_EQ(behind.groups[g].firstSlot, order.groups[g].firstSlot);
+    EXPECT_EQ(behind.groups[g].capacity, order.groups[g].capacity);
+  }
 }
 
 TEST(FrameConstants, ClusterGridCoversTheImageAndSlicesSpanNearToFar) {
@@ -66,7 +77,7 @@ TEST(FrameConstants, ClusterGridCoversTheImageAndSlicesSpanNearToFar) {
   settings.width = 330;
   settings.height = 170;
   settings.clusterSlices = 24;
-  const auto c = makeFrameConstants(s, settings);
+  const auto c = makeFrameConstants(s, s.camera, settings);
   EXPECT_EQ(c.clusterGrid.x, 21u);  // ceil(330 / 16)
   EXPECT_EQ(c.clusterGrid.y, 11u);
   // slice(z) = log(z) * scale + bias: 0 at near, slices at far.
@@ -88,7 +99,7 @@ TEST(FrameConstants, InfiniteFarSlicesClustersUpToTheSceneAndFarFromTheOriginNot
   s.camera.nearPlane = 1e-4f;
   s.camera.farPlane = std::numeric_limits<float>::infinity();
   features::RenderSettings settings;
-  const auto c = makeFrameConstants(s, settings);
+  const auto c = makeFrameConstants(s, s.camera, settings);
   // The farthest box corner is ~61 m away (instance 3 spans z -51..-49 around the offset).
   EXPECT_GT(c.depthRange.y, 60.0f);
   EXPECT_LT(c.depthRange.y, 62.0f);

@@ -5,7 +5,10 @@
 
 #include "renderer/shared/particles.h"
 
-#define PARTICLE_DT (1.0 / 60.0)
+// The simulation advances one fixed step per frame, the run's time step (FrameConstants.simulation.x,
+// 0 while a still view holds its particles; step.x counts the steps).
+#define PARTICLE_DT (fgbFrames[pc.frame].frame.simulation.x)
+#define PARTICLE_STEP (fgbFrames[pc.frame].frame.step.x)
 
 FGB_STORAGE_BUFFER(ParticleBlock, fgbParticles, ) { Particle particles[]; } fgbParticles[FGB_MAX_STORAGE_BUFFERS];
 FGB_READONLY_STORAGE_BUFFER(ParticleReadBlock, fgbParticlesRead) { Particle particles[]; } fgbParticlesRead[FGB_MAX_STORAGE_BUFFERS];

@@ -15,14 +15,14 @@ FGB_GPU_BEGIN
 
 // mesh_cull.comp.
 struct MeshCullPush {
-  vec4 planes[6];  // inside: dot(n, p) + d >= 0
+  uint frame;      // FrameConstants: the frustum planes
   uint instances;
   uint commands;
   uint visible;    // visible-instance list, grouped by draw group (firstInstance = group start)
   uint stats;      // [0] visible instances, [1] visible triangles
   uint instanceCount;
 };
-FGB_CHECK_PUSH(MeshCullPush, 128)
+FGB_CHECK_PUSH(MeshCullPush, 24)
 
 // mesh_compact.comp.
 struct MeshCompactPush {

@@ -37,7 +37,7 @@ struct ParticleEmitPush {
   uint emitters;
   uint particles;
   uint freeList;  // [0] count, [1..] free slots
-  uint frameIndex;
+  uint frame;     // FrameConstants: the simulation step and its index
 };
 FGB_CHECK_PUSH(ParticleEmitPush, 16)
 
@@ -48,8 +48,9 @@ struct ParticleUpdatePush {
   uint drawArgs;  // DrawCommand: instanceCount counts alive particles
   uint aliveList;
   uint poolSize;
+  uint frame;     // FrameConstants: the simulation step
 };
-FGB_CHECK_PUSH(ParticleUpdatePush, 20)
+FGB_CHECK_PUSH(ParticleUpdatePush, 24)
 
 // "Particle Render" (particle.vert, particle.frag).
 struct ParticleRenderPush {

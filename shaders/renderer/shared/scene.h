@@ -8,7 +8,9 @@
 
 FGB_GPU_BEGIN
 
-// Camera and view data, uploaded once per run (the benchmark camera does not move).
+// Camera and view data of one frame, written by the host before each frame's submit into the copy
+// of its frame in flight (src/renderer/scene_workload/frame_update.cpp): nothing that changes from
+// frame to frame is baked into recorded commands.
 struct FrameConstants {
   mat4 view;             // camera-relative: a rotation only (render space -> view space)
   mat4 proj;             // Vulkan clip space, Y flipped for a top-left origin; reversed-Z
@@ -24,8 +26,16 @@ struct FrameConstants {
   uvec4 counts;          // lights, instances, max lights per cluster, debug view
   vec4 ambient;          // rgb: constant ambient term (radiance, times the light scale)
   uvec4 buffers;         // x: storage-buffer index of the Exposure state
+  vec4 frustumPlanes[6]; // render space, inside: dot(n, p) + d >= 0 (mesh and cluster culling)
+  vec4 anchorOffset;     // xyz: the first frame's camera minus this frame's (particles live in the
+                         // first frame's render space, the anchor: add this to render them)
+  vec4 simulation;       // x: this frame's particle step, s (0: the particles hold still); y: path time, s
+  uvec4 step;            // x: particle simulation step index; y: kFrame* flags
 };
-FGB_CHECK_SIZE(FrameConstants, 4 * 64 + 9 * 16)
+FGB_CHECK_SIZE(FrameConstants, 4 * 64 + 9 * 16 + 6 * 16 + 3 * 16)
+
+// FrameConstants.step.y:
+const uint kFrameHizValid = 1u;  // last frame left a HiZ pyramid (render.occlusion's phase 1 may test it)
 
 // Exposure state (Frostbite's pre-exposure, "Moving Frostbite to PBR" 2014). Lighting, emissive,
 // particles and the background are multiplied by preExposure before they are written to the R16F

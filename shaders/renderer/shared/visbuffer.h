@@ -66,8 +66,7 @@ FGB_CHECK_SIZE(VisCounters, 80)
 
 // "Cluster Cull" (cluster_cull.comp).
 struct ClusterCullPush {
-  vec4 planes[6];  // inside: dot(n, p) + d >= 0
-  uint frame;
+  uint frame;      // FrameConstants: the frustum planes, kFrameHizValid
   uint instances;
   uint draws;
   uint clusters;
@@ -76,9 +75,9 @@ struct ClusterCullPush {
   uint occlusion;  // render.occlusion: HiZ pyramid (low 16 bits), occlusion candidates (high 16 bits)
   uint drawCount;  // kCullDrawCountMask; kCullOcclusion, kCullReversedZ, kCullHoldBackOdd
 };
-FGB_CHECK_PUSH(ClusterCullPush, 128)
+FGB_CHECK_PUSH(ClusterCullPush, 32)
 // drawCount's top bits (render.occlusion):
-const uint kCullOcclusion = 0x80000000u;  // test against last frame's HiZ pyramid (not on the first frame)
+const uint kCullOcclusion = 0x80000000u;  // test against last frame's HiZ pyramid (where FrameConstants has kFrameHizValid)
 const uint kCullReversedZ = 0x40000000u;
 const uint kCullHoldBackOdd = 0x20000000u;  // debug.occlusion_hold_back: odd clusters are candidates too
 const uint kCullDrawCountMask = 0x1fffffffu;

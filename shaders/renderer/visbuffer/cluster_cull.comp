@@ -15,19 +15,29 @@ layout(local_size_x = FGB_VIS_CULL_GROUP_SIZE) in;
 
 layout(push_constant) uniform Push { ClusterCullPush pc; };
 
+// The frame's frustum planes (render space), from its FrameConstants.
+vec4 plane(int i) { return fgbFrames[pc.frame].frame.frustumPlanes[i]; }
+
 bool boxInside(vec3 boxMin, vec3 boxMax) {
   for (int i = 0; i < 6; ++i) {
-    vec3 n = pc.planes[i].xyz;
-    vec3 positive = mix(boxMin, boxMax, greaterThanEqual(n, vec3(0.0)));
-    if (dot(n, positive) + pc.planes[i].w < 0.0) return false;
+    vec4 p = plane(i);
+    vec3 positive = mix(boxMin, boxMax, greaterThanEqual(p.xyz, vec3(0.0)));
+    if (dot(p.xyz, positive) + p.w < 0.0) return false;
   }
   return true;
 }
 
 bool sphereInside(vec3 center, float radius) {
-  for (int i = 0; i < 6; ++i)
-    if (dot(pc.planes[i].xyz, center) + pc.planes[i].w < -radius) return false;
+  for (int i = 0; i < 6; ++i) {
+    vec4 p = plane(i);
+    if (dot(p.xyz, center) + p.w < -radius) return false;
+  }
   return true;
+}
+
+// render.occlusion and a pyramid from last frame (none on the first frame: the frame's flag).
+bool hizUsable() {
+  return (pc.drawCount & kCullOcclusion) != 0u && (fgbFrames[pc.frame].frame.step.y & kFrameHizValid) != 0u;
 }
 
 void main() {
@@ -48,7 +58,7 @@ void main() {
     if (dot(fromEye, axis) >= cluster.cone.w * length(fromEye) + radius) return;
   }
   bool holdBack = (pc.drawCount & kCullHoldBackOdd) != 0u && (id & 1u) != 0u;
-  if (holdBack || ((pc.drawCount & kCullOcclusion) != 0u &&
+  if (holdBack || (hizUsable() &&
                    hizOccluded(pc.occlusion & 0xffffu, pc.frame, center, radius,
                                (pc.drawCount & kCullReversedZ) != 0u))) {
     uint candidate = atomicAdd(visCounters[pc.counters].c.occluded, 1u);

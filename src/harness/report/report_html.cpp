@@ -128,6 +128,23 @@ std::string picturesHtml(const RunResult& run, const ReportImages& images) {
   return html;
 }
 
+// Along a camera path: thumbnails of the slowest frames (rendered alone at their path times).
+std::string slowestFramesHtml(const RunResult& run, const ReportImages& images) {
+  if (run.slowestFrames(1).empty()) return "";
+  std::string html = fmt::format(
+      "<h2>Slowest frames along the camera path</h2>\n<p>GPU frame p95 {:.4f} ms, p99 {:.4f} ms, worst {:.4f} ms over {} "
+      "frames ({:g} s to {:g} s).</p>\n<div class=\"trio\">\n",
+      run.frameGpu.p95, run.frameGpu.p99, run.frameGpu.max, run.framePathTimeS.size(), run.framePathTimeS.front(),
+      run.framePathTimeS.back());
+  for (const auto& slow : images.slowest) {
+    html += fmt::format(R"(<figure><img class="shot" src="{}" width="{}" height="{}" alt="frame {}"><figcaption>frame {} at {:g} s: {:.4f} ms (<code>--set camera.time={}</code>)</figcaption></figure>)"
+                        "\n",
+                        pngDataUri(slow.png), images.width / 2, images.height / 2, slow.frame, slow.frame, slow.pathTimeS,
+                        run.frameGpuMs[slow.frame], slow.pathTimeS);
+  }
+  return html + "</div>\n";
+}
+
 }  // namespace
 
 std::string htmlReport(const RunResult& run, const ReportImages& images) {
@@ -143,6 +160,7 @@ std::string htmlReport(const RunResult& run, const ReportImages& images) {
   html += "<p>Frame graph: <a href=\"graph.dot\">graph.dot</a>, <a href=\"graph-full.dot\">graph-full.dot</a></p>\n";
   html += "<h2>Passes against budget</h2>\n" + passBarsSvg(run);
   html += "<h2>Frame time series</h2>\n" + frameSeriesSvg(run);
+  html += slowestFramesHtml(run, images);
   html += "<h2>Queue timeline</h2>\n" + queueTimelineSvg(run);
   html += "<h2>Timings (ms)</h2>\n<table><tr><th>pass</th><th>queue</th><th>median</th><th>p5</th><th>p95</th><th>mean</th>"
           "<th>min</th><th>max</th><th>n</th><th>spread</th></tr>\n" + passRows(run) + "</table>\n";

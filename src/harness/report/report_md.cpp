@@ -58,6 +58,25 @@ std::string isolatedSection(const RunResult& run) {
 }
 
 // --check-finite: the first pass that wrote a bad value, and every checked pass's counts.
+// Along a camera path: the frame-time distribution and the slowest frames, each with the knob that
+// renders it alone.
+std::string pathSection(const RunResult& run) {
+  const auto slowest = run.slowestFrames(3);
+  if (slowest.empty()) return "";
+  std::string out = fmt::format(
+      "## Camera path\n\n{} measured frames from {:g} s to {:g} s of the path. GPU frame: median {:.4f} ms, p95 {:.4f}, "
+      "p99 {:.4f}, worst {:.4f}; CPU frame: median {:.4f} ms, p95 {:.4f}, p99 {:.4f}, worst {:.4f}.\n\n",
+      run.framePathTimeS.size(), run.framePathTimeS.front(), run.framePathTimeS.back(), run.frameGpu.median,
+      run.frameGpu.p95, run.frameGpu.p99, run.frameGpu.max, run.frameCpu.median, run.frameCpu.p95, run.frameCpu.p99,
+      run.frameCpu.max);
+  out += "### Slowest frames along the camera path\n\n| frame | path time (s) | GPU ms | CPU ms | render it alone |\n|---:|---:|---:|---:|---|\n";
+  for (const std::size_t f : slowest) {
+    out += fmt::format("| {} | {:g} | {:.4f} | {:.4f} | `--set camera.time={}` |\n", f, run.framePathTimeS[f],
+                       run.frameGpuMs[f], f < run.frameCpuMs.size() ? run.frameCpuMs[f] : 0.0, run.framePathTimeS[f]);
+  }
+  return out + "\n";
+}
+
 std::string finiteSection(const RunResult& run) {
   if (!run.checkedFinite) return "";
   std::string out = "## Non-finite values (`--check-finite`, last frame)\n\n";
@@ -157,6 +176,7 @@ std::string markdownReport(const RunResult& run) {
   out += fmt::format("Unstable: (p95 − p5) / median > {:.0f}%.\n\n", kDefaultUnstableSpread * 100.0);
   out += hostOverheadNote(run) + "\n\n";
   out += wallClockNote(run) + "\n\n";
+  out += pathSection(run);
   out += finiteSection(run);
   out += budgetSection(run) + "\n" + goldenSection(run);
   return out;

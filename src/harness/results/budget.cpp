@@ -72,6 +72,7 @@ Budget loadBudget(const std::filesystem::path& path) {
     budget.passesMs.emplace_back(name, requirePositiveMs(passes, name, path, "passes_ms"));
   }
   if (j.contains("frame_ms")) budget.frameMs = requirePositiveMs(j, "frame_ms", path, "");
+  if (j.contains("frame_p99_ms")) budget.frameP99Ms = requirePositiveMs(j, "frame_p99_ms", path, "");
   return budget;
 }
 
@@ -94,6 +95,9 @@ BudgetResult checkBudget(const Budget& budget, const MeasuredMedians& measured, 
     result.lines.back().summedPasses = summed;
   }
   if (budget.frameMs) result.lines.push_back(judge("(frame)", *budget.frameMs, result.tolerance, measured.frameMs));
+  if (budget.frameP99Ms) {
+    result.lines.push_back(judge("(frame p99)", *budget.frameP99Ms, result.tolerance, measured.frameP99Ms));
+  }
 
   if (budget.width && measured.width && (budget.width != measured.width || budget.height != measured.height)) {
     result.warnings.push_back("budget measured at " + std::to_string(budget.width) + "x" + std::to_string(budget.height) +

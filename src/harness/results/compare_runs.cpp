@@ -314,6 +314,32 @@ RunsComparison compareRuns(const LoadedTimings& before, const LoadedTimings& aft
   return compareRuns(std::vector<LoadedTimings>{before}, std::vector<LoadedTimings>{after}, options);
 }
 
+namespace {
+
+// Each frame's GPU time over a side's runs (geometric mean); empty when the runs' path times differ.
+std::vector<double> pathFrameMeans(const std::vector<LoadedTimings>& runs, const std::vector<double>& times) {
+  std::vector<double> logSum(times.size(), 0.0);
+  for (const auto& run : runs) {
+    if (run.framePathTimeS != times || run.frameGpuMs.size() != times.size()) return {};
+    for (std::size_t f = 0; f < times.size(); ++f) logSum[f] += std::log(std::max(run.frameGpuMs[f], 1e-9));
+  }
+  for (double& value : logSum) value = std::exp(value / static_cast<double>(runs.size()));
+  return logSum;
+}
+
+std::vector<PathFrameComparison> comparePathFrames(const std::vector<LoadedTimings>& before,
+                                                   const std::vector<LoadedTimings>& after) {
+  const std::vector<double>& times = after.front().framePathTimeS;
+  if (times.empty()) return {};
+  const auto old = pathFrameMeans(before, times), now = pathFrameMeans(after, times);
+  if (old.empty() || now.empty()) return {};
+  std::vector<PathFrameComparison> frames;
+  for (std::size_t f = 0; f < times.size(); ++f) frames.push_back({f, times[f], old[f], now[f]});
+  return frames;
+}
+
+}  // namespace
+
 RunsComparison compareRuns(const std::vector<LoadedTimings>& before, const std::vector<LoadedTimings>& after,
                            const CompareRunsOptions& options) {
   if (before.empty() || after.empty()) throw InputError("compare-runs: each side needs at least one run");
@@ -387,6 +413,7 @@ RunsComparison compareRuns(const std::vector<LoadedTimings>& before, const std::
   if (!oldFrame.culled && !newFrame.culled && !oldFrame.runMedians.empty() && !newFrame.runMedians.empty()) {
     result.rows.push_back(compareSides("(frame)", oldFrame, newFrame, result.model, options));
   }
+  result.pathFrames = comparePathFrames(before, after);
   return result;
 }
 
@@ -484,9 +511,38 @@ std::string formatTable(const RunsComparison& c) {
   }
   if (!unknown.empty())
     out += "unknown: add runs (changes that would matter, inside the run-to-run noise):" + unknown + "\n";
+  if (!c.pathFrames.empty()) {
+    // The frames whose time changed most, either way, with the path time to render them alone.
+    std::vector<PathFrameComparison> sorted = c.pathFrames;
+    std::sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) {
+      return std::abs(std::log(std::max(a.ratio(), 1e-9))) > std::abs(std::log(std::max(b.ratio(), 1e-9)));
+    });
+    std::vector<double> ratios;
+    for (const auto& frame : c.pathFrames) ratios.push_back(frame.ratio());
+    std::sort(ratios.begin(), ratios.end());
+    out += fmt::format("camera path, frame by frame ({} frames, new/old GPU frame time): median {:.3f}, {:.3f} .. {:.3f}; "
+                       "most changed:",
+                       ratios.size(), ratios[ratios.size() / 2], ratios.front(), ratios.back());
+    for (std::size_t i = 0; i < std::min<std::size_t>(3, sorted.size()); ++i) {
+      out += fmt::format(" frame {} (t={:g} s) {:.4f} -> {:.4f} ms;", sorted[i].frame, sorted[i].pathTimeS,
+                         sorted[i].beforeMs, sorted[i].afterMs);
+    }
+    out += "\n";
+  }
   for (const auto& warning : c.warnings) out += "note: " + warning + "\n";
   return out;
 }
+
+namespace {
+nlohmann::json pathFramesJson(const RunsComparison& c) {
+  nlohmann::json frames = nlohmann::json::array();
+  for (const auto& f : c.pathFrames) {
+    frames.push_back({{"frame", f.frame}, {"path_time_s", f.pathTimeS}, {"old_ms", f.beforeMs}, {"new_ms", f.afterMs},
+                      {"ratio", f.ratio()}});
+  }
+  return frames;
+}
+}  // namespace
 
 nlohmann::json toJson(const RunsComparison& c) {
   nlohmann::json rows = nlohmann::json::array();
@@ -529,6 +585,7 @@ nlohmann::json toJson(const RunsComparison& c) {
             {"absolute_ms", c.model.absoluteMs},
             {"measured", c.model.measured}}},
           {"warnings", c.warnings},
+          {"path_frames", pathFramesJson(c)},
           {"passes", rows}};
 }
 

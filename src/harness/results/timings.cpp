@@ -1,5 +1,6 @@
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fgb/core/error.hpp>
 #include <fgb/harness/base/json_io.hpp>
@@ -14,7 +15,24 @@ nlohmann::json toJson(const render::NonFiniteCounts& counts) {
 }
 
 nlohmann::json toJson(const Summary& s) {
-  return {{"median", s.median}, {"p5", s.p5}, {"p95", s.p95}, {"mean", s.mean}, {"min", s.min}, {"max", s.max}, {"n", s.n}};
+  return {{"median", s.median}, {"p5", s.p5},   {"p95", s.p95}, {"p99", s.p99},
+          {"mean", s.mean},     {"min", s.min}, {"max", s.max}, {"n", s.n}};
+}
+
+// A camera path's frames: the time of each, and the slowest (by GPU time) with their CPU time, so a
+// reader finds the worst frames along the path and can render one alone with camera.time.
+nlohmann::json pathJson(const RunResult& run) {
+  nlohmann::json slowest = nlohmann::json::array();
+  for (const std::size_t f : run.slowestFrames(3)) {
+    slowest.push_back({{"frame", f},
+                       {"path_time_s", run.framePathTimeS[f]},
+                       {"gpu_ms", run.frameGpuMs[f]},
+                       {"cpu_ms", f < run.frameCpuMs.size() ? run.frameCpuMs[f] : 0.0}});
+  }
+  return {{"frames", run.framePathTimeS.size()},
+          {"start_s", run.framePathTimeS.front()},
+          {"end_s", run.framePathTimeS.back()},
+          {"slowest", slowest}};
 }
 
 std::string csvField(const std::string& text) {
@@ -77,6 +95,15 @@ const render::NonFiniteCounts* RunResult::firstNonFinite() const {
   return nullptr;
 }
 
+std::vector<std::size_t> RunResult::slowestFrames(std::size_t count) const {
+  if (framePathTimeS.size() != frameGpuMs.size()) return {};
+  std::vector<std::size_t> order(frameGpuMs.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](auto a, auto b) { return frameGpuMs[a] > frameGpuMs[b]; });
+  order.resize(std::min(count, order.size()));
+  return order;
+}
+
 MeasuredMedians RunResult::medians() const {
   MeasuredMedians m;
   for (const auto& p : passes) {
@@ -85,6 +112,7 @@ MeasuredMedians RunResult::medians() const {
     if (p.hasIsolated()) m.passCost = "isolated";
   }
   if (frameGpu.n > 0) m.frameMs = frameGpu.median;
+  if (frameGpu.n > 0) m.frameP99Ms = frameGpu.p99;
   m.width = config.width;
   m.height = config.height;
   m.msaa = config.msaa;
@@ -148,6 +176,10 @@ nlohmann::json toJson(const RunResult& run) {
       {"wall_clock", toJson(run.wallClock)},
       {"device_state", toJson(run.deviceState)},
   };
+  if (!run.slowestFrames(1).empty()) {
+    j["samples"]["path_time_s"] = run.framePathTimeS;
+    j["path"] = pathJson(run);
+  }
   j["budget"] = run.budget ? toJson(*run.budget)
                            : nlohmann::json{{"file", ""}, {"verdict", "none"}, {"over", nlohmann::json::array()}};
   const auto* firstBad = run.firstNonFinite();
@@ -209,6 +241,7 @@ LoadedTimings loadTimings(const std::filesystem::path& path) {
   }
   if (j.contains("samples") && j["samples"].contains("frame_gpu_ms")) {
     t.frameGpuMs = readSamples(j["samples"], "frame_gpu_ms", path, "samples");
+    if (j["samples"].contains("path_time_s")) t.framePathTimeS = readSamples(j["samples"], "path_time_s", path, "samples");
   }
   return t;
 }

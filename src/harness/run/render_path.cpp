@@ -73,6 +73,7 @@ void appendMeasurements(RunResult& total, const RunResult& round) {
         std::pair{&total.nodesReused, &round.nodesReused}}) {
     to->insert(to->end(), from->begin(), from->end());
   }
+  total.framePathTimeS.insert(total.framePathTimeS.end(), round.framePathTimeS.begin(), round.framePathTimeS.end());
   HarnessOverhead& o = total.overhead;
   o.loopWallMs += round.overhead.loopWallMs;
   o.workloadCallsMs += round.overhead.workloadCallsMs;
@@ -122,6 +123,25 @@ RenderedImages ConfigurationRenderer::readImages() {
   return {fromRendered(workload_->readHdr()), fromRendered(workload_->readDisplay())};
 }
 
+namespace {
+
+// The slowest path frames again, each opened alone as a still view at its path time: the frame it
+// was (camera.time renders the same image the path does at that time).
+std::vector<SlowFrame> renderSlowestFrames(const WorkloadOpener& open, const RenderRequest& request,
+                                           const RunResult& run) {
+  std::vector<SlowFrame> frames;
+  for (const std::size_t f : run.slowestFrames(request.slowestFrames)) {
+    render::WorkloadConfig config = request.workload;
+    config.knobs["camera.time"] = fmt::format("{}", run.framePathTimeS[f]);
+    ConfigurationRenderer still(open, config);
+    still.warmUp(1);
+    frames.push_back({f, run.framePathTimeS[f], still.readImages().display});
+  }
+  return frames;
+}
+
+}  // namespace
+
 RunArtifacts renderConfiguration(const WorkloadOpener& open, const RenderRequest& request) {
   ConfigurationRenderer renderer(open, request.workload);
   const uint32_t planned = request.warmup + request.frames;
@@ -164,6 +184,7 @@ RunArtifacts renderConfiguration(const WorkloadOpener& open, const RenderRequest
                   measuredFrames(a.run),
                   request.warmup,
                   request.workload.knobs};
+  if (request.slowestFrames > 0) a.slowest = renderSlowestFrames(open, request, a.run);
   return a;
 }
 

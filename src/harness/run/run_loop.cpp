@@ -38,6 +38,7 @@ void appendFrame(RunResult& run, std::map<std::string, std::size_t>& index, cons
   run.frameSubmitMs.push_back(frame.submitMs);
   run.nodesRecorded.push_back(frame.nodesRecorded);
   run.nodesReused.push_back(frame.nodesReused);
+  if (frame.pathTimeS >= 0.0) run.framePathTimeS.push_back(frame.pathTimeS);
 }
 
 void finalizeColumns(RunResult& run) {

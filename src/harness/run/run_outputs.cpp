@@ -53,6 +53,7 @@ void writeRunOutputs(const std::filesystem::path& dir, const RunArtifacts& a) {
   run.overhead.encodeMs = encoding.elapsedMs();
   if (a.golden.reference.width > 0) pictures.reference = encodePng(a.golden.reference);
   if (a.golden.heatMap.width > 0) pictures.heatMap = encodePng(a.golden.heatMap);
+  for (const SlowFrame& slow : a.slowest) pictures.slowest.push_back({slow.frame, slow.pathTimeS, encodePng(slow.display)});
   writeFileAtomic(dir / "timings.json", dumpJson(toJson(run)));
   writeFileAtomic(dir / "timings.csv", toCsv(run));
   writeFileAtomic(dir / "graph.dot", a.graphBrief);

@@ -28,6 +28,7 @@ Summary summarize(std::span<const double> samples) {
   summary.median = percentileOfSorted(sorted, 50.0);
   summary.p5 = percentileOfSorted(sorted, 5.0);
   summary.p95 = percentileOfSorted(sorted, 95.0);
+  summary.p99 = percentileOfSorted(sorted, 99.0);
   summary.mean = std::accumulate(sorted.begin(), sorted.end(), 0.0) / static_cast<double>(sorted.size());
   return summary;
 }

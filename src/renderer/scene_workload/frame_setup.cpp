@@ -1,4 +1,4 @@
-// Frame constants and draw groups: the CPU-side preparation of the uploaded scene.
+// Frame constants and draw groups: the CPU-side preparation of each frame's values.
 #include "gpu_upload.hpp"
 
 #include <fgb/scene/frustum.hpp>
@@ -28,8 +28,7 @@ constexpr uint32_t kTileSize = 16;
 
 // The far end of the cluster slices: the far plane, or with an infinite one the farthest corner
 // of the scene's bounds (no lit fragment lies beyond it).
-float clusterFar(const scene::Scene& scene) {
-  const scene::Camera& camera = scene.camera;
+float clusterFar(const scene::Scene& scene, const scene::Camera& camera) {
   if (std::isfinite(camera.farPlane)) return camera.farPlane;
   const scene::Aabb box = scene::relativeTo(scene.bounds(), camera.position);
   double farthest = 0.0;
@@ -42,8 +41,8 @@ float clusterFar(const scene::Scene& scene) {
 
 }  // namespace
 
-gpu::FrameConstants makeFrameConstants(const scene::Scene& scene, const features::RenderSettings& settings) {
-  const scene::Camera& camera = scene.camera;
+gpu::FrameConstants makeFrameConstants(const scene::Scene& scene, const scene::Camera& camera,
+                                       const features::RenderSettings& settings) {
   const float aspect = float(settings.width) / float(settings.height);
   gpu::FrameConstants c{};
   c.view = scene::viewMatrix(camera);
@@ -51,6 +50,10 @@ gpu::FrameConstants makeFrameConstants(const scene::Scene& scene, const features
   c.proj[1][1] = -c.proj[1][1];  // Vulkan's framebuffer Y points down; keep images upright
   c.viewProj = c.proj * c.view;
   c.invProj = glm::inverse(c.proj);
+  const auto frustum = scene::Frustum::fromMatrix(c.viewProj);
+  for (size_t i = 0; i < frustum.planes.size(); ++i) c.frustumPlanes[i] = frustum.planes[i];
+  // The particles' state lives in the still camera's render space (particle_feature.cpp).
+  c.anchorOffset = glm::vec4(glm::vec3(scene.camera.position - camera.position), 0.0f);
   // Camera-relative render space: world axes, origin at the camera (the view matrix is a rotation).
   c.cameraPosition = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
   if (scene.sun.enabled) {
@@ -63,7 +66,7 @@ gpu::FrameConstants makeFrameConstants(const scene::Scene& scene, const features
   c.viewport = {float(width), float(height), 1.0f / float(width), 1.0f / float(height)};
   // Exponential slices z = near * (far/near)^(slice/slices)  <=>  slice = log(z)*scale + bias, up to
   // a finite far (clusterFar) even when the projection's far plane is infinite.
-  const float far = clusterFar(scene);
+  const float far = clusterFar(scene, camera);
   const float logRatio = std::log(far / camera.nearPlane);
   const auto slices = float(settings.clusterSlices);
   c.depthRange = {camera.nearPlane, far, slices / logRatio, -slices * std::log(camera.nearPlane) / logRatio};
@@ -87,7 +90,7 @@ gpu::Exposure initialExposure(const scene::PostSettings& post) {
   return state;
 }
 
-void buildDrawGroups(const scene::Scene& scene, const glm::dvec3& cameraPosition, features::GpuScene& gpu) {
+DrawOrder drawOrder(const scene::Scene& scene, const glm::dvec3& cameraPosition) {
   // Opaque and masked instances share a group per (class, mesh); transparent ones get one each.
   std::map<std::pair<DrawClass, uint32_t>, std::vector<uint32_t>> shared;
   std::vector<std::pair<double, uint32_t>> transparent;
@@ -104,15 +107,15 @@ void buildDrawGroups(const scene::Scene& scene, const glm::dvec3& cameraPosition
   // Back to front: the multi-draw executes commands in order, which is the blend order.
   std::stable_sort(transparent.begin(), transparent.end(), [](auto a, auto b) { return a.first > b.first; });
 
-  gpu.groups.clear();
-  gpu.instanceOrder.clear();
+  DrawOrder order;
   auto addGroup = [&](DrawClass drawClass, uint32_t mesh, const std::vector<uint32_t>& members) {
-    features::DrawGroup group{mesh, drawClass, uint32_t(gpu.instanceOrder.size()), uint32_t(members.size())};
-    gpu.groups.push_back(group);
-    gpu.instanceOrder.insert(gpu.instanceOrder.end(), members.begin(), members.end());
+    features::DrawGroup group{mesh, drawClass, uint32_t(order.instanceOrder.size()), uint32_t(members.size())};
+    order.groups.push_back(group);
+    order.instanceOrder.insert(order.instanceOrder.end(), members.begin(), members.end());
   };
   for (const auto& [key, members] : shared) addGroup(key.first, key.second, members);
   for (const auto& [distance, index] : transparent) addGroup(DrawClass::Transparent, scene.instances[index].mesh, {index});
+  return order;
 }
 
 }  // namespace fgb::render

@@ -1,5 +1,7 @@
 #include "gpu_upload.hpp"
 
+#include "frame_update.hpp"
+
 #include "renderer/shared/visbuffer.h"
 
 #include <fgb/core/error.hpp>
@@ -148,39 +150,6 @@ std::span<const std::byte> bytesOf(const std::vector<T>& values) {
   return std::as_bytes(std::span(values));
 }
 
-// A double-precision box moved into render space (camera at the origin), rounded outwards to float
-// so the GPU's frustum test stays conservative.
-std::pair<glm::vec4, glm::vec4> renderSpaceBounds(const scene::Aabb& box, const glm::dvec3& origin) {
-  if (box.isEmpty()) return {glm::vec4(1.0f, 1.0f, 1.0f, 0.0f), glm::vec4(-1.0f, -1.0f, -1.0f, 0.0f)};
-  glm::vec4 lo(0.0f), hi(0.0f);
-  for (int axis = 0; axis < 3; ++axis) {
-    lo[axis] = std::nextafter(static_cast<float>(box.min[axis] - origin[axis]), -HUGE_VALF);
-    hi[axis] = std::nextafter(static_cast<float>(box.max[axis] - origin[axis]), HUGE_VALF);
-  }
-  return {lo, hi};
-}
-
-std::vector<gpu::Instance> gpuInstances(const scene::Scene& scene, const GpuScene& gpu) {
-  const glm::dvec3 origin = scene.camera.position;
-  const glm::dmat4 toRenderSpace = glm::translate(glm::dmat4(1.0), -origin);
-  std::vector<gpu::Instance> result(gpu.instanceOrder.size());
-  for (uint32_t group = 0; group < gpu.groups.size(); ++group) {
-    const auto& g = gpu.groups[group];
-    for (uint32_t slot = g.firstSlot; slot < g.firstSlot + g.capacity; ++slot) {
-      const auto& source = scene.instances[gpu.instanceOrder[slot]];
-      auto& out = result[slot];
-      // Composed in double, then rounded: the float matrix holds only the camera-relative offset.
-      out.model = glm::mat4(toRenderSpace * source.transform);
-      out.normalMatrix = glm::mat4(glm::mat3(glm::transpose(glm::inverse(glm::dmat3(source.transform)))));
-      std::tie(out.boundsMin, out.boundsMax) = renderSpaceBounds(source.worldBounds, origin);
-      out.material = source.material;
-      out.drawGroup = group;
-      out.triangles = scene.meshes[source.mesh].triangleCount();
-    }
-  }
-  return result;
-}
-
 std::vector<gpu::Material> gpuMaterials(const scene::Scene& scene, const std::vector<uint32_t>& textureIndices) {
   auto texture = [&](int32_t index) { return index < 0 ? -1 : int32_t(textureIndices.at(uint32_t(index))); };
   std::vector<gpu::Material> result;
@@ -198,29 +167,6 @@ std::vector<gpu::Material> gpuMaterials(const scene::Scene& scene, const std::ve
     out.emissiveTexture = texture(m.emissiveTexture);
     result.push_back(out);
   }
-  return result;
-}
-
-std::vector<gpu::DrawCommand> commandTemplate(const scene::Scene& scene, const GpuScene& gpu) {
-  std::vector<gpu::DrawCommand> result;
-  for (const auto& group : gpu.groups) {
-    const auto& mesh = scene.meshes[group.mesh];
-    result.push_back({mesh.indexCount, 0, mesh.firstIndex, int32_t(mesh.firstVertex), group.firstSlot});
-  }
-  return result;
-}
-
-std::vector<gpu::PointLight> gpuLights(const scene::Scene& scene) {
-  std::vector<gpu::PointLight> result;
-  for (const auto& light : scene.lights) {
-    // Shading divides by neither the radius nor the distance: 1/R travels in color.w. A radius that
-    // is not a positive finite number (scene files refuse it) uploads a light that adds nothing.
-    const bool reaches = light.radius > 0.0f && std::isfinite(light.radius);
-    const glm::vec3 renderSpace(light.position - scene.camera.position);
-    const glm::vec3 radiance = reaches ? light.color * light.intensity : glm::vec3(0.0f);
-    result.push_back({glm::vec4(renderSpace, light.radius), glm::vec4(radiance, reaches ? 1.0f / light.radius : 0.0f)});
-  }
-  if (result.empty()) result.emplace_back();  // a valid (unused) buffer keeps descriptors simple
   return result;
 }
 
@@ -299,8 +245,10 @@ GpuScene uploadScene(rhi::Device& device, const scene::Scene& scene, const featu
                      const features::RenderPath& path) {
   GpuScene gpu;
   gpu.scene = &scene;
-  gpu.constants = makeFrameConstants(scene, settings);
-  buildDrawGroups(scene, scene.camera.position, gpu);
+  gpu.constants = makeFrameConstants(scene, scene.camera, settings);
+  DrawOrder order = drawOrder(scene, scene.camera.position);
+  gpu.groups = std::move(order.groups);
+  gpu.instanceOrder = std::move(order.instanceOrder);
   gpu.instanceCount = uint32_t(gpu.instanceOrder.size());
   gpu.lightCount = uint32_t(scene.lights.size());
 
@@ -312,15 +260,11 @@ GpuScene uploadScene(rhi::Device& device, const scene::Scene& scene, const featu
     gpu.textures.push_back(uploader.texture(texture));
     textureIndices.push_back(device.sampledTextureIndex(gpu.textures.back()));
   }
-  gpu.instances = uploader.buffer("scene instances", bytesOf(gpuInstances(scene, gpu)), rhi::kBufferStorage);
   gpu.materials = uploader.buffer("scene materials", bytesOf(gpuMaterials(scene, textureIndices)), rhi::kBufferStorage);
-  gpu.lights = uploader.buffer("scene lights", bytesOf(gpuLights(scene)), rhi::kBufferStorage);
   const gpu::Exposure exposure = initialExposure(scene.post);
   gpu.exposure = uploader.buffer("exposure", std::as_bytes(std::span(&exposure, 1)), rhi::kBufferStorage);
   gpu.constants.buffers.x = device.storageBufferIndex(gpu.exposure);
-  gpu.frameConstants = uploader.buffer("frame constants", std::as_bytes(std::span(&gpu.constants, 1)), rhi::kBufferStorage);
-  gpu.commandTemplate = uploader.buffer("draw command template", bytesOf(commandTemplate(scene, gpu)),
-                                        rhi::kBufferTransferSrc | rhi::kBufferStorage);
+  createFrameBuffers(device, gpu);  // written before each frame (FrameUpdate)
   gpu.materialSampler = device.createSampler({"material", rhi::Filter::Linear, rhi::Filter::Linear, rhi::Filter::Linear,
                                               rhi::AddressMode::Repeat, 8.0f});
   gpu.linearClampSampler = device.createSampler({"linear clamp", rhi::Filter::Linear, rhi::Filter::Linear,

@@ -1,5 +1,5 @@
-// Uploads a cooked scene to the GPU: geometry, instances (ordered by draw group), materials,
-// lights, frame constants, the indirect-command template and textures with all mips. The copies
+// Uploads a cooked scene to the GPU: geometry, materials, textures with all mips, and creates the
+// per-frame buffers (frame_update.hpp writes them before each frame). The copies
 // run as one transfer node of a one-off frame graph ("Scene Upload"), whose imports leave every
 // resource in the state the frame graph's shaders read it in.
 #pragma once
@@ -12,14 +12,22 @@
 
 namespace fgb::render {
 
-// Camera, sun and cluster parameters for the scene's camera at the run's resolution.
-gpu::FrameConstants makeFrameConstants(const scene::Scene& scene, const features::RenderSettings& settings);
+// Camera, frustum, sun and cluster parameters for `camera` at the run's resolution (the simulation
+// step and flags are the frame update's: frame_update.hpp).
+gpu::FrameConstants makeFrameConstants(const scene::Scene& scene, const scene::Camera& camera,
+                                       const features::RenderSettings& settings);
 
 // The exposure state before the first frame: pre-exposed with post.exposure (see gpu::Exposure).
 gpu::Exposure initialExposure(const scene::PostSettings& post);
 
-// Instances grouped into indirect draw groups (opaque, masked, transparent back to front).
-void buildDrawGroups(const scene::Scene& scene, const glm::dvec3& cameraPosition, features::GpuScene& gpu);
+// Instances grouped into indirect draw groups (opaque, masked, transparent back to front from the
+// camera). Only the transparent groups' order depends on the camera: every group's first slot and
+// size, and the opaque and masked groups, are the same from any position.
+struct DrawOrder {
+  std::vector<features::DrawGroup> groups;  // in command order: opaque, masked, transparent
+  std::vector<uint32_t> instanceOrder;      // GPU instance i is scene instance instanceOrder[i]
+};
+DrawOrder drawOrder(const scene::Scene& scene, const glm::dvec3& cameraPosition);
 
 // Creates the GPU objects and runs the upload graph to completion; the cooked clusters too where the
 // path says ("upload": {"clusters": true}).

@@ -1,6 +1,14 @@
 // SceneWorkload: a scene file rendered by the render features through one compiled frame graph.
-#include <algorithm>
-#include <array>
+#include "frame_update.hpp"
+#include "gpu_upload.hpp"
+#include "image_readback.hpp"
+
+#include "render_paths.hpp"
+
+#include "../features/context/render_feature.hpp"
+#include "../features/finite_check/finite_check_feature.hpp"
+#include "../features/exposure/exposure_feature.hpp"
+
 #include <fgb/core/error.hpp>
 #include <fgb/core/stopwatch.hpp>
 #include <fgb/graph/critical_path.hpp>
@@ -12,15 +20,12 @@
 #include <fgb/scene/load.hpp>
 #include <fgb/scene/stats.hpp>
 #include <fgb/vulkan/backend.hpp>
+
+#include <algorithm>
+#include <array>
 #include <filesystem>
 #include <iostream>
-
-#include "../features/context/render_feature.hpp"
-#include "../features/exposure/exposure_feature.hpp"
-#include "../features/finite_check/finite_check_feature.hpp"
-#include "gpu_upload.hpp"
-#include "image_readback.hpp"
-#include "render_paths.hpp"
+#include <optional>
 
 namespace fgb::render {
 namespace {
@@ -71,6 +76,20 @@ uint32_t jsonCount(const nlohmann::json& section, const char* key, uint32_t fall
   return section[key].get<uint32_t>();
 }
 
+// --time-step, else the scene file's render.time_step, else 1/60 s (the particles' step before
+// camera paths existed: a still scene's frames are what they were).
+double timeStepOf(const WorkloadConfig& config, const scene::SceneDescription& description) {
+  if (config.timeStep > 0.0) return config.timeStep;
+  const nlohmann::json& renderer = description.renderer;
+  if (renderer.is_object() && renderer.contains("render") && renderer["render"].contains("time_step")) {
+    const nlohmann::json& step = renderer["render"]["time_step"];
+    if (!step.is_number() || !(step.get<double>() > 0.0) || !(step.get<double>() <= 60.0))
+      throw InputError(description.path.string() + ": field 'render.time_step': expected seconds in (0, 60]");
+    return step.get<double>();
+  }
+  return 1.0 / 60.0;
+}
+
 features::RenderSettings makeSettings(const WorkloadConfig& config, const scene::SceneDescription& description,
                                       uint32_t sampleCounts, const features::RenderPath& path) {
   const nlohmann::json render = description.renderer.is_object() && description.renderer.contains("render")
@@ -114,6 +133,7 @@ class SceneWorkload final : public Workload {
     deviceOptions.selector = config.device;
     deviceOptions.validation = config.validation;
     deviceOptions.pipelineCacheDir = (cacheDir / "pipelines").string();
+    deviceOptions.framesInFlight = features::kFramesInFlight;  // the per-frame buffers' copies
     device_ = vulkan::createDevice(deviceOptions);
     description_ = describeDevice(device_->adapter());
     settings_ = makeSettings(config, loaded_.description, device_->sampleCounts(), path_);
@@ -124,9 +144,12 @@ class SceneWorkload final : public Workload {
 
     gpu_ = uploadScene(*device_, loaded_.scene, settings_, path_);
     startup_.uploadMs = timer.lap();
+    frameUpdate_ = std::make_unique<FrameUpdate>(*device_, gpu_, loaded_.scene, settings_,
+                                                 FrameClock::of(loaded_.scene, timeStepOf(config, loaded_.description)));
     createFeatures();
     buildFrameGraph();
     startup_.graphMs = timer.lap();
+    simulateToStillTime();
     const rhi::PipelineStats pipelines = device_->pipelineStats();
     startup_.pipelinesMs = pipelines.creationMs;
     startup_.pipelines = pipelines.created;
@@ -135,9 +158,9 @@ class SceneWorkload final : public Workload {
 
   const DeviceDescription& device() const override { return description_; }
 
-  FrameTiming renderFrame() override { return timer_.execute(*device_, *graph_); }
+  FrameTiming renderFrame() override { return runFrame(rhi::RunMode::Sequential); }
   std::vector<FrameTiming> finish() override { return timer_.finish(*device_, *graph_); }
-  FrameTiming renderIsolatedFrame() override { return timer_.executeIsolated(*device_, *graph_); }
+  FrameTiming renderIsolatedFrame() override { return runFrame(rhi::RunMode::Isolated); }
   std::vector<double> criticalPathShares(const std::vector<double>& costMs) const override {
     return graph::criticalPath(graph::schedulePredecessors(graph_->compiled()), costMs).shareOfPath;
   }
@@ -180,6 +203,34 @@ class SceneWorkload final : public Workload {
   [[nodiscard]] const graph::FrameGraph& declaration() const { return graph_->declaration(); }
 
  private:
+  // A frame: its per-frame values written into the copy it owns, then executed (Isolated: each
+  // pass alone on an idle device, the calibration).
+  FrameTiming runFrame(rhi::RunMode mode) {
+    const uint64_t execution = graph_->executions();
+    // The copy this frame writes was last read kFramesInFlight frames ago: wait for that one (the
+    // executor would wait for it anyway; that is throttling, not the frame's CPU time).
+    if (const auto& reader = readers_[execution % features::kFramesInFlight]) device_->wait(*reader);
+    Stopwatch update;
+    frameUpdate_->write(execution);
+    const double updateMs = update.lap();
+    const FrameClock& clock = frameUpdate_->clock();
+    const double pathTimeS = clock.flies ? clock.pathTime(execution) : -1.0;
+    FrameTiming timing = mode == rhi::RunMode::Isolated
+                             ? timer_.executeIsolated(*device_, *graph_, updateMs, pathTimeS)
+                             : timer_.execute(*device_, *graph_, updateMs, pathTimeS);
+    readers_[execution % features::kFramesInFlight] = timer_.lastTicket();
+    return timing;
+  }
+
+  // camera.time=T: the executions that simulate the particles up to T, all but the last, run now
+  // (not measured), so the first measured frame shows the particles at T, as the path does.
+  void simulateToStillTime() {
+    const auto& steps = frameUpdate_->clock().stillSteps;
+    if (!steps) return;
+    while (graph_->executions() + 1 < *steps) renderFrame();
+    (void)timer_.finish(*device_, *graph_);  // their timings are dropped
+  }
+
   void createFeatures() {
     RenderPathPlan plan = planRenderPath(path_);
     features_ = std::move(plan.features);
@@ -276,6 +327,8 @@ class SceneWorkload final : public Workload {
   graph::Format displayFormat_ = features::kDisplayFormat;  // holds sRGB-encoded bytes in either format
   rhi::TextureId hdrTexture_;
   rhi::TextureId displayTexture_;
+  std::unique_ptr<FrameUpdate> frameUpdate_;
+  std::array<std::optional<rhi::RunTicket>, features::kFramesInFlight> readers_;  // the last execution per copy
   std::unique_ptr<rhi::ExecutableGraph> graph_;
   std::unique_ptr<ImageReadback> hdrReadback_;
   std::unique_ptr<ImageReadback> displayReadback_;

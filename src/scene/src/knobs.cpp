@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <functional>
+#include <cmath>
 #include <limits>
 
 namespace fgb::scene {
@@ -67,6 +68,27 @@ void translateScene(Scene& scene, const glm::dvec3& offset) {
   for (Emitter& emitter : scene.emitters) emitter.position += offset;
   scene.camera.position += offset;
   scene.camera.target += offset;
+  for (CameraKey& key : scene.cameraPath.keys()) {
+    key.position += offset;
+    key.target += offset;
+  }
+}
+
+// camera.time=T: the renderer holds the view at the path's time T (Scene::stillTime), with the
+// particles simulated up to T. The path stays: the still view is computed from it exactly as the
+// path's frame at T is, and the particles keep their space (the still camera's).
+void stillAt(Scene& scene, double time) { scene.stillTime = time; }
+
+// camera.distance=F: the camera F times as far from its target (every path key too), the far plane
+// moved with it unless infinite, so what lies behind the target stays inside it.
+void scaleCameraDistance(Scene& scene, double factor) {
+  const auto scaled = [factor](const glm::dvec3& position, const glm::dvec3& target) {
+    return target + (position - target) * factor;
+  };
+  Camera& camera = scene.camera;
+  camera.position = scaled(camera.position, camera.target);
+  if (std::isfinite(camera.farPlane)) camera.farPlane = static_cast<float>(camera.farPlane * factor);
+  for (CameraKey& key : scene.cameraPath.keys()) key.position = scaled(key.position, key.target);
 }
 
 // One scene knob, one line of the table below: its registry entry with its reference role, and
@@ -114,6 +136,12 @@ const std::vector<SceneKnob>& sceneKnobs() {
            [](Scene& s, const KnobValue& v) { s.camera.position = vec3(v); }),
       knob(typed("camera.target", KnobType::Vec3, "camera target x,y,z"), Content,
            [](Scene& s, const KnobValue& v) { s.camera.target = vec3(v); }),
+      knob(withWords(typed("camera.path", KnobType::Word, "none: the still view instead of the scene's path"), {"none"}),
+           Content, [](Scene& s, const KnobValue&) { s.cameraPath = {}; }),
+      knob(number("camera.time", 0.0, 1e6, false, "still view at this path time, s (particles simulated to it)"), Content,
+           [](Scene& s, const KnobValue& v) { stillAt(s, number(v)); }),
+      knob(number("camera.distance", 0.0, 1e6, true, "camera distance from its target times F (far plane too)"), Content,
+           [](Scene& s, const KnobValue& v) { scaleCameraDistance(s, number(v)); }),
       knob(withWords(number("post.exposure", 0.0, kInf, true, "tone-mapping exposure (auto: metered)"), {"auto"}), Look,
            [](Scene& s, const KnobValue& v) {
              s.post.autoExposure = !std::holds_alternative<double>(v);

@@ -1,5 +1,6 @@
 // loadScene: parts through the cooked cache, then scene-file and knob overrides.
 #include <fgb/scene/load.hpp>
+#include <fgb/scene/camera_path.hpp>
 
 #include <fgb/core/error.hpp>
 #include <fgb/scene/cache.hpp>
@@ -145,6 +146,7 @@ void applyDescription(Scene& scene, const SceneDescription& d) {
     scene.hasCamera = true;
   }
   applyCameraOverrides(scene.camera, d.camera, d.path.string());
+  if (d.camera.is_object() && d.camera.contains("path")) scene.cameraPath = parseCameraPath(d.camera["path"], d.path.string());
   applyPostOverrides(scene.post, d.post, d.path.string());
 }
 

@@ -1,6 +1,8 @@
 // Scene file parsing and validation.
 #include <fgb/scene/scene_file.hpp>
 
+#include <fgb/scene/camera_path.hpp>
+
 #include "json_fields.hpp"
 
 #include <glm/ext/matrix_transform.hpp>
@@ -152,7 +154,7 @@ void applyCameraOverrides(Camera& camera, const json& overrides, const std::stri
   if (overrides.is_null()) return;
   const Fields f(where);
   f.object(overrides, "camera");
-  f.onlyKeys(overrides, "camera", {"position", "target", "up", "fov_deg", "near", "far"});
+  f.onlyKeys(overrides, "camera", {"position", "target", "up", "fov_deg", "near", "far", "path"});  // path: parseCameraPath
   if (overrides.contains("position")) camera.position = f.dvec3(overrides["position"], "camera.position");
   if (overrides.contains("target")) camera.target = f.dvec3(overrides["target"], "camera.target");
   if (overrides.contains("up")) camera.up = f.vec3(overrides["up"], "camera.up");
@@ -236,6 +238,7 @@ SceneDescription parseSceneText(const std::string& text, const std::filesystem::
     d.camera = root["camera"];
     Camera probe;  // validate now so a bad camera fails before any loading
     applyCameraOverrides(probe, d.camera, path.string());
+    if (d.camera.contains("path")) parseCameraPath(d.camera["path"], path.string());
   }
   if (root.contains("post")) {
     d.post = root["post"];

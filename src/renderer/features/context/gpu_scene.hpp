@@ -51,29 +51,48 @@ struct ClusterGeometry {
   uint64_t triangles = 0;  // triangles of all draws: the most "Triangle Filter" can keep
 };
 
+// Executions of the frame graph that may be pending on the GPU at once (rhi::DeviceOptions), and
+// so the copies of the per-frame values: execution e reads copy e % kFramesInFlight, which the
+// host rewrites only once execution e - kFramesInFlight has completed.
+inline constexpr uint32_t kFramesInFlight = 2;
+
+// One frame in flight's copy of the values that change per frame: host-visible buffers the
+// shaders read directly (indices: bindless storage-buffer indices, fixed for the buffer's life).
+struct FrameBuffers {
+  rhi::BufferId constants;        // gpu::FrameConstants (camera, frustum planes, simulation step)
+  rhi::BufferId instances;        // gpu::Instance[] in render space, ordered by draw group
+  rhi::BufferId lights;           // gpu::PointLight[] in render space (at least one entry)
+  rhi::BufferId commandTemplate;  // gpu::DrawCommand[], instanceCount 0, transparent groups back to front
+  uint32_t constantsIndex = 0;
+  uint32_t instancesIndex = 0;
+  uint32_t lightsIndex = 0;
+};
+
 struct GpuScene {
   const scene::Scene* scene = nullptr;
   rhi::BufferId vertices;          // all attribute streams (vertex + storage usage)
   VertexStreams streams;
   rhi::BufferId indices;           // uint32, mesh-local
-  rhi::BufferId instances;         // gpu::Instance[], ordered by draw group
   rhi::BufferId materials;         // gpu::Material[]
-  rhi::BufferId lights;            // gpu::PointLight[] (at least one entry)
-  rhi::BufferId frameConstants;    // gpu::FrameConstants
   rhi::BufferId exposure;          // gpu::Exposure (written by the "Exposure" node with auto exposure)
-  rhi::BufferId commandTemplate;   // gpu::DrawCommand[] with instanceCount 0 (reset source)
+  // The per-frame values (camera, camera-relative instances and lights, transparent order), one
+  // copy per frame in flight, written by the host before the frame's submit (frame_update.cpp).
+  std::array<FrameBuffers, kFramesInFlight> frames;
   rhi::SamplerId materialSampler;
   rhi::SamplerId linearClampSampler;
   std::vector<rhi::TextureId> textures;
   std::vector<DrawGroup> groups;   // in command order: opaque, masked, transparent
   std::vector<uint32_t> instanceOrder;  // GPU instance i is scene instance instanceOrder[i]
-  gpu::FrameConstants constants{};   // what frameConstants holds
+  gpu::FrameConstants constants{};   // the still camera's constants (the grid and counts are every frame's)
+  gpu::FrameConstants current{};     // the frame being recorded: what its copy of the constants holds
   ClusterGeometry clusterGeometry; // visibility-buffer path only
   uint32_t instanceCount = 0;
   uint32_t lightCount = 0;
 
   // Range of groups of one class: [first, first + count).
   [[nodiscard]] std::pair<uint32_t, uint32_t> groupRange(DrawClass drawClass) const;
+  // The copy an execution of the frame graph reads: a job's recording depends on its slot only.
+  [[nodiscard]] const FrameBuffers& frame(uint64_t execution) const { return frames[execution % kFramesInFlight]; }
 };
 
 // The frame's colour and depth targets. Forward passes draw into `color` (multisampled when

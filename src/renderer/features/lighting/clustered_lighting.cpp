@@ -43,12 +43,16 @@ graph::BufferHandle ClusteredLighting::declareBounds(graph::FrameGraph& graph) {
                                    kBoundsState, kBoundsState);
   auto node = graph.addNode("Cluster Bounds", graph::NodeType::Compute);
   bounds = node.write(bounds, Access::StorageReadWrite);  // read-write: contents kept when not rebuilt
-  const gpu::ClusterBoundsPush push{device_->storageBufferIndex(scene_->frameConstants),
-                                    device_->storageBufferIndex(bounds_), clusterCount_};
-  node.setJob([push, pipeline = boundsPipeline_, state = boundsState_, projection = scene_->constants.proj](
-                  graph::JobContext& context) {
+  gpu::ClusterBoundsPush push{0, device_->storageBufferIndex(bounds_), clusterCount_};
+  // The bounds depend on the projection only: rebuilt when the frame's differs from the one they
+  // were built for (a camera path that changes the field of view), so this recording depends on it.
+  node.setJob([push, pipeline = boundsPipeline_, state = boundsState_, scene = scene_](
+                  graph::JobContext& context) mutable {
+    auto& ctx = rhi::rhiContext(context);
+    const glm::mat4& projection = scene->current.proj;
     if (state->built && state->builtFor == projection) return;  // projection unchanged: keep bounds
-    auto& cmd = rhi::rhiContext(context).cmd();
+    push.frame = scene->frame(ctx.execution()).constantsIndex;
+    auto& cmd = ctx.cmd();
     cmd.bindPipeline(pipeline);
     cmd.push(push);
     cmd.dispatch((push.clusterCount + FGB_CLUSTER_BOUNDS_GROUP_SIZE - 1) / FGB_CLUSTER_BOUNDS_GROUP_SIZE);
@@ -72,13 +76,15 @@ void ClusteredLighting::declare(graph::FrameGraph& graph, Blackboard& board) {
   node.read(bounds, Access::StorageRead);
   lists.counts = node.write(lists.counts, Access::StorageWrite);
   lists.indices = node.write(lists.indices, Access::StorageWrite);
-  gpu::LightCullPush push{device_->storageBufferIndex(scene_->frameConstants), device_->storageBufferIndex(bounds_),
-                          device_->storageBufferIndex(scene_->lights), 0, 0};
+  gpu::LightCullPush push{0, device_->storageBufferIndex(bounds_), 0, 0, 0};
   const auto& grid = scene_->constants.clusterGrid;
   constexpr uint32_t kBlock = FGB_LIGHT_CULL_BLOCK;
   const std::array<uint32_t, 3> groups{(grid.x + kBlock - 1) / kBlock, (grid.y + kBlock - 1) / kBlock, grid.z};
-  node.setJob([push, pipeline = cullPipeline_, lists, groups](graph::JobContext& context) mutable {
+  node.setJob([push, pipeline = cullPipeline_, lists, groups, scene = scene_](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
+    const FrameBuffers& frame = scene->frame(ctx.execution());
+    push.frame = frame.constantsIndex;
+    push.lights = frame.lightsIndex;
     push.counts = ctx.storageBufferIndex(lists.counts);
     push.indices = ctx.storageBufferIndex(lists.indices);
     ctx.cmd().bindPipeline(pipeline);

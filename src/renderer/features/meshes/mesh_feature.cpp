@@ -4,7 +4,6 @@
 #include "renderer/shared/meshes.h"
 
 #include <fgb/rhi/job_context.hpp>
-#include <fgb/scene/frustum.hpp>
 
 #include <cstring>
 
@@ -137,10 +136,10 @@ MeshCullOutputs MeshFeature::declareCull(graph::FrameGraph& graph) {
   auto reset = graph.addNode("Mesh Cull Reset", graph::NodeType::Transfer);
   out.commands = reset.write(out.commands, Access::TransferDst);
   out.stats = reset.write(out.stats, Access::TransferDst);
-  reset.setJob([templ = scene.commandTemplate, commands = out.commands, stats = out.stats,
-                commandBytes](graph::JobContext& context) {
+  reset.setJob([&scene, commands = out.commands, stats = out.stats, commandBytes](graph::JobContext& context) {
     auto& ctx = rhi::rhiContext(context);
-    ctx.cmd().copyBuffer(templ, ctx.buffer(commands), commandBytes);
+    // This frame's template: the transparent groups' order is the frame's back-to-front order.
+    ctx.cmd().copyBuffer(scene.frame(ctx.execution()).commandTemplate, ctx.buffer(commands), commandBytes);
     ctx.cmd().fillBuffer(ctx.buffer(stats), 0, kStatsBytes, 0);
   });
   reset.recordingFixed();
@@ -150,9 +149,6 @@ MeshCullOutputs MeshFeature::declareCull(graph::FrameGraph& graph) {
   out.visible = cull.write(out.visible, Access::StorageWrite);
   out.stats = cull.write(out.stats, Access::StorageReadWrite);
   gpu::MeshCullPush push{};
-  const auto frustum = scene::Frustum::fromMatrix(scene.constants.viewProj);
-  for (size_t i = 0; i < 6; ++i) push.planes[i] = frustum.planes[i];
-  push.instances = device_->storageBufferIndex(scene.instances);
   push.instanceCount = scene.instanceCount;
   gpu::MeshCompactPush compact{};
   if (drawCount_) {
@@ -164,8 +160,11 @@ MeshCullOutputs MeshFeature::declareCull(graph::FrameGraph& graph) {
       compact.batches[c] = {first, count, 0, 0};
     }
   }
-  cull.setJob([push, compact, pipelines = pipelines_, out](graph::JobContext& context) mutable {
+  cull.setJob([push, compact, pipelines = pipelines_, out, &scene](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
+    const FrameBuffers& frame = scene.frame(ctx.execution());
+    push.frame = frame.constantsIndex;  // the frustum planes
+    push.instances = frame.instancesIndex;
     push.commands = ctx.storageBufferIndex(out.commands);
     push.visible = ctx.storageBufferIndex(out.visible);
     push.stats = ctx.storageBufferIndex(out.stats);
@@ -201,10 +200,7 @@ void MeshFeature::declareDraw(graph::FrameGraph& graph, Blackboard& board, std::
   constexpr graph::StageMask kForwardStages = kStageVertexShader | kStageFragmentShader;
   node.read(cull.visible, Access::StorageRead, kForwardStages);
   gpu::ForwardPush push{};
-  push.frame = device_->storageBufferIndex(scene.frameConstants);
-  push.instances = device_->storageBufferIndex(scene.instances);
   push.materials = device_->storageBufferIndex(scene.materials);
-  push.lights = device_->storageBufferIndex(scene.lights);
   push.clusterCounts = push.clusterIndices = rhi::kInvalidId;
   push.materialSampler = device_->samplerIndex(scene.materialSampler);
   push.flags =
@@ -220,6 +216,10 @@ void MeshFeature::declareDraw(graph::FrameGraph& graph, Blackboard& board, std::
                opaqueDepth = opaqueDepthSource(targets, depthTest), &scene](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
+    const FrameBuffers& frame = scene.frame(ctx.execution());
+    push.frame = frame.constantsIndex;
+    push.instances = frame.instancesIndex;
+    push.lights = frame.lightsIndex;
     push.visible = ctx.storageBufferIndex(cull.visible);
     push.opaqueDepth = opaqueDepth.push(ctx);
     if (clusters.counts.valid()) {
@@ -242,11 +242,12 @@ void MeshFeature::declareDepthPrepass(graph::FrameGraph& graph, Blackboard& boar
   targets.depth = node.setDepthStencil(targets.depth, graph::LoadOp::Clear, graph::ClearValue{{}, kDepthClear, 0});
   targets.depthCleared = true;
   gpu::ForwardPush push{};
-  push.frame = device_->storageBufferIndex(scene.frameConstants);
-  push.instances = device_->storageBufferIndex(scene.instances);
   node.setJob([push, pipeline = pipelines_.depthOnly, cull, batches = batchesOf(scene, {DrawClass::Opaque}),
                drawCount = drawCount_, &scene](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
+    const FrameBuffers& frame = scene.frame(ctx.execution());
+    push.frame = frame.constantsIndex;
+    push.instances = frame.instancesIndex;
     push.visible = ctx.storageBufferIndex(cull.visible);
     ctx.cmd().bindPipeline(pipeline);
     ctx.cmd().push(push);

@@ -121,9 +121,10 @@ void ParticleFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
   freeList = emit.write(freeList, Access::StorageReadWrite);
   const gpu::ParticleEmitPush emitPush{device_->storageBufferIndex(emitters_), device_->storageBufferIndex(pool_),
                                        device_->storageBufferIndex(freeList_), 0};
-  emit.setJob([push = emitPush, pipeline = emitPipeline_, emitters = emitterCount_](graph::JobContext& context) mutable {
+  emit.setJob([push = emitPush, pipeline = emitPipeline_, emitters = emitterCount_,
+               scene = scene_](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
-    push.frameIndex = uint32_t(ctx.execution());  // the simulation step: deterministic per frame
+    push.frame = scene->frame(ctx.execution()).constantsIndex;  // the simulation step and its index
     ctx.cmd().bindPipeline(pipeline);
     ctx.cmd().push(push);
     ctx.cmd().dispatch(emitters);
@@ -135,9 +136,11 @@ void ParticleFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
   args = update.write(args, Access::StorageReadWrite);
   alive = update.write(alive, Access::StorageWrite);
   gpu::ParticleUpdatePush updatePush{device_->storageBufferIndex(pool_), device_->storageBufferIndex(freeList_), 0, 0,
-                                     poolSize_};
-  update.setJob([push = updatePush, pipeline = updatePipeline_, args, alive](graph::JobContext& context) mutable {
+                                     poolSize_, 0};
+  update.setJob([push = updatePush, pipeline = updatePipeline_, args, alive,
+                 scene = scene_](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
+    push.frame = scene->frame(ctx.execution()).constantsIndex;  // the simulation step
     push.drawArgs = ctx.storageBufferIndex(args);
     push.aliveList = ctx.storageBufferIndex(alive);
     ctx.cmd().bindPipeline(pipeline);
@@ -155,14 +158,15 @@ void ParticleFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
   constexpr graph::StageMask kRenderStages = graph::kStageVertexShader | graph::kStageFragmentShader;
   render.read(alive, Access::StorageRead, kRenderStages);
   render.read(pool, Access::StorageRead, kRenderStages);
-  gpu::ParticleRenderPush renderPush{device_->storageBufferIndex(scene_->frameConstants),
+  gpu::ParticleRenderPush renderPush{0,
                                      device_->storageBufferIndex(pool_),
                                      device_->storageBufferIndex(emitters_),
                                      0,
                                      {}};
   render.setJob([push = renderPush, pipeline = renderPipeline_, quad = quadIndices_, args, alive,
-                 opaqueDepth = opaqueDepthSource(targets, depthTest_)](graph::JobContext& context) mutable {
+                 opaqueDepth = opaqueDepthSource(targets, depthTest_), scene = scene_](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
+    push.frame = scene->frame(ctx.execution()).constantsIndex;
     push.aliveList = ctx.storageBufferIndex(alive);
     push.opaqueDepth = opaqueDepth.push(ctx);
     ctx.cmd().bindPipeline(pipeline);

@@ -4,7 +4,6 @@
 #include <cstddef>
 #include <cstring>
 #include <fgb/rhi/job_context.hpp>
-#include <fgb/scene/frustum.hpp>
 #include <fgb/shaders/registry.hpp>
 
 #include "../context/handles.hpp"
@@ -12,6 +11,16 @@
 
 namespace fgb::features {
 namespace {
+
+// The execution's copies of the per-frame buffers (FrameBuffers) into a push block: the camera,
+// frustum planes and HiZ flag (frame), render-space instances and lights.
+template <class Push>
+void useFrame(Push& push, const GpuScene& scene, uint64_t execution) {
+  const FrameBuffers& frame = scene.frame(execution);
+  push.frame = frame.constantsIndex;
+  push.instances = frame.instancesIndex;
+  if constexpr (requires { push.lights; }) push.lights = frame.lightsIndex;
+}
 
 using graph::Access;
 constexpr graph::QueueClass kQueue = graph::QueueClass::Graphics;
@@ -183,8 +192,6 @@ VisBufferFeature::Buffers VisBufferFeature::declareBuffers(graph::FrameGraph& gr
   b.depth = graph.createBuffer("visibility depth", {uint64_t{4} * pixels, {}});
 
   gpu::VisPush& p = b.push;
-  p.frame = device_->storageBufferIndex(scene.frameConstants);
-  p.instances = device_->storageBufferIndex(scene.instances);
   p.materials = device_->storageBufferIndex(scene.materials);
   p.draws = device_->storageBufferIndex(geometry.draws);
   p.clusters = device_->storageBufferIndex(geometry.clusters);
@@ -197,7 +204,6 @@ VisBufferFeature::Buffers VisBufferFeature::declareBuffers(graph::FrameGraph& gr
   p.largeCapacity = largeCapacity_;
   p.tileJobCapacity = tileJobCapacity_;
   p.materialSampler = device_->samplerIndex(scene.materialSampler);
-  p.lights = device_->storageBufferIndex(scene.lights);
   p.clusterCounts = p.clusterIndices = rhi::kInvalidId;
   p.flags =
       (reversedZ_ ? gpu::kFlagReversedZ : 0u) | (device_->adapter().type == "cpu" ? gpu::kFlagSerialSubgroups : 0u);
@@ -250,10 +256,6 @@ void VisBufferFeature::declareClusterCull(graph::FrameGraph& graph, Buffers& b) 
     b.candidates = node.write(b.candidates, Access::StorageWrite);
   }
   gpu::ClusterCullPush push{};
-  const auto frustum = scene::Frustum::fromMatrix(scene_->constants.viewProj);
-  for (size_t i = 0; i < 6; ++i) push.planes[i] = frustum.planes[i];
-  push.frame = b.push.frame;
-  push.instances = b.push.instances;
   push.draws = b.push.draws;
   push.clusters = b.push.clusters;
   if (drawCount_ > gpu::kCullDrawCountMask)
@@ -262,15 +264,16 @@ void VisBufferFeature::declareClusterCull(graph::FrameGraph& graph, Buffers& b) 
       drawCount_ | (reversedZ_ ? gpu::kCullReversedZ : 0u) | (occlusionHoldBack_ ? gpu::kCullHoldBackOdd : 0u);
   node.setJob([push, pipelines = pipelines_, counters = b.early.counters, visible = b.visible, args = b.early.cullArgs,
                hiz = b.hiz, candidates = b.candidates,
-               jobCapacity = tileJobCapacity_](graph::JobContext& context) mutable {
+               jobCapacity = tileJobCapacity_, scene = scene_](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
+    useFrame(push, *scene, ctx.execution());
     push.counters = ctx.storageBufferIndex(counters);
     push.visible = ctx.storageBufferIndex(visible);
     if (hiz.valid()) {
       push.occlusion = ctx.storageBufferIndex(hiz) | ctx.storageBufferIndex(candidates) << 16;
-      // The first frame has no previous depths: no HiZ test.
-      if (ctx.execution() > 0) push.drawCount |= gpu::kCullOcclusion;
+      // Whether last frame left a pyramid is the frame's flag (kFrameHizValid), not the recording's.
+      push.drawCount |= gpu::kCullOcclusion;
     }
     const uint32_t drawCount = push.drawCount & gpu::kCullDrawCountMask;
     cmd.bindPipeline(pipelines.cull);
@@ -295,15 +298,14 @@ void VisBufferFeature::declareClusterCullLate(graph::FrameGraph& graph, Buffers&
   b.visible = node.write(b.visible, Access::StorageReadWrite);
   b.late.cullArgs = node.write(b.late.cullArgs, Access::StorageReadWrite);  // see cullArgs in Cluster Cull
   gpu::LateCullPush push{};
-  push.frame = b.push.frame;
-  push.instances = b.push.instances;
   push.draws = b.push.draws;
   push.clusters = b.push.clusters;
   push.reversedZ = reversedZ_ ? 1u : 0u;
-  node.setJob([push, pipelines = pipelines_, b, drawCount = drawCount_,
-               jobCapacity = tileJobCapacity_](graph::JobContext& context) mutable {
+  node.setJob([push, pipelines = pipelines_, b, drawCount = drawCount_, jobCapacity = tileJobCapacity_,
+               scene = scene_](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
+    useFrame(push, *scene, ctx.execution());
     push.hiz = ctx.storageBufferIndex(b.hiz);
     push.candidates = ctx.storageBufferIndex(b.candidates);
     push.earlyArgs = ctx.storageBufferIndex(b.early.cullArgs);
@@ -336,9 +338,10 @@ void VisBufferFeature::declareTriangleFilter(graph::FrameGraph& graph, Buffers& 
   // Phase 2's filter also says whether "HiZ Build (late)" has anything to do (hiz_args.comp).
   const bool late = &phase == &b.late;
   if (late) b.hizLateArgs = node.write(b.hizLateArgs, Access::StorageWrite);
-  node.setJob([push = b.push, pipelines = pipelines_, b, phase, late](graph::JobContext& context) mutable {
+  node.setJob([push = b.push, pipelines = pipelines_, b, phase, late, scene = scene_](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
+    useFrame(push, *scene, ctx.execution());
     push.counters = ctx.storageBufferIndex(phase.counters);
     push.args = ctx.storageBufferIndex(phase.cullArgs);
     push.visible = ctx.storageBufferIndex(b.visible);
@@ -373,9 +376,11 @@ void VisBufferFeature::declareRaster(graph::FrameGraph& graph, Buffers& b, const
   node.read(b.largeList, Access::StorageRead);
   node.read(b.tileJobs, Access::StorageRead);
   b.writeWords(node, Access::StorageReadWrite);
-  node.setJob([push = b.push, pipelines = pipelines_, b, args = phase.rasterArgs](graph::JobContext& context) mutable {
+  node.setJob([push = b.push, pipelines = pipelines_, b, args = phase.rasterArgs,
+               scene = scene_](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
+    useFrame(push, *scene, ctx.execution());
     push.args = ctx.storageBufferIndex(args);
     push.visible = ctx.storageBufferIndex(b.visible);
     push.smallList = ctx.storageBufferIndex(b.smallList);
@@ -454,10 +459,11 @@ void VisBufferFeature::declareShade(graph::FrameGraph& graph, Blackboard& board,
   }
   // Shading pre-exposes what it writes, like every colour pass (auto exposure: this frame's state).
   if (targets.exposure.valid()) node.read(targets.exposure, Access::StorageRead);
-  node.setJob([push = b.push, pipelines = pipelines_, b, hdr = targets.hdr, clusters,
-               stats](graph::JobContext& context) mutable {
+  node.setJob([push = b.push, pipelines = pipelines_, b, hdr = targets.hdr, clusters, stats,
+               scene = scene_](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
+    useFrame(push, *scene, ctx.execution());
     cmd.copyBuffer(ctx.buffer(b.early.rasterArgs), ctx.buffer(stats), sizeof(VisCounters));
     if (b.late.rasterArgs.valid()) {
       const rhi::BufferCopy second{0, sizeof(VisCounters), sizeof(VisCounters)};

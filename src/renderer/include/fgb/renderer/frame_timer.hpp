@@ -9,6 +9,7 @@
 #include <fgb/renderer/workload.hpp>
 #include <fgb/rhi/device.hpp>
 #include <string>
+#include <tuple>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -22,9 +23,13 @@ class GraphFrameTimer {
  public:
   // Executes `graph` once and returns the oldest frame whose timings are complete, or a timing
   // with no passes when none is ready yet (timestamps of frame N normally arrive during N+1).
-  FrameTiming execute(rhi::Device& device, rhi::ExecutableGraph& graph) {
+  // `updateMs`: host time spent writing this frame's per-frame values, counted as its CPU time.
+  // `pathTimeS`: the frame's camera-path time (FrameTiming::pathTimeS).
+  FrameTiming execute(rhi::Device& device, rhi::ExecutableGraph& graph, double updateMs = 0.0,
+                      double pathTimeS = -1.0) {
     const rhi::RunTicket ticket = device.execute(graph);
-    hostTimes_[ticket.execution] = graph.lastHostTimes();
+    lastTicket_ = ticket;
+    hostTimes_[ticket.execution] = {graph.lastHostTimes(), updateMs, pathTimeS};
     collect(graph);
     if (ready_.empty()) return {};
     FrameTiming oldest = std::move(ready_.front());
@@ -34,13 +39,17 @@ class GraphFrameTimer {
 
   // Executes `graph` once with each node alone on an idle device (rhi::RunMode::Isolated) and
   // returns that frame's timings, its passes' isolated costs. Frames not handed back yet are
-  // dropped: calibrate after finish().
-  FrameTiming executeIsolated(rhi::Device& device, rhi::ExecutableGraph& graph) {
+  // dropped: calibrate after finish(). `updateMs`, `pathTimeS`: as for execute().
+  FrameTiming executeIsolated(rhi::Device& device, rhi::ExecutableGraph& graph, double updateMs = 0.0,
+                              double pathTimeS = -1.0) {
     const rhi::RunTicket ticket = device.execute(graph, rhi::RunMode::Isolated);
-    hostTimes_[ticket.execution] = graph.lastHostTimes();
+    lastTicket_ = ticket;
+    hostTimes_[ticket.execution] = {graph.lastHostTimes(), updateMs, pathTimeS};
     std::vector<FrameTiming> done = finish(device, graph);
     return done.empty() ? FrameTiming{} : std::move(done.back());
   }
+
+  [[nodiscard]] const rhi::RunTicket& lastTicket() const { return lastTicket_; }
 
   // Waits for the device and returns the timings of every frame not handed back yet.
   std::vector<FrameTiming> finish(rhi::Device& device, rhi::ExecutableGraph& graph) {
@@ -72,18 +81,26 @@ class GraphFrameTimer {
     frame.gpuFrameMs = timings.gpuMs;
     frame.gpuFrameStartMs = timings.startMs;
     if (const auto host = hostTimes_.find(timings.execution); host != hostTimes_.end()) {
-      frame.cpuFrameMs = host->second.recordMs;
-      frame.submitMs = host->second.submitMs;
-      frame.nodesRecorded = host->second.nodesRecorded;
-      frame.nodesReused = host->second.nodesReused;
+      frame.cpuFrameMs = host->second.updateMs + host->second.graph.recordMs;
+      frame.submitMs = host->second.graph.submitMs;
+      frame.nodesRecorded = host->second.graph.nodesRecorded;
+      frame.nodesReused = host->second.graph.nodesReused;
+      frame.pathTimeS = host->second.pathTimeS;
       hostTimes_.erase(host);
     }
     return frame;
   }
 
+  rhi::RunTicket lastTicket_;
   std::deque<FrameTiming> ready_;
-  // Host times (recording, submit, nodes recorded/reused) by execution, until its timings arrive.
-  std::unordered_map<uint64_t, rhi::ExecutableGraph::HostTimes> hostTimes_;
+  // Host times (per-frame values written, recording, submit, nodes recorded/reused) and the
+  // camera-path time by execution, until its timings arrive.
+  struct HostFrame {
+    rhi::ExecutableGraph::HostTimes graph;
+    double updateMs = 0.0;
+    double pathTimeS = -1.0;
+  };
+  std::unordered_map<uint64_t, HostFrame> hostTimes_;
 };
 
 }  // namespace fgb::render

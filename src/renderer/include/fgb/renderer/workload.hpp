@@ -40,6 +40,9 @@ struct WorkloadConfig {
   // --check-finite: a reduction node after every pass that writes float colour data counts its
   // NaN / Inf / above-half-of-R16F-max pixels (nonFiniteCounts()); off: those nodes do not exist.
   bool checkFinite = false;
+  // --time-step: seconds between frames, for the camera along its path (camera.path) and the
+  // particles' simulation step. 0: the scene file's render.time_step, else 1/60.
+  double timeStep = 0.0;
 };
 
 // --check-finite counts of one pass (the last rendered frame): pixels with a NaN, an Inf, or a
@@ -66,13 +69,17 @@ struct FrameTiming {
   // The first pass start on the device's timestamp clock (ms): differences between frames give
   // the GPU's idle time between them. -1 where unknown.
   double gpuFrameStartMs = -1.0;
-  // Host time the frame costs: recording its command buffers (the frame graph's executor and the
-  // features' jobs). Not the time blocked while the GPU finishes an earlier frame in flight, nor
-  // vkQueueSubmit, which on lavapipe may execute the frame itself (GPU time showing up on the host).
+  // Host time the frame costs: writing its per-frame values (camera, instances, lights) and
+  // recording its command buffers (the frame graph's executor and the features' jobs). Not the
+  // time blocked while the GPU finishes an earlier frame in flight, nor vkQueueSubmit, which on
+  // lavapipe may execute the frame itself (GPU time showing up on the host).
   double cpuFrameMs = 0.0;
   double submitMs = 0.0;       // vkQueueSubmit of the frame (host)
   uint32_t nodesRecorded = 0;  // compiled nodes whose job recorded this frame
   uint32_t nodesReused = 0;    // compiled nodes whose kept commands were submitted again
+  // Along a camera path: the frame's path time, seconds (render it alone with camera.time=T).
+  // Negative for a still camera.
+  double pathTimeS = -1.0;
 };
 
 // Linear RGBA float pixels, row-major, top row first.

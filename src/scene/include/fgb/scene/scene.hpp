@@ -18,6 +18,8 @@
 // Cooked scenes come from loadScene() (load.hpp); stats() (stats.hpp) summarises one.
 #pragma once
 
+#include <fgb/scene/camera_path.hpp>
+
 #include <glm/ext/matrix_double4x4.hpp>
 #include <glm/ext/vector_double3.hpp>
 #include <glm/mat4x4.hpp>
@@ -26,6 +28,7 @@
 #include <glm/vec4.hpp>
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -223,6 +226,13 @@ struct Scene {
   std::vector<Emitter> emitters;
   Camera camera;
   bool hasCamera = false;  // false: the loader fits a camera to the bounds
+  // camera.path of the scene file (empty: a still camera). The renderer flies it; `camera` is the
+  // still view (camera.path=none), whose position is also the origin of the particles' space.
+  CameraPath cameraPath;
+  // camera.time: the renderer shows the path's view at this time and holds it. Particles are
+  // simulated up to it with the run's fixed time step and then hold still, so the frame equals
+  // the path's frame at that time. Unset: a still view's particles advance one step per frame.
+  std::optional<double> stillTime;
   PostSettings post;
 
   RepairCounters repairs;

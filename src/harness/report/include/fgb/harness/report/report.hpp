@@ -18,6 +18,14 @@ struct ReportImages {
   std::vector<uint8_t> reference;  // the golden's display image
   std::vector<uint8_t> heatMap;    // FLIP heat map of frame against reference
   uint32_t width = 0, height = 0;
+  // Along a camera path: the slowest frames rendered alone (PNG), slowest first, with their
+  // measured-frame index and path time.
+  struct SlowFrame {
+    std::size_t frame = 0;
+    double pathTimeS = 0.0;
+    std::vector<uint8_t> png;
+  };
+  std::vector<SlowFrame> slowest;
 };
 
 std::string markdownReport(const RunResult& run);

@@ -20,6 +20,8 @@ struct Budget {
   double tolerance = 0.10;                   // relative: a pass fails above budget * (1 + tolerance)
   std::vector<std::pair<std::string, double>> passesMs;  // in file order
   std::optional<double> frameMs;
+  // frame_p99_ms: the 99th percentile of the GPU frame time (along a camera path, the slow frames).
+  std::optional<double> frameP99Ms;
 };
 
 // Throws InputError naming the file and field on any problem.
@@ -54,6 +56,7 @@ struct MeasuredMedians {
   std::map<std::string, double> passMs;  // measured (not culled) passes only
   std::string passCost = "span";         // "isolated" where the run was calibrated, else "span"
   std::optional<double> frameMs;
+  std::optional<double> frameP99Ms;  // p99 of the GPU frame time
   uint32_t width = 0, height = 0, msaa = 0;
 };
 

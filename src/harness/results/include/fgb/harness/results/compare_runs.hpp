@@ -80,8 +80,19 @@ struct PassComparison {
   std::string verdict;
 };
 
+// Camera paths: the GPU frame time frame by frame, where every run of both sides flew the same
+// path times (each frame's geometric mean over a side's runs). Informational: the verdict stays
+// the medians' (frames of one run share its load).
+struct PathFrameComparison {
+  std::size_t frame = 0;
+  double pathTimeS = 0.0;
+  double beforeMs = 0.0, afterMs = 0.0;
+  [[nodiscard]] double ratio() const { return beforeMs > 0.0 ? afterMs / beforeMs : 0.0; }
+};
+
 struct RunsComparison {
   std::vector<PassComparison> rows;
+  std::vector<PathFrameComparison> pathFrames;  // empty unless both sides flew the same path times
   CompareRunsOptions options;
   RunNoise model;
   std::size_t beforeRuns = 0, afterRuns = 0;

@@ -78,6 +78,7 @@ struct RunResult {
   std::map<std::string, double> stats;
   std::vector<PassRecord> passes;  // declaration order
   std::vector<double> frameGpuMs, frameCpuMs;
+  std::vector<double> framePathTimeS;  // along a camera path: each measured frame's path time (else empty)
   Summary frameGpu, frameCpu;
   // Per measured frame: vkQueueSubmit's host time, and the nodes recorded and reused (kept
   // command buffers). Their medians land in frameSubmit and stats nodes_recorded/nodes_reused.
@@ -97,6 +98,8 @@ struct RunResult {
   // maximum; null when none did (or nothing was checked).
   const render::NonFiniteCounts* firstNonFinite() const;
   MeasuredMedians medians() const;
+  // Along a camera path: the measured frames' indices, slowest GPU frame first (at most `count`).
+  std::vector<std::size_t> slowestFrames(std::size_t count) const;
 };
 
 // Fills the summaries and the unstable flags from the samples.
@@ -114,6 +117,7 @@ struct LoadedTimings {
   std::string deviceType;  // "cpu", "discrete", "integrated", ... ("" when the file has none)
   std::vector<PassRecord> passes;  // with samples
   std::vector<double> frameGpuMs;
+  std::vector<double> framePathTimeS;  // a path run's frame times (empty for a still camera)
 };
 LoadedTimings loadTimings(const std::filesystem::path& path);
 

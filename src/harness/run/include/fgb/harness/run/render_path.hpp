@@ -49,6 +49,9 @@ struct RenderRequest {
   // isolated costs and critical-path shares); 0 skips it.
   uint32_t isolateFrames = 0;
   bool graphDumps = false;                   // fill graphBrief / graphFull
+  // Along a camera path: render this many of the slowest measured frames again, each alone at its
+  // path time (camera.time=T, its particles simulated to T), for the report's thumbnails.
+  uint32_t slowestFrames = 0;
   ProgressCallback progress;                 // after every frame: (rendered, planned); may be empty
 };
 

@@ -22,9 +22,17 @@ struct GoldenPictures {
   Image heatMap;
 };
 
+// One of the slowest frames along a camera path, rendered again alone (camera.time=T).
+struct SlowFrame {
+  std::size_t frame = 0;  // index among the measured frames
+  double pathTimeS = 0.0;
+  Image display;  // tone-mapped, as RenderedImages::display
+};
+
 struct RunArtifacts {
   RunResult run;
   RenderedImages images;
+  std::vector<SlowFrame> slowest;  // RenderRequest::slowestFrames, slowest first (report thumbnails)
   std::string graphBrief, graphFull;
   GoldenPictures golden;  // empty (0x0) without --golden
 };

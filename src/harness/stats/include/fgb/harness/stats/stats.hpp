@@ -11,6 +11,7 @@ struct Summary {
   double median = 0.0;
   double p5 = 0.0;
   double p95 = 0.0;
+  double p99 = 0.0;
   double mean = 0.0;
   double min = 0.0;
   double max = 0.0;

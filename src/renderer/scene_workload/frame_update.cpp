@@ -1,0 +1,143 @@
+#include "frame_update.hpp"
+
+#include "gpu_upload.hpp"
+
+#include <glm/ext/matrix_transform.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <span>
+#include <tuple>
+
+namespace fgb::render {
+namespace {
+
+// A double-precision box moved into render space (camera at the origin), rounded outwards to float
+// so the GPU's frustum test stays conservative.
+std::pair<glm::vec4, glm::vec4> renderSpaceBounds(const scene::Aabb& box, const glm::dvec3& origin) {
+  if (box.isEmpty()) return {glm::vec4(1.0f, 1.0f, 1.0f, 0.0f), glm::vec4(-1.0f, -1.0f, -1.0f, 0.0f)};
+  glm::vec4 lo(0.0f), hi(0.0f);
+  for (int axis = 0; axis < 3; ++axis) {
+    lo[axis] = std::nextafter(static_cast<float>(box.min[axis] - origin[axis]), -HUGE_VALF);
+    hi[axis] = std::nextafter(static_cast<float>(box.max[axis] - origin[axis]), HUGE_VALF);
+  }
+  return {lo, hi};
+}
+
+void writeInstances(std::span<gpu::Instance> out, const scene::Scene& scene, const DrawOrder& order,
+                    const glm::dvec3& origin) {
+  const glm::dmat4 toRenderSpace = glm::translate(glm::dmat4(1.0), -origin);
+  for (uint32_t group = 0; group < order.groups.size(); ++group) {
+    const auto& g = order.groups[group];
+    for (uint32_t slot = g.firstSlot; slot < g.firstSlot + g.capacity; ++slot) {
+      const auto& source = scene.instances[order.instanceOrder[slot]];
+      gpu::Instance instance{};
+      // Composed in double, then rounded: the float matrix holds only the camera-relative offset.
+      instance.model = glm::mat4(toRenderSpace * source.transform);
+      instance.normalMatrix = glm::mat4(glm::mat3(glm::transpose(glm::inverse(glm::dmat3(source.transform)))));
+      std::tie(instance.boundsMin, instance.boundsMax) = renderSpaceBounds(source.worldBounds, origin);
+      instance.material = source.material;
+      instance.drawGroup = group;
+      instance.triangles = scene.meshes[source.mesh].triangleCount();
+      out[slot] = instance;
+    }
+  }
+}
+
+void writeLights(std::span<gpu::PointLight> out, const scene::Scene& scene, const glm::dvec3& origin) {
+  for (size_t i = 0; i < scene.lights.size(); ++i) {
+    const auto& light = scene.lights[i];
+    // Shading divides by neither the radius nor the distance: 1/R travels in color.w. A radius that
+    // is not a positive finite number (scene files refuse it) uploads a light that adds nothing.
+    const bool reaches = light.radius > 0.0f && std::isfinite(light.radius);
+    const glm::vec3 renderSpace(light.position - origin);
+    const glm::vec3 radiance = reaches ? light.color * light.intensity : glm::vec3(0.0f);
+    out[i] = {glm::vec4(renderSpace, light.radius), glm::vec4(radiance, reaches ? 1.0f / light.radius : 0.0f)};
+  }
+}
+
+void writeCommandTemplate(std::span<gpu::DrawCommand> out, const scene::Scene& scene, const DrawOrder& order) {
+  for (size_t i = 0; i < order.groups.size(); ++i) {
+    const auto& group = order.groups[i];
+    const auto& mesh = scene.meshes[group.mesh];
+    out[i] = {mesh.indexCount, 0, mesh.firstIndex, int32_t(mesh.firstVertex), group.firstSlot};
+  }
+}
+
+template <class T>
+std::span<T> mappedAs(rhi::Device& device, rhi::BufferId buffer) {
+  const std::span<std::byte> bytes = device.mapped(buffer);
+  return {reinterpret_cast<T*>(bytes.data()), bytes.size() / sizeof(T)};
+}
+
+}  // namespace
+
+void createFrameBuffers(rhi::Device& device, features::GpuScene& gpu) {
+  const scene::Scene& scene = *gpu.scene;
+  const auto buffer = [&](std::string name, uint64_t bytes, rhi::BufferUsage usage) {
+    // Host-visible and mapped for life: written by the host, read by shaders (or the copy) directly.
+    return device.createBuffer({std::move(name), std::max<uint64_t>(bytes, 16), usage, rhi::MemoryUsage::Upload});
+  };
+  for (uint32_t slot = 0; slot < features::kFramesInFlight; ++slot) {
+    const std::string suffix = " (frame " + std::to_string(slot) + ")";
+    features::FrameBuffers& frame = gpu.frames[slot];
+    frame.constants = buffer("frame constants" + suffix, sizeof(gpu::FrameConstants), rhi::kBufferStorage);
+    frame.instances = buffer("scene instances" + suffix, sizeof(gpu::Instance) * gpu.instanceOrder.size(), rhi::kBufferStorage);
+    // At least one light: a valid (unused) entry keeps descriptors simple.
+    frame.lights = buffer("scene lights" + suffix, sizeof(gpu::PointLight) * std::max<size_t>(scene.lights.size(), 1),
+                          rhi::kBufferStorage);
+    frame.commandTemplate = buffer("draw command template" + suffix, sizeof(gpu::DrawCommand) * gpu.groups.size(),
+                                   rhi::kBufferTransferSrc | rhi::kBufferStorage);
+    std::memset(device.mapped(frame.lights).data(), 0, device.mapped(frame.lights).size());
+    frame.constantsIndex = device.storageBufferIndex(frame.constants);
+    frame.instancesIndex = device.storageBufferIndex(frame.instances);
+    frame.lightsIndex = device.storageBufferIndex(frame.lights);
+  }
+}
+
+FrameClock FrameClock::of(const scene::Scene& scene, double timeStep) {
+  FrameClock clock;
+  clock.timeStep = timeStep;
+  clock.flies = !scene.cameraPath.empty() && !scene.stillTime;
+  if (scene.stillTime) {
+    clock.stillTime = *scene.stillTime;
+    // Without emitters nothing is simulated: the frame at T needs no frames before it.
+    if (!scene.emitters.empty()) clock.stillSteps = uint64_t(std::llround(*scene.stillTime / timeStep)) + 1;
+  }
+  return clock;
+}
+
+FrameUpdate::FrameUpdate(rhi::Device& device, features::GpuScene& gpu, const scene::Scene& scene,
+                         const features::RenderSettings& settings, FrameClock clock)
+    : device_(device), gpu_(gpu), scene_(scene), settings_(settings), clock_(clock) {}
+
+void FrameUpdate::write(uint64_t execution) {
+  const scene::Camera camera = scene_.cameraPath.at(scene_.camera, clock_.pathTime(execution));
+  const features::FrameBuffers& frame = gpu_.frame(execution);
+  const CameraKey key{camera.position, camera.target, camera.verticalFovDeg};
+  if (!lastCamera_ || lastCamera_->first != key) {
+    lastCamera_.emplace(key, makeFrameConstants(scene_, camera, settings_));
+    lastCamera_->second.buffers = gpu_.constants.buffers;
+  }
+  gpu::FrameConstants constants = lastCamera_->second;
+  const bool simulates = clock_.simulates(execution);
+  // A still view at camera.time holds its particles at its last simulated step (emits nothing).
+  const uint64_t step = simulates ? execution : *clock_.stillSteps - 1;
+  constants.simulation = glm::vec4(simulates ? float(clock_.timeStep) : 0.0f, float(clock_.pathTime(execution)), 0.0f, 0.0f);
+  constants.step = glm::uvec4(uint32_t(step), execution > 0 ? gpu::kFrameHizValid : 0u, 0u, 0u);
+  std::memcpy(device_.mapped(frame.constants).data(), &constants, sizeof(constants));
+  gpu_.current = constants;
+
+  auto& written = writtenFor_[execution % features::kFramesInFlight];
+  if (written && *written == camera.position) return;  // this copy already holds this camera's values
+  const DrawOrder order = drawOrder(scene_, camera.position);
+  writeInstances(mappedAs<gpu::Instance>(device_, frame.instances), scene_, order, camera.position);
+  writeLights(mappedAs<gpu::PointLight>(device_, frame.lights), scene_, camera.position);
+  writeCommandTemplate(mappedAs<gpu::DrawCommand>(device_, frame.commandTemplate), scene_, order);
+  written = camera.position;
+}
+
+}  // namespace fgb::render

@@ -1,0 +1,65 @@
+// The per-frame update: before each frame's submit, the host writes everything that changes from
+// frame to frame into that frame in flight's copy of the per-frame buffers (features::FrameBuffers):
+// the frame constants (camera along its path, frustum planes, the particles' step and the HiZ
+// flag), render-space instances and lights, and the draw-command template (the transparent
+// groups back to front). Recorded commands then hold nothing that changes per frame.
+#pragma once
+
+#include "../features/context/gpu_scene.hpp"
+
+#include <fgb/rhi/device.hpp>
+#include <fgb/scene/scene.hpp>
+
+#include <optional>
+
+namespace fgb::render {
+
+// Creates the host-visible per-frame buffers of every frame in flight (sized for the scene).
+void createFrameBuffers(rhi::Device& device, features::GpuScene& gpu);
+
+// Where the run is at an execution of the frame graph: the camera's path time and the particles'.
+// The run advances by a fixed time step per frame (--time-step). Along a path, execution e is at
+// time e * step. A still view at camera.time=T simulates its particles for its first
+// round(T / step) + 1 executions (the workload runs those before the first measured frame) and
+// then holds them, so its frame equals the path's frame at T. Otherwise, a still view's
+// particles advance one step per frame, as they always have.
+struct FrameClock {
+  double timeStep = 1.0 / 60.0;
+  bool flies = false;                  // the scene has a camera path and no camera.time
+  double stillTime = 0.0;              // camera.time (0 without it)
+  std::optional<uint64_t> stillSteps;  // camera.time with particles: the executions that simulate
+
+  static FrameClock of(const scene::Scene& scene, double timeStep);
+  [[nodiscard]] double pathTime(uint64_t execution) const { return flies ? double(execution) * timeStep : stillTime; }
+  [[nodiscard]] bool simulates(uint64_t execution) const { return !stillSteps || execution < *stillSteps; }
+};
+
+class FrameUpdate {
+ public:
+  FrameUpdate(rhi::Device& device, features::GpuScene& gpu, const scene::Scene& scene,
+              const features::RenderSettings& settings, FrameClock clock);
+
+  // Writes execution `execution`'s copy. The caller has waited for the execution that last read
+  // it (kFramesInFlight earlier). Rewrites the instances, lights and command template only when
+  // the camera moved since that copy was written (a still camera writes them once per copy).
+  void write(uint64_t execution);
+
+  [[nodiscard]] const FrameClock& clock() const { return clock_; }
+
+ private:
+  rhi::Device& device_;
+  features::GpuScene& gpu_;
+  const scene::Scene& scene_;
+  const features::RenderSettings& settings_;
+  FrameClock clock_;
+  std::array<std::optional<glm::dvec3>, features::kFramesInFlight> writtenFor_;  // camera position
+  // The last camera's constants (without the per-frame step): a still camera computes them once.
+  struct CameraKey {
+    glm::dvec3 position{0.0}, target{0.0};
+    float fov = 0.0f;
+    bool operator==(const CameraKey&) const = default;
+  };
+  std::optional<std::pair<CameraKey, gpu::FrameConstants>> lastCamera_;
+};
+
+}  // namespace fgb::render

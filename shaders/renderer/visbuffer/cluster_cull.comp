@@ -1,6 +1,9 @@
 #version 460
-// "Cluster Cull": one invocation per cluster of every opaque or alpha-masked instance. The
-// instance's world AABB and then the cluster's bounding sphere are tested against the six frustum
+// "Cluster Cull": one invocation per cluster, of every LOD level, of every opaque or alpha-masked
+// instance. First the LOD cut (lodInCut): the cluster is kept when its own error projects to at
+// most the threshold and its parent group's error to more, so of each mesh one consistent cut is
+// drawn (scene::Cluster). Then the instance's world AABB and the cluster's bounding sphere are
+// tested against the six frustum
 // planes; clusters of single-sided materials are also dropped when their normal cone faces away
 // from the camera (meshoptimizer's cone test). Survivors are appended to the visible-cluster list
 // ("Triangle Filter" runs one workgroup per entry). Counters were zeroed by "Visibility Clear".
@@ -30,26 +33,51 @@ bool sphereInside(vec3 center, float radius) {
   return true;
 }
 
+// A mesh-local error at a mesh-local sphere, in scene pixels: the error scaled like the instance,
+// over the distance from the eye to the sphere's nearest point (at least the near plane). A sphere
+// holding another is no farther, so a larger error there never projects smaller: the DAG's
+// monotonic errors stay monotonic on screen. Render space is camera-relative, so this holds at any
+// scene offset (scene.offset=1e7).
+float projectedError(vec4 sphere, float error, mat4 model, float scale, vec3 eye, float near) {
+  vec3 center = (model * vec4(sphere.xyz, 1.0)).xyz;
+  float distance = max(length(center - eye) - sphere.w * scale, near);
+  return error * scale * pc.lodPixelsPerUnit / distance;
+}
+
+// Whether the cluster belongs to this view's LOD cut (scene::inLodCut on projected errors). A
+// group's members and the clusters made from it compute the very same value from the same group
+// fields, so either all of the members or all of those clusters are drawn.
+bool lodInCut(ClusterData cluster, mat4 model, float scale, uint frame) {
+  if (pc.lodThreshold <= 0.0) return cluster.lodLevel == 0u;
+  vec3 eye = fgbFrames[frame].frame.cameraPosition.xyz;
+  float near = fgbFrames[frame].frame.depthRange.x;
+  return projectedError(cluster.lodSphere, cluster.lodError, model, scale, eye, near) <= pc.lodThreshold &&
+         projectedError(cluster.parentSphere, cluster.parentError, model, scale, eye, near) > pc.lodThreshold;
+}
+
 void main() {
   uint id = gl_GlobalInvocationID.x;
   if (id >= (pc.drawCount & kCullDrawCountMask)) return;
-  ClusterDraw draw = visDraws[pc.draws].draws[id];
-  Instance inst = fgbInstances[pc.instances].instances[draw.instance];
+  uint frame = pc.frameInstances & 0xffffu;
+  ClusterDraw draw = visDraws[pc.drawsClusters & 0xffffu].draws[id];
+  Instance inst = fgbInstances[pc.frameInstances >> 16].instances[draw.instance];
   if (!boxInside(inst.boundsMin.xyz, inst.boundsMax.xyz)) return;
-  ClusterData cluster = visClusters[pc.clusters].clusters[draw.cluster];
+  ClusterData cluster = visClusters[pc.drawsClusters >> 16].clusters[draw.cluster];
+  float scale = maxScale(inst.model);
+  if (!lodInCut(cluster, inst.model, scale, frame)) return;
   vec3 center = (inst.model * vec4(cluster.sphere.xyz, 1.0)).xyz;
-  float radius = cluster.sphere.w * maxScale(inst.model);
+  float radius = cluster.sphere.w * scale;
   if (!sphereInside(center, radius)) return;
   if ((draw.flags & (kClusterSingleSided | kClusterConeUsable)) == (kClusterSingleSided | kClusterConeUsable) &&
       cluster.cone.w < 1.0) {
     // Front is defined in object space (glTF), so the axis transforms as a normal.
     vec3 axis = normalize(mat3(inst.normalMatrix) * cluster.cone.xyz);
-    vec3 fromEye = center - fgbFrames[pc.frame].frame.cameraPosition.xyz;
+    vec3 fromEye = center - fgbFrames[frame].frame.cameraPosition.xyz;
     if (dot(fromEye, axis) >= cluster.cone.w * length(fromEye) + radius) return;
   }
   bool holdBack = (pc.drawCount & kCullHoldBackOdd) != 0u && (id & 1u) != 0u;
   if (holdBack || ((pc.drawCount & kCullOcclusion) != 0u &&
-                   hizOccluded(pc.occlusion & 0xffffu, pc.frame, center, radius,
+                   hizOccluded(pc.occlusion & 0xffffu, frame, center, radius,
                                (pc.drawCount & kCullReversedZ) != 0u))) {
     uint candidate = atomicAdd(visCounters[pc.counters].c.occluded, 1u);
     fgbUints[pc.occlusion >> 16].values[candidate] = id;
@@ -57,4 +85,5 @@ void main() {
   }
   uint slot = atomicAdd(visCounters[pc.counters].c.visibleClusters, 1u);
   fgbUints[pc.visible].values[slot] = id;
+  atomicAdd(visCounters[pc.counters].c.lodClusters[min(cluster.lodLevel, FGB_VIS_LOD_STAT_LEVELS - 1)], 1u);
 }

@@ -1,8 +1,10 @@
 #include "visbuffer_feature.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstring>
+#include <string>
 #include <fgb/rhi/job_context.hpp>
 #include <fgb/scene/frustum.hpp>
 #include <fgb/shaders/registry.hpp>
@@ -119,6 +121,8 @@ void VisBufferFeature::initialize(FeatureInit& init) {
   imageBacking_ = init.settings.visBacking == VisBacking::Image;
   occlusion_ = init.settings.occlusion;
   occlusionHoldBack_ = occlusion_ && init.settings.occlusionHoldBack;
+  // render.lod_error is in output pixels; the scene passes have render.ssaa times as many.
+  lodThreshold_ = lod_ ? init.settings.lodError * float(init.settings.ssaa) : 0.0f;
   // The word accesses are compiled per backing: the image variants declare 64-bit image
   // capabilities, which a device without them refuses even where unused.
   const auto backed = [&](const char* shader) {
@@ -251,10 +255,12 @@ void VisBufferFeature::declareClusterCull(graph::FrameGraph& graph, Buffers& b) 
   gpu::ClusterCullPush push{};
   const auto frustum = scene::Frustum::fromMatrix(scene_->constants.viewProj);
   for (size_t i = 0; i < 6; ++i) push.planes[i] = frustum.planes[i];
-  push.frame = b.push.frame;
-  push.instances = b.push.instances;
-  push.draws = b.push.draws;
-  push.clusters = b.push.clusters;
+  push.frameInstances = b.push.frame | b.push.instances << 16;
+  push.drawsClusters = b.push.draws | b.push.clusters << 16;
+  push.lodThreshold = lodThreshold_;
+  // proj[1][1] is cot(fov / 2) (negated: Y flips), so a length l at distance d spans
+  // l / d * |proj[1][1]| * height / 2 pixels of the scene passes.
+  push.lodPixelsPerUnit = std::abs(scene_->constants.proj[1][1]) * 0.5f * float(b.extent.height);
   if (drawCount_ > gpu::kCullDrawCountMask)
     throw std::logic_error("visbuffer: more clusters than Cluster Cull can count");
   push.drawCount =
@@ -511,6 +517,11 @@ void VisBufferFeature::addStats(std::map<std::string, double>& stats) const {
   stats["vis_triangles_rasterised"] =
       double(early.smallTriangles) + early.largeTriangles + late.smallTriangles + late.largeTriangles;
   stats["vis_raster_tile_jobs"] = double(early.tileJobs) + late.tileJobs;
+  // The LOD cut (render.lod_error): visible clusters per level (the last counts every level above).
+  stats["vis_lod_threshold_px"] = lodThreshold_;
+  for (uint32_t level = 0; level < FGB_VIS_LOD_STAT_LEVELS; ++level)
+    stats["vis_lod_clusters_level" + std::to_string(level)] =
+        double(early.lodClusters[level]) + late.lodClusters[level];
   stats["vis_large_overflow"] = double(early.overflow) + late.overflow;
   if (occlusion_) {
     // Two-phase occlusion (render.occlusion): held back by last frame's HiZ in phase 1, and of

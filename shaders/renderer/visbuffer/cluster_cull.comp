@@ -34,13 +34,20 @@ bool sphereInside(vec3 center, float radius) {
 }
 
 // A mesh-local error at a mesh-local sphere, in scene pixels: the error scaled like the instance,
-// over the distance from the eye to the sphere's nearest point (at least the near plane). A sphere
-// holding another is no farther, so a larger error there never projects smaller: the DAG's
-// monotonic errors stay monotonic on screen. Render space is camera-relative, so this holds at any
-// scene offset (scene.offset=1e7).
-float projectedError(vec4 sphere, float error, mat4 model, float scale, vec3 eye, float near) {
+// over the distance from the eye to the sphere's nearest point. A sphere reaching in front of the
+// near plane (in view depth) projects an unbounded error (level 0, whose error is 0, excepted):
+// the compute raster does not clip, so "Triangle Filter" drops triangles with a corner there,
+// which for a coarse level's large triangles would leave holes; such groups are refined instead.
+// A sphere holding another is no farther and reaches no less near, so a larger error there never
+// projects smaller: the DAG's monotonic errors stay monotonic on screen. Render space is
+// camera-relative, so this holds at any scene offset (scene.offset=1e7).
+float projectedError(vec4 sphere, float error, mat4 model, float scale, uint frame) {
+  if (error <= 0.0) return 0.0;
   vec3 center = (model * vec4(sphere.xyz, 1.0)).xyz;
-  float distance = max(length(center - eye) - sphere.w * scale, near);
+  float radius = sphere.w * scale;
+  float nearestDepth = -(fgbFrames[frame].frame.view * vec4(center, 1.0)).z - radius;  // the view looks down -z
+  if (nearestDepth <= fgbFrames[frame].frame.depthRange.x) return 3.0e38;
+  float distance = length(center - fgbFrames[frame].frame.cameraPosition.xyz) - radius;
   return error * scale * pc.lodPixelsPerUnit / distance;
 }
 
@@ -49,10 +56,8 @@ float projectedError(vec4 sphere, float error, mat4 model, float scale, vec3 eye
 // fields, so either all of the members or all of those clusters are drawn.
 bool lodInCut(ClusterData cluster, mat4 model, float scale, uint frame) {
   if (pc.lodThreshold <= 0.0) return cluster.lodLevel == 0u;
-  vec3 eye = fgbFrames[frame].frame.cameraPosition.xyz;
-  float near = fgbFrames[frame].frame.depthRange.x;
-  return projectedError(cluster.lodSphere, cluster.lodError, model, scale, eye, near) <= pc.lodThreshold &&
-         projectedError(cluster.parentSphere, cluster.parentError, model, scale, eye, near) > pc.lodThreshold;
+  return projectedError(cluster.lodSphere, cluster.lodError, model, scale, frame) <= pc.lodThreshold &&
+         projectedError(cluster.parentSphere, cluster.parentError, model, scale, frame) > pc.lodThreshold;
 }
 
 void main() {

@@ -33,7 +33,7 @@ struct RenderSettings {
   VisBacking visBacking = VisBacking::Auto;     // render.vis_backing = auto | buffer | image
   bool occlusion = false;             // render.occlusion: two-phase HiZ cluster culling (visbuffer)
   bool occlusionHoldBack = false;     // debug.occlusion_hold_back: phase 1 also holds back odd clusters
-  float lodError = 1.0f;              // render.lod_error: output pixels of LOD error (visbuffer; 0: full detail)
+  float lodError = 0.25f;             // render.lod_error: output pixels of LOD error (visbuffer; 0: full detail)
   uint32_t ssaa = 1;                  // render.ssaa: scene passes at ssaa*width x ssaa*height
   bool depthPrepass = false;          // render.depth_prepass
   // render.async: compute nodes run on a compute queue of their own where the device has one

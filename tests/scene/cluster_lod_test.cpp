@@ -1,15 +1,14 @@
 // The cooked cluster LOD DAG (cluster_lod.cpp): errors and bounds monotonic up the DAG, every
 // threshold's cut covers each mesh exactly once (no crack, no overlap), and the bytes it costs.
-#include <fgb/scene/cook.hpp>
-#include <fgb/scene/generators.hpp>
-
 #include <gtest/gtest.h>
+#include <meshoptimizer.h>
 
 #include <algorithm>
-#include <cmath>
 #include <array>
+#include <cmath>
+#include <fgb/scene/cook.hpp>
+#include <fgb/scene/generators.hpp>
 #include <map>
-#include <meshoptimizer.h>
 #include <set>
 #include <vector>
 
@@ -20,8 +19,8 @@ namespace {
 // A small atrium: every mesh kind of the full one, a tenth of the triangles.
 const Scene& smallAtrium() {
   static const Scene scene = [] {
-    Scene s = generate("atrium", resolveGeneratorParams({"atrium", {{"scale", 0.1}, {"texture_size", 16}}}, Knobs::parse({}),
-                                                        "test.json"));
+    Scene s = generate("atrium", resolveGeneratorParams({"atrium", {{"scale", 0.1}, {"texture_size", 16}}},
+                                                        Knobs::parse({}), "test.json"));
     cookScene(s);
     return s;
   }();
@@ -45,7 +44,7 @@ std::vector<std::array<uint32_t, 3>> trianglesOf(const Scene& s, const Cluster& 
 // cancel; what is left is the surface's border. A crack between two parts of a cut adds edges that
 // do not cancel, and an overlap adds the border of the piece drawn twice: either changes the chain.
 std::map<std::pair<uint32_t, uint32_t>, int> boundaryChain(const std::vector<std::array<uint32_t, 3>>& triangles,
-                                                          const std::vector<uint32_t>& weld) {
+                                                           const std::vector<uint32_t>& weld) {
   std::map<std::pair<uint32_t, uint32_t>, int> chain;
   for (const auto& tri : triangles)
     for (uint32_t k = 0; k < 3; ++k) {
@@ -119,8 +118,8 @@ TEST(ClusterLod, EveryThresholdCutsEachMeshOnce) {
     const std::vector<uint32_t> weld = weldByPosition(s, mesh);
     std::vector<std::array<uint32_t, 3>> full;
     for (uint32_t i = 0; i < mesh.indexCount; i += 3)
-      full.push_back({s.indices[mesh.firstIndex + i], s.indices[mesh.firstIndex + i + 1],
-                      s.indices[mesh.firstIndex + i + 2]});
+      full.push_back(
+          {s.indices[mesh.firstIndex + i], s.indices[mesh.firstIndex + i + 1], s.indices[mesh.firstIndex + i + 2]});
     const auto fullChain = boundaryChain(full, weld);
     std::set<float> thresholds{0.0f, 1e30f};
     for (uint32_t c = mesh.firstCluster; c < mesh.firstCluster + mesh.clusterCount; ++c) {

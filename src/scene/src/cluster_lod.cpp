@@ -18,11 +18,11 @@
 namespace fgb::scene::detail {
 namespace {
 
-constexpr uint32_t kGroupSize = 8;         // clusters merged into one group (~1024 triangles)
-constexpr uint32_t kSmallGroup = 3;        // groups smaller than this are merged with spatial neighbours
-constexpr float kMinReduction = 0.85f;     // a simplification keeping more triangles than this is stuck
-constexpr uint32_t kMaxLevels = 24;        // a bound on the loop; the DAG stops earlier when nothing simplifies
-constexpr float kConeWeight = 0.25f;       // meshopt_buildMeshlets: a little looser grouping for cones that cull
+constexpr uint32_t kGroupSize = 8;      // clusters merged into one group (~1024 triangles)
+constexpr uint32_t kSmallGroup = 3;     // groups smaller than this are merged with spatial neighbours
+constexpr float kMinReduction = 0.85f;  // a simplification keeping more triangles than this is stuck
+constexpr uint32_t kMaxLevels = 24;     // a bound on the loop; the DAG stops earlier when nothing simplifies
+constexpr float kConeWeight = 0.25f;    // meshopt_buildMeshlets: a little looser grouping for cones that cull
 
 struct Sphere {
   glm::vec3 center{0.0f};
@@ -38,7 +38,8 @@ Sphere enclosing(std::span<const Sphere> spheres) {
     hi = glm::max(hi, s.center + s.radius);
   }
   Sphere result{(lo + hi) * 0.5f, 0.0f};
-  for (const Sphere& s : spheres) result.radius = std::max(result.radius, glm::length(s.center - result.center) + s.radius);
+  for (const Sphere& s : spheres)
+    result.radius = std::max(result.radius, glm::length(s.center - result.center) + s.radius);
   return result;
 }
 
@@ -66,8 +67,8 @@ void appendTriangles(const Scene& scene, const Cluster& cluster, std::vector<uin
 // Splits `indices` (into `positions`, whose vertex i is mesh vertex toMesh[i], or i itself when
 // toMesh is empty) into clusters appended to the scene; returns their indices. LOD fields are left
 // to the caller.
-std::vector<uint32_t> emitClusters(Scene& scene, std::span<const uint32_t> indices, std::span<const glm::vec3> positions,
-                                   std::span<const uint32_t> toMesh) {
+std::vector<uint32_t> emitClusters(Scene& scene, std::span<const uint32_t> indices,
+                                   std::span<const glm::vec3> positions, std::span<const uint32_t> toMesh) {
   const size_t maxClusters = meshopt_buildMeshletsBound(indices.size(), kClusterMaxVertices, kClusterMaxTriangles);
   std::vector<meshopt_Meshlet> meshlets(maxClusters);
   std::vector<unsigned int> meshletVertices(maxClusters * kClusterMaxVertices);
@@ -125,7 +126,8 @@ std::vector<uint32_t> spatialOrder(const Scene& scene, std::span<const uint32_t>
     hi = glm::max(hi, scene.clusters[c].lodCenter);
   }
   std::vector<std::pair<uint32_t, uint32_t>> keyed;
-  for (uint32_t i = 0; i < pool.size(); ++i) keyed.emplace_back(morton(scene.clusters[pool[i]].lodCenter, lo, hi - lo), i);
+  for (uint32_t i = 0; i < pool.size(); ++i)
+    keyed.emplace_back(morton(scene.clusters[pool[i]].lodCenter, lo, hi - lo), i);
   std::sort(keyed.begin(), keyed.end());
   std::vector<uint32_t> order;
   for (const auto& [key, i] : keyed) order.push_back(i);
@@ -133,7 +135,8 @@ std::vector<uint32_t> spatialOrder(const Scene& scene, std::span<const uint32_t>
 }
 
 // For each pool position, its neighbours (pool positions) and how many welded edges they share.
-std::vector<std::vector<std::pair<uint32_t, uint32_t>>> sharedEdges(const MeshLod& lod, std::span<const uint32_t> pool) {
+std::vector<std::vector<std::pair<uint32_t, uint32_t>>> sharedEdges(const MeshLod& lod,
+                                                                    std::span<const uint32_t> pool) {
   std::vector<std::pair<uint64_t, uint32_t>> edges;  // welded edge key, pool position
   std::vector<uint32_t> corners;
   for (uint32_t i = 0; i < pool.size(); ++i) {
@@ -211,8 +214,8 @@ std::vector<std::vector<uint32_t>> groupClusters(const MeshLod& lod, std::span<c
 struct SimplifiedGroup {
   std::vector<uint32_t> indices;  // into positions
   std::vector<glm::vec3> positions;
-  std::vector<uint32_t> toMesh;   // compact vertex -> mesh vertex
-  float error = 0.0f;             // mesh-local distance
+  std::vector<uint32_t> toMesh;  // compact vertex -> mesh vertex
+  float error = 0.0f;            // mesh-local distance
 };
 
 // Merges the group's triangles and simplifies them to about half with the outer border locked.
@@ -246,9 +249,9 @@ SimplifiedGroup simplifyGroup(MeshLod& lod, std::span<const uint32_t> members) {
   group.indices.assign(localIndices.size(), 0u);
   float relativeError = 0.0f;
   // Target error 1: as far as the triangle target needs (the error is what it measures).
-  const size_t kept = meshopt_simplify(group.indices.data(), localIndices.data(), localIndices.size(), &nudged[0].x,
-                                       nudged.size(), sizeof(glm::vec3), (triangles / 2) * 3, 1.0f,
-                                       meshopt_SimplifyLockBorder, &relativeError);
+  const size_t kept =
+      meshopt_simplify(group.indices.data(), localIndices.data(), localIndices.size(), &nudged[0].x, nudged.size(),
+                       sizeof(glm::vec3), (triangles / 2) * 3, 1.0f, meshopt_SimplifyLockBorder, &relativeError);
   if (kept == 0 || float(kept / 3) > kMinReduction * float(triangles)) return {};
   group.indices.resize(kept);
   group.error = relativeError * meshopt_simplifyScale(&nudged[0].x, nudged.size(), sizeof(glm::vec3));

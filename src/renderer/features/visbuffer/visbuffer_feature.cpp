@@ -4,10 +4,10 @@
 #include <cmath>
 #include <cstddef>
 #include <cstring>
-#include <string>
 #include <fgb/rhi/job_context.hpp>
 #include <fgb/scene/frustum.hpp>
 #include <fgb/shaders/registry.hpp>
+#include <string>
 
 #include "../context/handles.hpp"
 #include "renderer/shared/visbuffer.h"

@@ -53,7 +53,7 @@ void main() {
   }
   visFloats[pc.depthOut].values[index] = depthFromKey(uint(word >> 32), reversedZ());
   uint id = uint(word);
-  uint drawIndex = fgbUintsRead[pc.visible].values[id >> kClusterTriangleBits];
+  uint drawIndex = id >> kClusterTriangleBits;
   VisTriangle tri = visTriangle(drawIndex, id & ((1u << kClusterTriangleBits) - 1u), pc.draws, pc.clusters, pc.indices);
   Instance inst = fgbInstances[pc.instances].instances[tri.instance];
   ScreenTriangle screen = setupTriangle(modelViewProj(inst.model), tri.vertices);

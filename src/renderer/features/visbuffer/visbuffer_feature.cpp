@@ -261,8 +261,9 @@ void VisBufferFeature::declareClusterCull(graph::FrameGraph& graph, Buffers& b) 
   // proj[1][1] is cot(fov / 2) (negated: Y flips), so a length l at distance d spans
   // l / d * |proj[1][1]| * height / 2 pixels of the scene passes.
   push.lodPixelsPerUnit = std::abs(scene_->constants.proj[1][1]) * 0.5f * float(b.extent.height);
-  if (drawCount_ > gpu::kCullDrawCountMask)
-    throw std::logic_error("visbuffer: more clusters than Cluster Cull can count");
+  // A pixel's id is (cluster draw << 7) | triangle (visbuffer.glsl): 25 bits of draw index.
+  if (drawCount_ > gpu::kCullDrawCountMask || drawCount_ > (1u << 25))
+    throw std::logic_error("visbuffer: more cluster draws than Cluster Cull can count or pixel ids can name");
   push.drawCount =
       drawCount_ | (reversedZ_ ? gpu::kCullReversedZ : 0u) | (occlusionHoldBack_ ? gpu::kCullHoldBackOdd : 0u);
   node.setJob([push, pipelines = pipelines_, counters = b.early.counters, visible = b.visible, args = b.early.cullArgs,

@@ -35,9 +35,10 @@ bool sphereInside(vec3 center, float radius) {
 
 // A mesh-local error at a mesh-local sphere, in scene pixels: the error scaled like the instance,
 // over the distance from the eye to the sphere's nearest point. A sphere reaching in front of the
-// near plane (in view depth) projects an unbounded error (level 0, whose error is 0, excepted):
-// the compute raster does not clip, so "Triangle Filter" drops triangles with a corner there,
-// which for a coarse level's large triangles would leave holes; such groups are refined instead.
+// near plane (in view depth) projects an unbounded error (level 0, whose error is 0, excepted), so
+// such groups are refined: a coarse level's large triangles with a corner behind the eye do not
+// reach the visibility buffer (without this the no-particles floor, whose coarse groups hold the
+// camera's feet, vanished; level 0's small triangles rarely have such a corner where it shows).
 // A sphere holding another is no farther and reaches no less near, so a larger error there never
 // projects smaller: the DAG's monotonic errors stay monotonic on screen. Render space is
 // camera-relative, so this holds at any scene offset (scene.offset=1e7).

@@ -22,6 +22,12 @@ constexpr uint32_t kGroupSize = 8;      // clusters merged into one group (~1024
 constexpr uint32_t kSmallGroup = 3;     // groups smaller than this are merged with spatial neighbours
 constexpr float kMinReduction = 0.85f;  // a simplification keeping more triangles than this is stuck
 constexpr uint32_t kMaxLevels = 24;     // a bound on the loop; the DAG stops earlier when nothing simplifies
+// A group's error is at least this fraction of its sphere's radius. Flat parts simplify with no
+// error at all, down to a few triangles the size of a wall, which the compute raster's
+// large-triangle path draws more slowly than many small ones (lavapipe, atrium: 10x the large
+// triangles, Visibility Raster 1.7x); the floor keeps a group's triangles near pixel size on screen
+// at the thresholds used. It grows with the sphere, so errors stay monotonic up the DAG.
+constexpr float kErrorPerRadius = 0.02f;
 constexpr float kConeWeight = 0.25f;    // meshopt_buildMeshlets: a little looser grouping for cones that cull
 
 struct Sphere {
@@ -278,6 +284,7 @@ std::vector<uint32_t> buildLevel(MeshLod& lod, std::span<const uint32_t> pool) {
       level = std::max(level, member.lodLevel + 1);
     }
     const Sphere bounds = enclosing(spheres);
+    error = std::max(error, kErrorPerRadius * bounds.radius);
     for (uint32_t c : members) {
       Cluster& member = lod.scene.clusters[c];
       member.parentCenter = bounds.center;

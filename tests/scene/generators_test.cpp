@@ -70,7 +70,7 @@ TEST(Atrium, HasEveryAlphaModeAndDoubleSidedMaterials) {
   EXPECT_TRUE(mask && blend && opaque && doubleSided);
 }
 
-// Every mesh's clusters hold exactly its triangles (as a multiset, read through the packed 8-bit
+// Every mesh's level-0 clusters hold exactly its triangles (as a multiset, read through the packed 8-bit
 // local indices and the cluster's vertex list), at most 128 triangles and 128 vertices each, and
 // every vertex lies inside its cluster's bounding sphere; usable cones (cutoff < 1) have unit axes.
 TEST(Atrium, ClustersPartitionEachMeshWithBounds) {
@@ -84,7 +84,8 @@ TEST(Atrium, ClustersPartitionEachMeshWithBounds) {
       return tri;
     };
     for (uint32_t i = 0; i < mesh.indexCount; i += 3) fromIndices.insert(sorted(&s.indices[mesh.firstIndex + i]));
-    for (uint32_t c = mesh.firstCluster; c < mesh.firstCluster + mesh.clusterCount; ++c) {
+    // Level 0 of the LOD DAG (cluster_lod_test.cpp checks the levels above).
+    for (uint32_t c = mesh.firstCluster; c < mesh.firstCluster + mesh.baseClusterCount; ++c) {
       const Cluster& cluster = s.clusters[c];
       ASSERT_GT(cluster.triangleCount, 0u);
       ASSERT_LE(cluster.triangleCount, kClusterMaxTriangles);

@@ -7,7 +7,10 @@
 // with FGB_VIS_BACKING_IMAGE (shaders/CMakeLists.txt), an R64_UINT storage image with 64-bit image
 // atomics; shaders reach it only through visWordMax and visWordAt. The depth key grows towards the
 // camera (standard Z: ~bits(z); reversed Z: bits(z)), so max keeps the nearest triangle and the
-// cleared value 0 means "nothing". The id is (visible cluster << 7) | triangle in the cluster.
+// cleared value 0 means "nothing". The id is (cluster draw << 7) | triangle in the cluster: the
+// ClusterDraw index, not the cluster's slot in the visible list, so a depth tie between triangles
+// (e.g. where a simplified LOD cluster folds over itself) is won by the same triangle whatever
+// order the culling appended clusters in (render.occlusion's two phases, atomics' order).
 #ifndef FGB_RENDERER_VISBUFFER_GLSL
 #define FGB_RENDERER_VISBUFFER_GLSL
 

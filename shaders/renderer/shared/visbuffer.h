@@ -26,6 +26,9 @@ const uint kClusterAlphaMasked = 8u;  // alpha-tested during "Visibility Raster"
 // (scene::packClusterTriangle: three 8-bit indices into the cluster's vertex list); its vertices are
 // firstVertex + those indices in the scene-wide cluster vertex stream (ClusterGeometry::vertices:
 // position, attribute vertex).
+// The LOD fields are scene::Cluster's: the group that made the cluster and the group it is a
+// member of (mesh-local spheres and errors, monotonic up the DAG; "Cluster Cull" keeps a cluster
+// whose own error projects to at most render.lod_error pixels and whose parent's projects to more).
 struct ClusterData {
   vec4 sphere;  // mesh-local centre, radius
   vec4 cone;    // mesh-local axis, cutoff
@@ -33,8 +36,17 @@ struct ClusterData {
   uint triangleCount;
   uint firstVertex;
   uint vertexCount;
+  vec4 lodSphere;     // the group that made it (its own sphere at level 0)
+  vec4 parentSphere;  // the group it is a member of
+  float lodError;     // 0 at level 0
+  float parentError;  // scene::kLodRootError for a root
+  uint lodLevel;
+  uint pad;
 };
-FGB_CHECK_SIZE(ClusterData, 48)
+FGB_CHECK_SIZE(ClusterData, 96)
+
+// Clusters drawn per LOD level are counted up to this level (higher levels count in the last).
+#define FGB_VIS_LOD_STAT_LEVELS 8
 
 // One cluster of one instance (what "Cluster Cull" tests).
 struct ClusterDraw {
@@ -61,10 +73,13 @@ struct VisCounters {
   uint firstCluster;      // the list slot of this phase's first cluster (0 in phase 1)
   uint occluded;          // phase 1: clusters held back by last frame's HiZ (phase 2 re-tests them)
   uint reserved[2];
+  uint lodClusters[FGB_VIS_LOD_STAT_LEVELS];  // visible clusters per LOD level (statistics)
 };
-FGB_CHECK_SIZE(VisCounters, 80)
+FGB_CHECK_SIZE(VisCounters, 112)
 
 // "Cluster Cull" (cluster_cull.comp).
+// Storage-buffer indices fit 16 bits (FGB_MAX_STORAGE_BUFFERS), so pairs share a word, which
+// leaves room in 128 bytes for the LOD threshold.
 struct ClusterCullPush {
   uint frame;      // FrameConstants: the frustum planes, kFrameHizValid
   uint instances;
@@ -74,8 +89,13 @@ struct ClusterCullPush {
   uint visible;    // visible-cluster list: ClusterDraw indices
   uint occlusion;  // render.occlusion: HiZ pyramid (low 16 bits), occlusion candidates (high 16 bits)
   uint drawCount;  // kCullDrawCountMask; kCullOcclusion, kCullReversedZ, kCullHoldBackOdd
+  // render.lod_error in scene pixels (times render.ssaa); 0: full detail, level 0 only (also where
+  // the render path's plan says no LOD).
+  // The pixels per unit length come from the frame's projection (FrameConstants), which a camera
+  // path may change.
+  float lodThreshold;
 };
-FGB_CHECK_PUSH(ClusterCullPush, 32)
+FGB_CHECK_PUSH(ClusterCullPush, 36)
 // drawCount's top bits (render.occlusion):
 const uint kCullOcclusion = 0x80000000u;  // test against last frame's HiZ pyramid (where FrameConstants has kFrameHizValid)
 const uint kCullReversedZ = 0x40000000u;

@@ -1,7 +1,7 @@
 #version 460
 // "Cluster Cull (late)" (render.occlusion=1, phase 2 of two-phase occlusion culling): one
 // invocation per occlusion candidate of "Cluster Cull" (clusters inside the frustum and facing
-// the camera, but hidden behind last frame's HiZ). Each is tested again against the HiZ pyramid
+// the camera, in the LOD cut, but hidden behind last frame's HiZ). Each is tested again against the HiZ pyramid
 // of this frame's phase-1 depths ("HiZ Build"); those not hidden are appended to the
 // visible-cluster list after phase 1's clusters, counted in the late counters (which "Triangle
 // Filter (late)" and "Visibility Raster (late)" go on with).
@@ -27,4 +27,5 @@ void main() {
   if (hizOccluded(pc.hiz, pc.frame, center, radius, pc.reversedZ != 0u)) return;
   uint slot = atomicAdd(visCounters[pc.counters].c.visibleClusters, 1u);
   fgbUints[pc.visible].values[early.visibleClusters + slot] = drawIndex;
+  atomicAdd(visCounters[pc.counters].c.lodClusters[min(cluster.lodLevel, FGB_VIS_LOD_STAT_LEVELS - 1)], 1u);
 }

@@ -16,6 +16,29 @@ layout(set = 0, binding = FGB_BINDING_STORAGE_TEXTURES, rgba16f) uniform writeon
 
 vec3 interpolate3(vec3 a, vec3 b, vec3 c, vec3 w) { return a * w.x + b * w.y + c * w.z; }
 
+// debug.view (FrameConstants::counts.w, render_settings.hpp's DebugView order).
+const uint kDebugViewLod = 2u;
+const uint kDebugViewClusters = 3u;
+
+// debug.view=lod: the pixel's cluster's LOD level (0 blue, then cyan, green, yellow, orange, red,
+// magenta, white from level 7 on); debug.view=clusters: a colour per cluster of each instance.
+// Lit by the angle to the eye so the shapes stay readable; pre-exposed like shading.
+vec3 debugViewColor(FrameConstants frame, uint drawIndex, SurfacePoint p) {
+  ClusterDraw draw = visDraws[pc.draws].draws[drawIndex];
+  vec3 color;
+  if (frame.counts.w == kDebugViewLod) {
+    const vec3 levels[8] = vec3[8](vec3(0.1, 0.2, 1.0), vec3(0.0, 0.9, 1.0), vec3(0.1, 1.0, 0.1), vec3(1.0, 1.0, 0.0),
+                                   vec3(1.0, 0.5, 0.0), vec3(1.0, 0.05, 0.05), vec3(1.0, 0.1, 1.0), vec3(1.0));
+    color = levels[min(visClusters[pc.clusters].clusters[draw.cluster].lodLevel, 7u)];
+  } else {
+    uint h = (draw.cluster * 0x9e3779b1u) ^ (draw.instance * 0x85ebca6bu);
+    h = (h ^ (h >> 15)) * 0x2c1b3c6du;
+    color = vec3(uvec3(h, h >> 8, h >> 16) & 0xffu) / 255.0 * 0.8 + 0.2;
+  }
+  float facing = abs(dot(normalize(p.normal), normalize(p.worldPosition - frame.cameraPosition.xyz)));
+  return color * (0.35 + 0.65 * facing) * 2.0 * preExposure(frame);
+}
+
 void main() {
   loadFrameGlobals();
   uvec2 pixel = gl_GlobalInvocationID.xy;
@@ -30,7 +53,7 @@ void main() {
   }
   visFloats[pc.depthOut].values[index] = depthFromKey(uint(word >> 32), reversedZ());
   uint id = uint(word);
-  uint drawIndex = fgbUintsRead[pc.visible].values[id >> kClusterTriangleBits];
+  uint drawIndex = id >> kClusterTriangleBits;
   VisTriangle tri = visTriangle(drawIndex, id & ((1u << kClusterTriangleBits) - 1u), pc.draws, pc.clusters, pc.indices);
   Instance inst = fgbInstances[pc.instances].instances[tri.instance];
   ScreenTriangle screen = setupTriangle(modelViewProj(inst.model), tri.vertices);
@@ -60,5 +83,6 @@ void main() {
   Material m = fgbMaterials[pc.materials].materials[inst.material];
   vec4 base = surfaceBaseColor(m, p.uv);
   vec4 color = shadeSurface(frame, m, base, p, LightLists(pc.lights, pc.clusterCounts, pc.clusterIndices));
+  if (frame.counts.w >= kDebugViewLod) color.rgb = debugViewColor(frame, drawIndex, p);
   imageStore(fgbImagesRgba16f[pc.hdr], ivec2(pixel), vec4(color.rgb, 1.0));  // alpha > 0: metered geometry
 }

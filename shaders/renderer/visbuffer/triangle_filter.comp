@@ -32,7 +32,8 @@ bool outsideFrustum(vec4 c[3]) {
 // shader without barriers runs as straight SIMD code on CPU devices (lavapipe runs the invocations
 // of a shader with barriers as coroutines, which cost more than the loads).
 struct ClusterSetup {
-  uint flags;  // ClusterDraw::flags
+  uint drawIndex;  // the ClusterDraw: the high bits of the pixel ids
+  uint flags;      // ClusterDraw::flags
   mat4 modelViewProj;
   uint firstTriangle;
   uint firstVertex;
@@ -41,7 +42,8 @@ struct ClusterSetup {
 
 ClusterSetup loadCluster(uint clusterSlot) {
   ClusterSetup c;
-  ClusterDraw draw = visDraws[pc.draws].draws[fgbUintsRead[pc.visible].values[clusterSlot]];
+  c.drawIndex = fgbUintsRead[pc.visible].values[clusterSlot];
+  ClusterDraw draw = visDraws[pc.draws].draws[c.drawIndex];
   c.flags = draw.flags;
   c.modelViewProj = modelViewProj(fgbInstances[pc.instances].instances[draw.instance].model);
   c.firstTriangle = visClusters[pc.clusters].clusters[draw.cluster].firstTriangle;
@@ -71,7 +73,7 @@ void appendLarge(ScreenTriangle t, uint id, bool masked) {
 
 // Filters one triangle of the workgroup's cluster: drops it, or appends it to the small list or
 // (appendLarge) the large one.
-void filterTriangle(ClusterSetup c, uint clusterSlot, uint triangle) {
+void filterTriangle(ClusterSetup c, uint triangle) {
   uint flags = c.flags;
   uvec3 vertices = clusterTriangleVertices(fgbUintsRead[pc.indices].values[c.firstTriangle + triangle], c.firstVertex);
   if (vertices.x == vertices.y || vertices.y == vertices.z || vertices.x == vertices.z) return;
@@ -84,7 +86,7 @@ void filterTriangle(ClusterSetup c, uint clusterSlot, uint triangle) {
     bool front = framebufferFront(t) != ((flags & kClusterMirrored) != 0u);
     if (!front) return;
   }
-  uint id = (clusterSlot << kClusterTriangleBits) | triangle;
+  uint id = (c.drawIndex << kClusterTriangleBits) | triangle;
   bool masked = (flags & kClusterAlphaMasked) != 0u;
   ivec2 span = t.pixels.zw - t.pixels.xy + 1;
   if (t.projected && span.x <= kSmallPixels && span.y <= kSmallPixels && packable(t)) {
@@ -119,6 +121,6 @@ void main() {
   ClusterSetup c = loadCluster(clusterSlot);
   for (uint first = 0u; first < c.triangles; first += sharing) {
     uint triangle = first + lane;
-    if (triangle < c.triangles) filterTriangle(c, clusterSlot, triangle);
+    if (triangle < c.triangles) filterTriangle(c, triangle);
   }
 }

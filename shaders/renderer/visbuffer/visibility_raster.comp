@@ -33,7 +33,7 @@ struct RasterTriangle {
 RasterTriangle loadTriangle(uint id) {
   RasterTriangle r;
   r.id = id;
-  uint drawIndex = fgbUintsRead[pc.visible].values[id >> kClusterTriangleBits];
+  uint drawIndex = id >> kClusterTriangleBits;
   VisTriangle tri = visTriangle(drawIndex, id & ((1u << kClusterTriangleBits) - 1u), pc.draws, pc.clusters, pc.indices);
   r.vertices = tri.vertices;
   r.screen = setupTriangle(modelViewProj(fgbInstances[pc.instances].instances[tri.instance].model), tri.vertices);
@@ -49,7 +49,7 @@ RasterTriangle loadTriangle(uint id) {
 // The alpha test's inputs alone, for a small triangle whose coverage came packed: the same clip
 // positions as loadTriangle's (same product, same fetches), without the screen and edge setup.
 AlphaTest loadAlphaTest(uint id) {
-  uint drawIndex = fgbUintsRead[pc.visible].values[id >> kClusterTriangleBits];
+  uint drawIndex = id >> kClusterTriangleBits;
   VisTriangle tri = visTriangle(drawIndex, id & ((1u << kClusterTriangleBits) - 1u), pc.draws, pc.clusters, pc.indices);
   mat4 mvp = modelViewProj(fgbInstances[pc.instances].instances[tri.instance].model);
   AlphaTest t;

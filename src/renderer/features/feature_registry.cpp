@@ -58,10 +58,17 @@ FeatureKind particles() {
 }
 
 FeatureKind visbuffer() {
-  FeatureKind kind = plain<VisBufferFeature>(
-      "visbuffer", FeaturePhase::Opaque,
-      "the compute visibility buffer draws the opaque scene (\"Cluster Cull\" ... \"Material Shade\")",
-      {{"clusters"}, {"opaque_scene", "opaque_depth_buffer"}});
+  FeatureKind kind;
+  kind.name = "visbuffer";
+  kind.phase = FeaturePhase::Opaque;
+  kind.help = "the compute visibility buffer draws the opaque scene (\"Cluster Cull\" ... \"Material Shade\")";
+  kind.options = {{"lod", true, "draws each mesh's LOD cut at render.lod_error (false: full detail)"}};
+  kind.contract = [](const Options&, const RenderPath&) {
+    return FeatureContract{{"clusters"}, {"opaque_scene", "opaque_depth_buffer"}};
+  };
+  kind.create = [](const Options& options) -> std::unique_ptr<IRenderFeature> {
+    return std::make_unique<VisBufferFeature>(options.at("lod").get<bool>());
+  };
   kind.maxMsaa = 1;  // one visibility sample per pixel
   kind.computeWritesHdr = true;  // "Material Shade"
   return kind;

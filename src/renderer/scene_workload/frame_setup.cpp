@@ -74,8 +74,9 @@ gpu::FrameConstants makeFrameConstants(const scene::Scene& scene, const scene::C
   // neither the cluster count (nor the dispatch size) nor which lights a screen region keeps.
   const uint32_t tile = kTileSize * settings.ssaa;
   c.clusterGrid = {(width + tile - 1) / tile, (height + tile - 1) / tile, settings.clusterSlices, tile};
+  // The debug view as the shaders number it (surface_shading.glsl, material_shade.comp).
   c.counts = {uint32_t(scene.lights.size()), uint32_t(scene.instances.size()), settings.maxLightsPerCluster,
-              settings.debugView == features::DebugView::LightComplexity ? 1u : 0u};
+              uint32_t(settings.debugView)};
   c.ambient = glm::vec4(glm::vec3(0.03f, 0.03f, 0.035f) * scene.post.lightScale, 0.0f);
   return c;
 }

@@ -32,6 +32,11 @@ static_assert(offsetof(scene::Cluster, firstTriangle) == offsetof(gpu::ClusterDa
               offsetof(scene::Cluster, triangleCount) == offsetof(gpu::ClusterData, triangleCount) &&
               offsetof(scene::Cluster, firstVertex) == offsetof(gpu::ClusterData, firstVertex) &&
               offsetof(scene::Cluster, vertexCount) == offsetof(gpu::ClusterData, vertexCount));
+static_assert(offsetof(scene::Cluster, lodCenter) == offsetof(gpu::ClusterData, lodSphere) &&
+              offsetof(scene::Cluster, parentCenter) == offsetof(gpu::ClusterData, parentSphere) &&
+              offsetof(scene::Cluster, lodError) == offsetof(gpu::ClusterData, lodError) &&
+              offsetof(scene::Cluster, parentError) == offsetof(gpu::ClusterData, parentError) &&
+              offsetof(scene::Cluster, lodLevel) == offsetof(gpu::ClusterData, lodLevel));
 
 using features::GpuScene;
 
@@ -183,7 +188,8 @@ uint32_t clusterDrawFlags(const scene::Scene& scene, const scene::Instance& inst
   return flags;
 }
 
-// Every cluster of every opaque and alpha-masked GPU instance, in instance order.
+// Every cluster, of every LOD level, of every opaque and alpha-masked GPU instance, in instance
+// order ("Cluster Cull" keeps one cut of each). `triangles` counts level 0: no cut has more.
 std::vector<gpu::ClusterDraw> clusterDraws(const scene::Scene& scene, const GpuScene& gpu, uint64_t& triangles) {
   std::vector<gpu::ClusterDraw> draws;
   triangles = 0;

@@ -15,6 +15,7 @@ void writeMesh(Writer<Sink>& w, const Mesh& m) {
   w.pod(m.localBounds);
   w.pod(m.firstCluster);
   w.pod(m.clusterCount);
+  w.pod(m.baseClusterCount);
 }
 
 Mesh readMesh(Reader& r) {
@@ -27,6 +28,7 @@ Mesh readMesh(Reader& r) {
   m.localBounds = r.pod<Aabb>();
   m.firstCluster = r.pod<uint32_t>();
   m.clusterCount = r.pod<uint32_t>();
+  m.baseClusterCount = r.pod<uint32_t>();
   return m;
 }
 
@@ -222,6 +224,7 @@ void validateScene(const Scene& s) {
           "mesh index range");
     for (uint32_t i = 0; i < mesh.indexCount; ++i) check(s.indices[mesh.firstIndex + i] < mesh.vertexCount, "index");
     check(uint64_t(mesh.firstCluster) + mesh.clusterCount <= s.clusters.size(), "mesh cluster range");
+    check(mesh.baseClusterCount <= mesh.clusterCount, "mesh level-0 cluster count");
     for (uint32_t c = mesh.firstCluster; c < mesh.firstCluster + mesh.clusterCount; ++c) {
       const Cluster& cluster = s.clusters[c];
       check(cluster.triangleCount <= kClusterMaxTriangles &&

@@ -31,6 +31,12 @@ RendererKnob count(std::string key, double min, double max, uint32_t RenderSetti
   return {spec(std::move(key), KnobType::Integer, std::move(help), role, std::move(exact), {}, min, max),
           [field](RenderSettings& s, const KnobValue& v) { s.*field = uint32_t(std::get<double>(v)); }};
 }
+// A finite number in [min, max] into a float field.
+RendererKnob number(std::string key, double min, double max, float RenderSettings::*field, std::string help,
+                    ReferenceRole role, std::string exact = {}) {
+  return {spec(std::move(key), KnobType::Number, std::move(help), role, std::move(exact), {}, min, max),
+          [field](RenderSettings& s, const KnobValue& v) { s.*field = float(std::get<double>(v)); }};
+}
 // 0|1|true|false|on|off into a bool field.
 RendererKnob flag(std::string key, bool RenderSettings::*field, std::string help, ReferenceRole role,
                   std::string exact = {}) {
@@ -70,7 +76,11 @@ const std::vector<RendererKnob>& rendererKnobs() {
   using S = RenderSettings;
   static const std::vector<RendererKnob> knobs = {
       word("debug.view", &S::debugView,
-           {{"none", DebugView::None}, {"off", DebugView::None}, {"light-complexity", DebugView::LightComplexity}},
+           {{"none", DebugView::None},
+            {"off", DebugView::None},
+            {"light-complexity", DebugView::LightComplexity},
+            {"lod", DebugView::Lod},
+            {"clusters", DebugView::Clusters}},
            "debug visualisation", Look),
       flag("render.depth_prepass", &S::depthPrepass, "depth-only pass before shading", CostOnly, "0"),
       flag("render.async", &S::asyncCompute,
@@ -93,6 +103,10 @@ const std::vector<RendererKnob>& rendererKnobs() {
            "auto"),
       flag("render.occlusion", &S::occlusion,
            "visbuffer: two-phase HiZ occlusion culling of clusters (no effect on render.path=forward)", CostOnly, "0"),
+      // Exact at 0 (every mesh at full detail): the sweep's reference draws level 0.
+      number("render.lod_error", 0, 64, &S::lodError,
+             "visbuffer: LOD error in output pixels a cluster cut may show (0: full detail; paths with \"lod\")",
+             Approximation, "0"),
       word("lighting.mode", &S::lightingMode, {{"clustered", LightingMode::Clustered}, {"all", LightingMode::All}},
            "clustered light lists, or every light for every pixel", Approximation, "all"),
       // Unused by lighting.mode=all; the largest values make the reference's exactness explicit.

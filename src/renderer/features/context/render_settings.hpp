@@ -11,7 +11,9 @@
 
 namespace fgb::features {
 
-enum class DebugView : uint8_t { None, LightComplexity };
+// Lod and Clusters colour the visibility-buffer path's opaque pixels by their cluster's LOD level
+// and by cluster ("Material Shade"); the forward path shades normally under them.
+enum class DebugView : uint8_t { None, LightComplexity, Lod, Clusters };
 
 // render.vis_backing: what holds the visibility buffer's 64-bit words on the visbuffer path. Auto
 // becomes Image where the device has 64-bit atomics on R64 storage images, else Buffer; the scene
@@ -32,12 +34,13 @@ struct RenderSettings {
   bool occlusion = false;             // render.occlusion: two-phase HiZ cluster culling (visbuffer)
   bool recordEveryFrame = false;      // debug.record_every_frame: no reuse of kept command buffers
   bool occlusionHoldBack = false;     // debug.occlusion_hold_back: phase 1 also holds back odd clusters
+  float lodError = 0.25f;             // render.lod_error: output pixels of LOD error (visbuffer; 0: full detail)
   uint32_t ssaa = 1;                  // render.ssaa: scene passes at ssaa*width x ssaa*height
   bool depthPrepass = false;          // render.depth_prepass
   // render.async: compute nodes run on a compute queue of their own where the device has one
   // (async compute); off, every node runs on the graphics queue (rhi::GraphOptions::queues = 1).
   bool asyncCompute = true;
-  DebugView debugView = DebugView::None;  // debug.view = none | light-complexity
+  DebugView debugView = DebugView::None;  // debug.view = none | light-complexity | lod | clusters
   LightingMode lightingMode = LightingMode::Clustered;  // lighting.mode = clustered | all
   uint32_t clusterSlices = 24;        // lighting.slices
   uint32_t maxLightsPerCluster = 128; // lighting.max_per_cluster (overflow guard)

@@ -1,10 +1,12 @@
 #include "visbuffer_feature.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstring>
 #include <fgb/rhi/job_context.hpp>
 #include <fgb/shaders/registry.hpp>
+#include <string>
 
 #include "../context/handles.hpp"
 #include "renderer/shared/visbuffer.h"
@@ -128,6 +130,8 @@ void VisBufferFeature::initialize(FeatureInit& init) {
   imageBacking_ = init.settings.visBacking == VisBacking::Image;
   occlusion_ = init.settings.occlusion;
   occlusionHoldBack_ = occlusion_ && init.settings.occlusionHoldBack;
+  // render.lod_error is in output pixels; the scene passes have render.ssaa times as many.
+  lodThreshold_ = lod_ ? init.settings.lodError * float(init.settings.ssaa) : 0.0f;
   // The word accesses are compiled per backing: the image variants declare 64-bit image
   // capabilities, which a device without them refuses even where unused.
   const auto backed = [&](const char* shader) {
@@ -258,8 +262,10 @@ void VisBufferFeature::declareClusterCull(graph::FrameGraph& graph, Buffers& b) 
   gpu::ClusterCullPush push{};
   push.draws = b.push.draws;
   push.clusters = b.push.clusters;
-  if (drawCount_ > gpu::kCullDrawCountMask)
-    throw std::logic_error("visbuffer: more clusters than Cluster Cull can count");
+  push.lodThreshold = lodThreshold_;
+  // A pixel's id is (cluster draw << 7) | triangle (visbuffer.glsl): 25 bits of draw index.
+  if (drawCount_ > gpu::kCullDrawCountMask || drawCount_ > (1u << 25))
+    throw std::logic_error("visbuffer: more cluster draws than Cluster Cull can count or pixel ids can name");
   push.drawCount =
       drawCount_ | (reversedZ_ ? gpu::kCullReversedZ : 0u) | (occlusionHoldBack_ ? gpu::kCullHoldBackOdd : 0u);
   node.setJob([push, pipelines = pipelines_, counters = b.early.counters, visible = b.visible, args = b.early.cullArgs,
@@ -524,6 +530,11 @@ void VisBufferFeature::addStats(std::map<std::string, double>& stats) const {
   stats["vis_triangles_rasterised"] =
       double(early.smallTriangles) + early.largeTriangles + late.smallTriangles + late.largeTriangles;
   stats["vis_raster_tile_jobs"] = double(early.tileJobs) + late.tileJobs;
+  // The LOD cut (render.lod_error): visible clusters per level (the last counts every level above).
+  stats["vis_lod_threshold_px"] = lodThreshold_;
+  for (uint32_t level = 0; level < FGB_VIS_LOD_STAT_LEVELS; ++level)
+    stats["vis_lod_clusters_level" + std::to_string(level)] =
+        double(early.lodClusters[level]) + late.lodClusters[level];
   stats["vis_large_overflow"] = double(early.overflow) + late.overflow;
   if (occlusion_) {
     // Two-phase occlusion (render.occlusion): held back by last frame's HiZ in phase 1, and of

@@ -1,7 +1,9 @@
 // The visibility-buffer path (render.path=visbuffer, issue 18): the opaque and alpha-masked scene
 // is culled, rasterised and shaded in compute instead of "Mesh Render".
 //   "Visibility Clear"          zeroes the visibility buffer and the culling counters;
-//   "Cluster Cull"              instances + clusters: frustum, backface cone;
+//   "Cluster Cull"              instances + clusters: the LOD cut (render.lod_error, where the
+//                               path's plan has "lod": every level's clusters are candidates, one
+//                               consistent cut of each instance's DAG is kept), frustum, backface cone;
 //   "Triangle Filter"           per triangle: degenerate, behind the eye, outside the frustum,
 //                               back-facing, covers no pixel centre; writes the small and large
 //                               triangle lists and the raster's indirect arguments;
@@ -41,6 +43,8 @@ struct VisibilityOutputs {
 
 class VisBufferFeature final : public IRenderFeature {
  public:
+  // lod: the path's plan draws the LOD cut of render.lod_error (else level 0, full detail).
+  explicit VisBufferFeature(bool lod) : lod_(lod) {}
   [[nodiscard]] std::string_view name() const override { return "visbuffer"; }
   [[nodiscard]] bool enabled() const override { return drawCount_ > 0; }
   void initialize(FeatureInit& init) override;
@@ -81,6 +85,8 @@ class VisBufferFeature final : public IRenderFeature {
   bool imageBacking_ = false;       // render.vis_backing resolved to image
   bool occlusion_ = false;          // render.occlusion
   bool occlusionHoldBack_ = false;  // debug.occlusion_hold_back (with render.occlusion)
+  bool lod_ = true;                 // the path's "lod" option
+  float lodThreshold_ = 0.0f;       // scene pixels; 0: level 0 only
   rhi::BufferId hiz_;               // the HiZ pyramid, kept from frame to frame (render.occlusion)
   uint64_t hizKeys_ = 0;            // its size in 32-bit depth keys
 };

@@ -53,8 +53,12 @@ struct Mesh {
   uint32_t firstIndex = 0;
   uint32_t indexCount = 0;  // a multiple of 3
   Aabb localBounds;
-  uint32_t firstCluster = 0;  // this mesh's clusters: Scene::clusters[firstCluster, + clusterCount)
+  // This mesh's clusters, every LOD level: Scene::clusters[firstCluster, + clusterCount). The
+  // first baseClusterCount (level 0) hold exactly the mesh's triangles; the rest are its
+  // simplified levels (cook.cpp: the LOD DAG).
+  uint32_t firstCluster = 0;
   uint32_t clusterCount = 0;
+  uint32_t baseClusterCount = 0;
   uint32_t triangleCount() const { return indexCount / 3; }
 };
 
@@ -62,9 +66,22 @@ struct Mesh {
 inline constexpr uint32_t kClusterMaxTriangles = 128;
 inline constexpr uint32_t kClusterMaxVertices = 128;
 
+// The error a cluster that is never replaced (a root of the LOD DAG) has as its parent's: above
+// every threshold.
+inline constexpr float kLodRootError = 3.0e38f;
+
 // A cluster (meshlet) of one mesh, cooked by meshopt_buildMeshlets for the visibility-buffer path.
 // Bounds and cone are mesh-local. The cone follows meshoptimizer: the whole cluster faces away from
 // a viewer at `eye` when dot(center - eye, coneAxis) >= coneCutoff * |center - eye| + radius.
+//
+// LOD (Karis 2021, "Nanite"): clusters form a DAG of groups. A group of clusters of a level is
+// merged, simplified to about half with its outer border locked and split again into clusters of
+// the next level, which replace the whole group at once. Each cluster carries the group that made
+// it (lodCenter/lodRadius/lodError: its own bounds and error at level 0, where lodError is 0) and
+// the group it is a member of (parent*: the group that replaces it; kLodRootError when none).
+// Errors are mesh-local distances, monotonic up the DAG (a group's error is at least its members'
+// and its sphere holds theirs), so one threshold on their projection picks one consistent cut: a
+// cluster is drawn when its own error passes and its parent's does not (inLodCut).
 struct Cluster {
   glm::vec3 center{0.0f};
   float radius = 0.0f;
@@ -74,8 +91,23 @@ struct Cluster {
   uint32_t triangleCount = 0;
   uint32_t firstVertex = 0;  // into Scene::clusterVertices: the cluster's own vertex list
   uint32_t vertexCount = 0;  // at most kClusterMaxVertices
+  glm::vec3 lodCenter{0.0f};  // the group that made this cluster (its own sphere at level 0)
+  float lodRadius = 0.0f;
+  glm::vec3 parentCenter{0.0f};  // the group this cluster is a member of (its own group when a root)
+  float parentRadius = 0.0f;
+  float lodError = 0.0f;              // mesh-local distance; 0 at level 0
+  float parentError = kLodRootError;  // >= lodError, > 0
+  uint32_t lodLevel = 0;              // 0: the mesh's own triangles
+  uint32_t pad = 0;
 };
-static_assert(sizeof(Cluster) == 48);
+static_assert(sizeof(Cluster) == 96);
+
+// Whether a cluster belongs to the cut of a (mesh-local, unprojected) error threshold: the same
+// rule the GPU applies to projected errors ("Cluster Cull"). Every threshold >= 0 covers the mesh
+// exactly once; 0 is level 0, the mesh's own triangles.
+inline bool inLodCut(const Cluster& cluster, float threshold) {
+  return cluster.lodError <= threshold && cluster.parentError > threshold;
+}
 
 // A cluster triangle: three 8-bit indices into its cluster's vertex list (corner k in bits
 // 8k..8k+7), so the visibility-buffer shaders load one word per triangle and find its vertices at

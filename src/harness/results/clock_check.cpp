@@ -47,7 +47,10 @@ std::string reasonFor(const WallClock& clock, const DeviceState& state) {
       std::max(0.0, idle), clock.hostMsPerFrame);
   const std::string slowFrames =
       fmt::format("uneven frames: slow frames lift the mean span {:.3f} ms above the median", uneven);
-  return idle >= uneven ? bubbles + "; " + slowFrames : slowFrames + "; " + bubbles;
+  // The smaller share is named only where it is a share at all (above half a microsecond).
+  constexpr double kNegligibleMs = 0.0005;
+  if (idle >= uneven) return uneven > kNegligibleMs ? bubbles + "; " + slowFrames : bubbles;
+  return idle > kNegligibleMs ? slowFrames + "; " + bubbles : slowFrames;
 }
 
 }  // namespace

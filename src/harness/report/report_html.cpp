@@ -35,12 +35,8 @@ std::string verdictSpan(const std::string& verdict) {
 }
 
 std::string isolatedTableHtml(const RunResult& run) {
-  std::string html = fmt::format(
-      "<p class=\"note\">Span: first to last timestamp in the measured frames (queues overlap there). Isolated: "
-      "the pass alone on an idle device ({} calibration frames, medians). Critical path: how much shorter the "
-      "frame's longest chain through the compiled schedule would be without the pass.</p>\n<table><tr><th>pass</th>"
-      "<th>span</th><th>isolated</th><th>critical path</th></tr>\n",
-      run.isolatedFrames);
+  std::string html = "<p class=\"note\">" + escapeXml(isolatedCostNote(run)) +
+                     "</p>\n<table><tr><th>pass</th><th>span</th><th>isolated</th><th>critical path</th></tr>\n";
   for (const auto& p : run.passes) {
     if (p.culled || !p.hasIsolated()) continue;
     html +=

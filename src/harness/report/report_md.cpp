@@ -42,13 +42,8 @@ std::string passTable(const RunResult& run) {
 // The calibration: each pass's span beside its isolated cost and its critical-path share.
 std::string isolatedSection(const RunResult& run) {
   if (run.isolatedFrames == 0) return "";
-  std::string out = fmt::format(
-      "## Span, isolated cost and critical path\n\nSpan: the pass's first to last timestamp in the measured frames "
-      "(queues overlap there). Isolated: the pass alone on an idle device ({} calibration frames, medians). Critical "
-      "path: how much shorter the frame's longest chain through the compiled schedule (data, queue order, "
-      "semaphore waits; isolated costs) would be without the pass.\n\n| pass | span | isolated | critical path |\n"
-      "|---|---:|---:|---:|\n",
-      run.isolatedFrames);
+  std::string out = "## Span, isolated cost and critical path\n\n" + isolatedCostNote(run) +
+                    "\n\n| pass | span | isolated | critical path |\n|---|---:|---:|---:|\n";
   for (const auto& p : run.passes) {
     if (p.culled || !p.hasIsolated()) continue;
     out += fmt::format("| {} | {:.4f} | {:.4f} | {} |\n", p.name, p.gpu.median, p.isolated.median,
@@ -149,6 +144,15 @@ std::string hostOverheadNote(const RunResult& run) {
       "EXR + PNG encoding {:.1f} ms.",
       o.openMs, s.sceneMs, s.deviceMs, s.uploadMs, s.graphMs, s.pipelines, s.pipelinesMs, s.pipelineCache, o.harnessMs,
       o.perFrameUs, o.workloadCallsMs, o.readbackMs, o.encodeMs);
+}
+
+std::string isolatedCostNote(const RunResult& run) {
+  return fmt::format(
+      "Span: the pass's first to last timestamp in the measured frames (queues overlap there). Isolated: the pass "
+      "alone on an idle device ({} calibration frames, medians). Critical path: how much shorter the frame's longest "
+      "chain through the compiled schedule (data, queue order, semaphore waits; isolated costs) would be without "
+      "the pass.",
+      run.isolatedFrames);
 }
 
 std::string wallClockNote(const RunResult& run) {

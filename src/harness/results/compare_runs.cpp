@@ -384,8 +384,9 @@ RunsComparison compareRuns(const std::vector<LoadedTimings>& before, const std::
   for (const auto& run : before)
     for (const auto& p : run.passes) addName(p.name);
 
-  result.passCost = everyRunIsolated(before) && everyRunIsolated(after) ? "isolated" : "span";
-  if (result.passCost == "span" && (everyRunIsolated(before) || everyRunIsolated(after))) {
+  const bool beforeIsolated = everyRunIsolated(before), afterIsolated = everyRunIsolated(after);
+  result.passCost = beforeIsolated && afterIsolated ? "isolated" : "span";
+  if (result.passCost == "span" && (beforeIsolated || afterIsolated)) {
     result.warnings.push_back(
         "passes judged by their spans: the runs of one side have no isolated costs (older timings.json files or "
         "runs with --no-isolate)");

@@ -137,29 +137,30 @@ void calibrateIsolated(render::Workload& workload, RunResult& run, uint32_t fram
   run.overhead.calibrationMs = millisecondsBetween(start, Clock::now());
   if (isolated.empty()) return;
   run.isolatedFrames = static_cast<uint32_t>(isolated.size());
-  std::vector<double> costs;  // per declared pass (FrameTiming's order)
-  for (const auto& pass : isolated.front().passes) {
-    PassRecord* record = nullptr;
-    for (auto& candidate : run.passes) {
-      if (candidate.name == pass.name) record = &candidate;
-    }
+  // Every frame lists every declared pass, in declaration order (FrameTiming): pass i is the
+  // same pass in each, and the critical path takes its costs in that order.
+  const auto& declared = isolated.front().passes;
+  std::vector<double> costs;
+  std::vector<PassRecord*> records;
+  for (std::size_t i = 0; i < declared.size(); ++i) {
     std::vector<double> samples;
     for (const auto& frame : isolated) {
-      for (const auto& p : frame.passes) {
-        if (p.name == pass.name && !p.culled) samples.push_back(p.gpuMs);
-      }
+      if (i < frame.passes.size() && !frame.passes[i].culled) samples.push_back(frame.passes[i].gpuMs);
     }
     const Summary summary = summarize(samples);
     costs.push_back(summary.median);
-    if (record == nullptr || record->culled) continue;
+    PassRecord* record = nullptr;
+    for (auto& candidate : run.passes) {
+      if (candidate.name == declared[i].name && !candidate.culled) record = &candidate;
+    }
+    records.push_back(record);
+    if (record == nullptr) continue;
     record->isolatedMs = std::move(samples);
     record->isolated = summary;
   }
   const std::vector<double> shares = workload.criticalPathShares(costs);
-  for (std::size_t i = 0; i < shares.size() && i < isolated.front().passes.size(); ++i) {
-    for (auto& record : run.passes) {
-      if (record.name == isolated.front().passes[i].name && !record.culled) record.criticalShare = shares[i];
-    }
+  for (std::size_t i = 0; i < shares.size() && i < records.size(); ++i) {
+    if (records[i] != nullptr) records[i]->criticalShare = shares[i];
   }
 }
 

@@ -41,6 +41,8 @@ std::string timestampSourceNote(const render::DeviceDescription& device);
 // Host time around rendering (start-up and its phases, loop overhead, readback, encoding), apart
 // from GPU time; the same sentence in both reports.
 std::string hostOverheadNote(const RunResult& run);
+// What span, isolated cost and critical-path share mean (the calibration's frames), in both reports.
+std::string isolatedCostNote(const RunResult& run);
 // The span against the wall time per frame, and the device's clocks (where sampled), in words.
 std::string wallClockNote(const RunResult& run);
 

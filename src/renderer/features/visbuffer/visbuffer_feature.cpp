@@ -301,7 +301,7 @@ void VisBufferFeature::declareClusterCull(graph::FrameGraph& graph, Buffers& b) 
     cmd.push(gpu::ArgsPush{push.counters, ctx.storageBufferIndex(args), FGB_VIS_RASTER_GROUP_SIZE, jobCapacity});
     cmd.dispatch(1);
   });
-  if (!occlusion_) node.recordingFixed();  // else the job reads ctx.execution()
+  node.recordingFixed();  // the frame's values, the HiZ flag included, come from its constants
 }
 
 // Phase 2 of render.occlusion: the clusters phase 1 held back, tested again against this frame's

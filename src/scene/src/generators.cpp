@@ -1,12 +1,13 @@
 // Generator parameters (defaults + scene file + knobs, validated) and dispatch.
-#include <algorithm>
-#include <charconv>
 #include <fgb/scene/generators.hpp>
 
 #include "atrium.hpp"
 #include "city.hpp"
 #include "json_fields.hpp"
 #include "small_generators.hpp"
+
+#include <algorithm>
+#include <charconv>
 
 namespace fgb::scene {
 namespace {

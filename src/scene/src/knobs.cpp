@@ -125,15 +125,13 @@ const std::vector<SceneKnob>& sceneKnobs() {
       knob(integer("city.blocks", 2, 64, "city blocks per side"), Content),
       knob(integer("city.seed", 0, 1000000, "city layout seed"), Content),
       knob(integer("city.texture_size", 4, 4096, "procedural texture size (a power of two)"), Content),
-      knob(number("stress.offset", -kInf, kInf, false, "stress-far: distance of the scene from the origin, m"),
-           Content),
+      knob(number("stress.offset", -kInf, kInf, false, "stress-far: distance of the scene from the origin, m"), Content),
       knob(integer("stress.seed", 0, 1000000, "stress scenes' seed"), Content),
       knob(exclusiveMax(number("camera.fov", 0.0, 179.0, true, "vertical field of view, degrees")), Content,
            [](Scene& s, const KnobValue& v) { s.camera.verticalFovDeg = single(v); }),
       knob(number("camera.near", 0.0, kInf, true, "near plane, m"), Content,
            [](Scene& s, const KnobValue& v) { s.camera.nearPlane = single(v); }),
-      knob(withWords(number("camera.far", 0.0, kInf, true, "far plane, m (inf: infinite, reversed-Z)"), {"inf"}),
-           Content,
+      knob(withWords(number("camera.far", 0.0, kInf, true, "far plane, m (inf: infinite, reversed-Z)"), {"inf"}), Content,
            [](Scene& s, const KnobValue& v) {
              s.camera.farPlane = std::holds_alternative<double>(v) ? single(v) : std::numeric_limits<float>::infinity();
            }),
@@ -141,13 +139,12 @@ const std::vector<SceneKnob>& sceneKnobs() {
            [](Scene& s, const KnobValue& v) { s.camera.position = vec3(v); }),
       knob(typed("camera.target", KnobType::Vec3, "camera target x,y,z"), Content,
            [](Scene& s, const KnobValue& v) { s.camera.target = vec3(v); }),
-      knob(
-          withWords(typed("camera.path", KnobType::Word, "none: the still view instead of the scene's path"), {"none"}),
-          Content, [](Scene& s, const KnobValue&) { s.cameraPath = {}; }),
-      knob(number("camera.time", 0.0, 1e6, false, "still view at this path time, s (particles simulated to it)"),
-           Content, [](Scene& s, const KnobValue& v) { stillAt(s, number(v)); }),
-      knob(number("camera.distance", 0.0, 1e6, true, "camera distance from its target times F (far plane too)"),
-           Content, [](Scene& s, const KnobValue& v) { scaleCameraDistance(s, number(v)); }),
+      knob(withWords(typed("camera.path", KnobType::Word, "none: the still view instead of the scene's path"), {"none"}),
+           Content, [](Scene& s, const KnobValue&) { s.cameraPath = {}; }),
+      knob(number("camera.time", 0.0, 1e6, false, "still view at this path time, s (particles simulated to it)"), Content,
+           [](Scene& s, const KnobValue& v) { stillAt(s, number(v)); }),
+      knob(number("camera.distance", 0.0, 1e6, true, "camera distance from its target times F (far plane too)"), Content,
+           [](Scene& s, const KnobValue& v) { scaleCameraDistance(s, number(v)); }),
       knob(withWords(number("post.exposure", 0.0, kInf, true, "tone-mapping exposure (auto: metered)"), {"auto"}), Look,
            [](Scene& s, const KnobValue& v) {
              s.post.autoExposure = !std::holds_alternative<double>(v);
@@ -164,13 +161,9 @@ const std::vector<SceneKnob>& sceneKnobs() {
       knob(number("post.bloom_radius", 0.0, kInf, true, "bloom upsample radius"), Look,
            [](Scene& s, const KnobValue& v) { s.post.bloom.radius = single(v); }),
       knob(typed("scene.lights", KnobType::Flag, "0 drops the point lights"), Content,
-           [](Scene& s, const KnobValue& v) {
-             if (!flag(v)) s.lights.clear();
-           }),
+           [](Scene& s, const KnobValue& v) { if (!flag(v)) s.lights.clear(); }),
       knob(typed("scene.particles", KnobType::Flag, "0 drops the particle emitters"), Content,
-           [](Scene& s, const KnobValue& v) {
-             if (!flag(v)) s.emitters.clear();
-           }),
+           [](Scene& s, const KnobValue& v) { if (!flag(v)) s.emitters.clear(); }),
       knob(typed("scene.sun", KnobType::Flag, "sun on/off"), Content,
            [](Scene& s, const KnobValue& v) { s.sun.enabled = flag(v); }),
       knob(number("scene.light_scale", 1e-12, 1e12, false, "factor on every light, emissive, particle, background"),

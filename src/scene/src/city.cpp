@@ -262,11 +262,11 @@ std::pair<MeshData, MeshData> buildingMeshes(const Archetype& a) {
 
 // ---- street furniture --------------------------------------------------------------------------
 
+// A tapering pole on a wider foot, and the globe on top of it (emissive; the light sits in it).
 MeshData lampPost() {
-  MeshData pole = shapes::lathe("lamp-post", 10, 6, [](float t) {
+  return shapes::lathe("lamp-post", 10, 6, [](float t) {
     return glm::vec2(t < 0.08f ? 0.16f : 0.09f - 0.03f * t, kLampHeight * t);
   }, [](float, float) { return 1.0f; }, true, true);
-  return pole;
 }
 
 MeshData lampGlobe() {

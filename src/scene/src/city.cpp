@@ -10,20 +10,18 @@
 // simplifier keeps, so the facades simplify little: the count the cut draws stays honest too.
 #include "city.hpp"
 
-#include "procedural.hpp"
-#include "shapes.hpp"
-
-#include <fgb/scene/geometry.hpp>
-
-#include <glm/ext/matrix_transform.hpp>
-#include <glm/geometric.hpp>
-#include <glm/gtc/constants.hpp>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <fgb/scene/geometry.hpp>
+#include <glm/ext/matrix_transform.hpp>
+#include <glm/geometric.hpp>
+#include <glm/gtc/constants.hpp>
 #include <map>
 #include <tuple>
+
+#include "procedural.hpp"
+#include "shapes.hpp"
 
 namespace fgb::scene {
 namespace {
@@ -34,7 +32,7 @@ constexpr float kPi = glm::pi<float>();
 constexpr float kBlockSize = kCityPitch - kCityStreetWidth;  // 44 m of buildings between streets
 constexpr float kLotGap = 1.0f;                              // between neighbouring buildings
 constexpr float kGroundFloor = 4.5f, kFloor = 3.3f, kParapet = 1.0f;
-constexpr float kKerb = 0.15f;                               // pavement height above the road
+constexpr float kKerb = 0.15f;  // pavement height above the road
 constexpr float kLampHeight = 5.2f;
 constexpr std::array<uint32_t, 9> kFloorChoices = {3, 4, 5, 6, 7, 8, 10, 12, 14};
 constexpr uint32_t kFacadeTints = 5;
@@ -83,7 +81,8 @@ class Quads {
     shapes::transform(part, m);
     std::copy(part.positions.begin(), part.positions.end(), mesh_.positions.begin() + long(from));
     std::copy(part.normals.begin(), part.normals.end(), mesh_.normals.begin() + long(from));
-    for (size_t i = from; i < mesh_.positions.size(); ++i) mesh_.uv0[i] = planarUv(mesh_.positions[i], mesh_.normals[i]);
+    for (size_t i = from; i < mesh_.positions.size(); ++i)
+      mesh_.uv0[i] = planarUv(mesh_.positions[i], mesh_.normals[i]);
   }
 
   size_t vertexCount() const { return mesh_.positions.size(); }
@@ -127,7 +126,9 @@ struct BuildingMeshes {
   uint32_t masonry = 0, glass = 0;
 };
 
-float lotWidth(uint32_t lotsAcross) { return kBlockSize / float(lotsAcross); }
+float lotWidth(uint32_t lotsAcross) {
+  return kBlockSize / float(lotsAcross);
+}
 
 // One side of a building, built flat: u along +x from 0 to `length`, y up, the wall plane at
 // z = 0 facing +z. Window panes go to `glass`.
@@ -229,8 +230,8 @@ void roof(Quads& m, float w, float d, float top, const Archetype& a) {
     m.box(at - glm::vec3(size.x / 2, 0, size.z / 2), at + glm::vec3(size.x / 2, size.y, size.z / 2), 0x37);
   }
   if (a.style == 0) {  // a water tank on the classic blocks
-    MeshData tank = shapes::lathe("", 16, 4, [](float t) { return glm::vec2(1.2f, 2.5f * t); },
-                                  [](float, float) { return 1.0f; }, false, true);
+    MeshData tank = shapes::lathe(
+        "", 16, 4, [](float t) { return glm::vec2(1.2f, 2.5f * t); }, [](float, float) { return 1.0f; }, false, true);
     shapes::transform(tank, glm::translate(glm::mat4(1.0f), {w / 4, top + 1.5f, -d / 4}));
     m.append(tank);
   }
@@ -239,8 +240,8 @@ void roof(Quads& m, float w, float d, float top, const Archetype& a) {
 // Both meshes of one archetype: footprint centred on the origin, x across the lot, facades on
 // all four sides, ground at y = 0.
 std::pair<MeshData, MeshData> buildingMeshes(const Archetype& a) {
-  const std::string name = "building-" + std::to_string(a.lotsAcross) + "x" + std::to_string(a.floors) + "-s" +
-                           std::to_string(a.style);
+  const std::string name =
+      "building-" + std::to_string(a.lotsAcross) + "x" + std::to_string(a.floors) + "-s" + std::to_string(a.style);
   Quads masonry(name), glass(name + "-glass");
   const float w = lotWidth(a.lotsAcross) - kLotGap, d = kBlockSize / 2 - kLotGap;
   // Each side: its length, and where its facade's origin goes and how it turns (the facade's +x
@@ -264,15 +265,15 @@ std::pair<MeshData, MeshData> buildingMeshes(const Archetype& a) {
 
 // A tapering pole on a wider foot, and the globe on top of it (emissive; the light sits in it).
 MeshData lampPost() {
-  return shapes::lathe("lamp-post", 10, 6, [](float t) {
-    return glm::vec2(t < 0.08f ? 0.16f : 0.09f - 0.03f * t, kLampHeight * t);
-  }, [](float, float) { return 1.0f; }, true, true);
+  return shapes::lathe(
+      "lamp-post", 10, 6, [](float t) { return glm::vec2(t < 0.08f ? 0.16f : 0.09f - 0.03f * t, kLampHeight * t); },
+      [](float, float) { return 1.0f; }, true, true);
 }
 
 MeshData lampGlobe() {
-  return shapes::lathe("lamp-globe", 12, 8, [](float t) {
-    return glm::vec2(0.05f + 0.25f * std::sin(kPi * t), kLampHeight + 0.5f * t);
-  }, [](float, float) { return 1.0f; }, true, true);
+  return shapes::lathe(
+      "lamp-globe", 12, 8, [](float t) { return glm::vec2(0.05f + 0.25f * std::sin(kPi * t), kLampHeight + 0.5f * t); },
+      [](float, float) { return 1.0f; }, true, true);
 }
 
 // ---- the city ----------------------------------------------------------------------------------
@@ -321,7 +322,8 @@ class CityBuilder {
     if (inserted) {
       it->second.first = texture(procedural::baseColorTexture(pattern, params_.textureSize, params_.seed));
       if (normalStrength > 0.0f) {
-        it->second.second = texture(procedural::normalTexture(pattern, params_.textureSize, params_.seed, normalStrength));
+        it->second.second =
+            texture(procedural::normalTexture(pattern, params_.textureSize, params_.seed, normalStrength));
       }
     }
     Material m;
@@ -379,9 +381,9 @@ class CityBuilder {
     // The road: one grid under the whole city and its edge streets.
     const float lo = line(first_) - kCityStreetWidth, hi = line(lastLine()) + kCityStreetWidth, size = hi - lo;
     const auto cells = static_cast<uint32_t>(std::ceil(size / kGroundCell));
-    const uint32_t road = mesh(shapes::grid("road", cells, cells, [&](float u, float v) {
-      return glm::vec3(lo + size * u, 0.0f, hi - size * v);
-    }, glm::vec2(size * 0.25f)));
+    const uint32_t road = mesh(shapes::grid(
+        "road", cells, cells, [&](float u, float v) { return glm::vec3(lo + size * u, 0.0f, hi - size * v); },
+        glm::vec2(size * 0.25f)));
     addInstance(scene_, road, asphalt_, glm::dmat4(1.0));
     const uint32_t slab = mesh(pavementSlab(kBlockSize + 6.0f));
     forEachBlock([&](glm::dvec2 centre) { addInstance(scene_, slab, pavement_, at({centre.x, 0.0, centre.y})); });
@@ -391,9 +393,9 @@ class CityBuilder {
   static MeshData pavementSlab(float size) {
     const auto cells = static_cast<uint32_t>(std::ceil(size / kGroundCell));
     Quads slab("pavement");
-    slab.append(shapes::grid("", cells, cells, [&](float u, float v) {
-      return glm::vec3(-size / 2 + size * u, kKerb, size / 2 - size * v);
-    }, glm::vec2(size * 0.25f)));
+    slab.append(shapes::grid(
+        "", cells, cells, [&](float u, float v) { return glm::vec3(-size / 2 + size * u, kKerb, size / 2 - size * v); },
+        glm::vec2(size * 0.25f)));
     const glm::vec3 lo(-size / 2, 0.0f, -size / 2), hi(size / 2, kKerb, size / 2);
     slab.box(lo, hi, 0x33);
     return slab.take();
@@ -489,6 +491,8 @@ class CityBuilder {
 
 }  // namespace
 
-Scene buildCity(const CityParams& params) { return CityBuilder(params).build(); }
+Scene buildCity(const CityParams& params) {
+  return CityBuilder(params).build();
+}
 
 }  // namespace fgb::scene

@@ -15,7 +15,7 @@ struct CityParams {
 // street centre lines at x = k * kCityPitch and z = k * kCityPitch for k in [-blocks/2,
 // blocks - blocks/2], so the streets x = 0 and z = 0 and their neighbours at +-kCityPitch exist for
 // every blocks >= 2 (a camera path along them flies any size of city).
-inline constexpr float kCityPitch = 60.0f;       // street centre line to the next, m
+inline constexpr float kCityPitch = 60.0f;        // street centre line to the next, m
 inline constexpr float kCityStreetWidth = 16.0f;  // kerb to kerb plus both pavements, m
 
 Scene buildCity(const CityParams& params);

@@ -24,10 +24,6 @@ uint hizLevelOffset(uvec2 viewport, uint level) {
 uint hizLevels(uvec2 viewport) { return uint(max(1, findMSB(max(viewport.x, viewport.y) - 1u) + 1)); }
 
 #ifndef FGB_HIZ_BUILD_ONLY
-float maxScale(mat4 model) {
-  return sqrt(max(dot(model[0].xyz, model[0].xyz), max(dot(model[1].xyz, model[1].xyz), dot(model[2].xyz, model[2].xyz))));
-}
-
 // Whether a world-space sphere is certainly hidden behind the depths the pyramid `hiz` holds.
 // Conservative: a sphere crossing the near plane or behind the eye is visible; the sphere is
 // enlarged, its screen rectangle grown by a pixel, and its depth key must be below the texels'

@@ -40,6 +40,15 @@ vec2 fetchVec2(uint vertexBuffer, uint streamOffset, uint vertex) {
   return vec2(uintBitsToFloat(fgbUintsRead[vertexBuffer].values[at]), uintBitsToFloat(fgbUintsRead[vertexBuffer].values[at + 1u]));
 }
 
+// Depth key (the visibility words' high 32 bits, the HiZ pyramid's texels): larger = nearer,
+// never 0 for a depth in range.
+uint depthKey(float z, bool reversedZ) {
+  return reversedZ ? floatBitsToUint(max(z, 1e-30)) : 0xffffffffu - floatBitsToUint(max(z, 0.0));
+}
+float depthFromKey(uint key, bool reversedZ) {
+  return reversedZ ? uintBitsToFloat(key) : uintBitsToFloat(0xffffffffu - key);
+}
+
 // The largest axis scale of an instance's model matrix (bounding spheres scale by it).
 float maxScale(mat4 model) {
   return sqrt(max(dot(model[0].xyz, model[0].xyz), max(dot(model[1].xyz, model[1].xyz), dot(model[2].xyz, model[2].xyz))));

@@ -58,14 +58,6 @@ uvec3 dispatchFor(uint items, uint perGroup) {
 }
 uint linearGroup() { return gl_WorkGroupID.y * kDispatchWidth + gl_WorkGroupID.x; }
 
-// Depth key: larger = nearer, never 0 for a depth in range.
-uint depthKey(float z, bool reversedZ) {
-  return reversedZ ? floatBitsToUint(max(z, 1e-30)) : 0xffffffffu - floatBitsToUint(max(z, 0.0));
-}
-float depthFromKey(uint key, bool reversedZ) {
-  return reversedZ ? uintBitsToFloat(key) : uintBitsToFloat(0xffffffffu - key);
-}
-
 // The triangle behind a visibility id: its instance and three cluster vertices (indices into the
 // cluster vertex stream, which also gives their vertices in the scene's attribute streams).
 struct VisTriangle {

@@ -33,8 +33,13 @@ struct MeshletStats {
   uint clustersVisible;      // task shader: clusters in the LOD cut, the frustum and facing the eye
   uint trianglesRasterised;  // mesh shader: triangles not culled (back-facing, zero-area, small, outside)
   uint trianglesTested;      // mesh shader: the visible clusters' triangles
+  // render.occlusion: clusters phase 1 held back behind last frame's HiZ, and of those the ones
+  // phase 2 found visible against this frame's.
+  uint occluded;
+  uint recovered;
+  uint reserved[2];
 };
-FGB_CHECK_SIZE(MeshletStats, 16)
+FGB_CHECK_SIZE(MeshletStats, 32)
 
 // "Meshlet Instance Cull" (meshlet_instance_cull.comp).
 struct MeshletCullPush {
@@ -64,13 +69,27 @@ struct MeshletPush {
   uint stats;          // MeshletStats
   uint flags;          // kMeshlet* bits; the MSAA sample count in kMeshletSamplesShift's bits
   float lodThreshold;  // render.lod_error in scene pixels (times render.ssaa); 0: level 0 only
+  uint occlusion;      // render.occlusion: HiZ pyramid (low 16 bits), occlusion candidates (high 16 bits)
 };
-FGB_CHECK_PUSH(MeshletPush, 100)
-const uint kMeshletSmallTriangles = 1u;  // cull triangles that cover no sample (a pixel centre at MSAA 1)
+FGB_CHECK_PUSH(MeshletPush, 104)
+// MeshletPush::flags:
+const uint kMeshletSmallTriangles = 1u;  // cull triangles covering no sample (a pixel centre at MSAA 1)
+const uint kMeshletOcclusion = 2u;       // phase 1: clusters last frame's HiZ hides become candidates
+const uint kMeshletLate = 4u;            // phase 2: the candidates, tested against this frame's HiZ
+const uint kMeshletReversedZ = 8u;       // the depth keys' convention
+const uint kMeshletHoldBackOdd = 16u;    // debug.occlusion_hold_back: phase 1 also holds back odd draws
 const uint kMeshletSamplesShift = 8u;    // flags >> 8: samples per pixel (1, 2, 4, 8: the standard pattern)
 
 // The header before the task commands: its first word is the draw count.
 #define FGB_MESHLET_COMMANDS_OFFSET 16
+
+// render.occlusion's phase 2 arguments (meshlet_late_args.comp): from the candidate count (the
+// first word of the candidate list, whose ClusterDraw indices follow), one task draw over them.
+struct MeshletLateArgsPush {
+  uint candidates;
+  uint commands;  // header (draw count 0 or 1) + one MeshletTaskCommand
+};
+FGB_CHECK_PUSH(MeshletLateArgsPush, 8)
 
 FGB_GPU_END
 

@@ -1,5 +1,5 @@
-// HiZ occlusion (render.occlusion=1; included by cluster_cull.comp, cluster_cull_late.comp and
-// hiz_build.comp). The HiZ pyramid is a storage buffer of depth keys (depthKey in visbuffer.glsl:
+// HiZ occlusion (render.occlusion=1; included by cluster_cull.comp, cluster_cull_late.comp,
+// hiz_build.comp and the meshlet path's meshlet.task). The HiZ pyramid is a storage buffer of depth keys (depthKey in clusters.glsl:
 // larger = nearer, 0 = no triangle): level k >= 1 has ceil(W / 2^k) x ceil(H / 2^k) texels, row
 // major, levels one after another from level 1; texel (i, j) of level k holds the smallest key,
 // i.e. the farthest depth, of the viewport's pixels [i * 2^k, (i + 1) * 2^k) x [j * 2^k, ...)

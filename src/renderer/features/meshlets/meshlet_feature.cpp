@@ -45,10 +45,11 @@ void MeshletFeature::initialize(FeatureInit& init) {
   device_ = &init.device;
   scene_ = &init.scene;
   drawCount_ = init.scene.clusterGeometry.drawCount;  // the path uploads the clusters (upload.clusters)
-  if (!enabled()) return;
+  // Refused on such a device whatever the scene holds, so a path is usable or not per device.
   if (!init.device.meshShaders())
     throw InputError("render.path=" + init.path.source + " needs VK_EXT_mesh_shader (task and mesh shaders), which " +
                      init.device.adapter().name + " lacks");
+  if (!enabled()) return;
   // render.lod_error is in output pixels; the scene passes have render.ssaa times as many.
   lodThreshold_ = lod_ ? init.settings.lodError * float(init.settings.ssaa) : 0.0f;
   // The small-triangle test knows the sample positions only where they are the standard ones.

@@ -16,6 +16,8 @@ namespace {
 using graph::Access;
 
 constexpr uint64_t kStatsBytes = sizeof(gpu::MeshletStats);
+// MeshletPush::occlusion packs two storage-buffer indices in 16 bits each.
+static_assert(FGB_MAX_STORAGE_BUFFERS <= 0x10000);
 constexpr uint64_t kLateCommandsBytes = FGB_MESHLET_COMMANDS_OFFSET + sizeof(gpu::MeshletTaskCommand);
 constexpr uint32_t kCommandStride = sizeof(gpu::MeshletTaskCommand);
 // Every buffer "Meshlet Render" reads or writes is reached through bindings all three of its
@@ -110,26 +112,10 @@ void MeshletFeature::declareInstanceCull(graph::FrameGraph& graph, Buffers& b) c
   node.recordingFixed();
 }
 
-// Phase 1 (or the only one) draws the instance cull's task draws; phase 2 (late, render.occlusion)
-// the one task draw over the candidates phase 1 held back.
-void MeshletFeature::declareRender(graph::FrameGraph& graph, Blackboard& board, Buffers& b, bool late) const {
+// "Meshlet Render"'s push constants that hold for the whole run: the scene's buffers and the flags.
+gpu::MeshletPush MeshletFeature::scenePush() const {
   const GpuScene& scene = *scene_;
   const ClusterGeometry& geometry = scene.clusterGeometry;
-  auto& targets = board.get<FrameTargets>();
-  auto node =
-      addForwardPass(graph, targets, late ? "Meshlet Render (late)" : "Meshlet Render", true, DepthTest::Attachment);
-  const graph::BufferHandle commands = late ? b.lateCommands : b.commands;
-  node.read(commands, Access::Indirect);
-  node.read(commands, Access::StorageRead, kRenderStages);
-  b.stats = node.write(b.stats, Access::StorageReadWrite, kRenderStages);
-  if (occlusion_) {
-    node.read(b.hiz, Access::StorageRead, kRenderStages);
-    if (late)
-      node.read(b.candidates, Access::StorageRead, kRenderStages);
-    else
-      b.candidates = node.write(b.candidates, Access::StorageReadWrite, kRenderStages);
-  }
-  if (targets.exposure.valid()) node.read(targets.exposure, Access::StorageRead, kRenderStages);
   gpu::MeshletPush push{};
   push.shading.materials = device_->storageBufferIndex(scene.materials);
   push.shading.clusterCounts = push.shading.clusterIndices = rhi::kInvalidId;
@@ -145,15 +131,38 @@ void MeshletFeature::declareRender(graph::FrameGraph& graph, Blackboard& board, 
   push.tangents = uint32_t(scene.streams.tangents / sizeof(float));
   push.uvs = uint32_t(scene.streams.uvs / sizeof(float));
   push.ranges = device_->storageBufferIndex(geometry.instanceDraws);
-  push.flags = meshFlags_ | (occlusion_ ? (late ? gpu::kMeshletLate : gpu::kMeshletOcclusion) : 0u);
+  push.flags = meshFlags_;
   push.lodThreshold = lodThreshold_;
+  return push;
+}
+
+// Phase 1 (or the only one) draws the instance cull's task draws; phase 2 (late, render.occlusion)
+// the one task draw over the candidates phase 1 held back.
+void MeshletFeature::declareRender(graph::FrameGraph& graph, Blackboard& board, Buffers& b, bool late) const {
+  auto& targets = board.get<FrameTargets>();
+  auto node =
+      addForwardPass(graph, targets, late ? "Meshlet Render (late)" : "Meshlet Render", true, DepthTest::Attachment);
+  const graph::BufferHandle commands = late ? b.lateCommands : b.commands;
+  node.read(commands, Access::Indirect);
+  node.read(commands, Access::StorageRead, kRenderStages);
+  b.stats = node.write(b.stats, Access::StorageReadWrite, kRenderStages);
+  if (occlusion_) {
+    node.read(b.hiz, Access::StorageRead, kRenderStages);
+    if (late)
+      node.read(b.candidates, Access::StorageRead, kRenderStages);
+    else
+      b.candidates = node.write(b.candidates, Access::StorageReadWrite, kRenderStages);
+  }
+  if (targets.exposure.valid()) node.read(targets.exposure, Access::StorageRead, kRenderStages);
+  gpu::MeshletPush push = scenePush();
+  push.flags |= occlusion_ ? (late ? gpu::kMeshletLate : gpu::kMeshletOcclusion) : 0u;
   ClusteredLights clusters;
   if (const auto* published = board.find<ClusteredLights>()) {
     clusters = *published;
     node.read(clusters.counts, Access::StorageRead, kRenderStages);
     node.read(clusters.indices, Access::StorageRead, kRenderStages);
   }
-  const uint32_t maxDraws = late ? 1 : scene.instanceCount;
+  const uint32_t maxDraws = late ? 1 : scene_->instanceCount;
   node.setJob(
       [push, pipeline = render_, b, commands, clusters, maxDraws, scene = scene_](graph::JobContext& context) mutable {
         auto& ctx = rhi::rhiContext(context);
@@ -167,7 +176,7 @@ void MeshletFeature::declareRender(graph::FrameGraph& graph, Blackboard& board, 
         }
         push.commands = ctx.storageBufferIndex(commands);
         push.stats = ctx.storageBufferIndex(b.stats);
-        // ClusterCullPush's packing: storage-buffer indices fit 16 bits.
+        // As ClusterCullPush::occlusion: storage-buffer indices fit 16 bits (static_assert above).
         if (b.hiz.valid()) push.occlusion = ctx.storageBufferIndex(b.hiz) | ctx.storageBufferIndex(b.candidates) << 16;
         ctx.cmd().bindPipeline(pipeline);
         ctx.cmd().push(push);

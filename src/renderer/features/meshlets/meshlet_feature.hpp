@@ -20,6 +20,7 @@
 #pragma once
 
 #include "../context/render_feature.hpp"
+#include "renderer/shared/meshlets.h"
 
 namespace fgb::features {
 
@@ -43,6 +44,7 @@ class MeshletFeature final : public IRenderFeature {
     graph::BufferHandle lateCommands;  // draw count header + one task draw over the candidates
   };
 
+  [[nodiscard]] gpu::MeshletPush scenePush() const;
   void declareReset(graph::FrameGraph& graph, Buffers& buffers) const;
   void declareInstanceCull(graph::FrameGraph& graph, Buffers& buffers) const;
   void declareRender(graph::FrameGraph& graph, Blackboard& board, Buffers& buffers, bool late) const;

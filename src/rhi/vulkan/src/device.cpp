@@ -209,10 +209,11 @@ void VulkanDevice::createLogicalDevice() {
     imageAtomics.pNext = v13.pNext;
     v13.pNext = &imageAtomics;
   }
-  // Mesh pipelines are drawn with drawMeshTasksIndirectCount, which needs drawIndirectCount.
+  // Mesh pipelines are drawn with drawMeshTasksIndirectCount, which needs drawIndirectCount, and
+  // their task shaders find their draw by gl_DrawID (shaderDrawParameters).
   auto mesh =
       vkStruct<VkPhysicalDeviceMeshShaderFeaturesEXT>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MESH_SHADER_FEATURES_EXT);
-  meshShaders_ = drawIndirectCount_ && supportsMeshShaders(physical_);
+  meshShaders_ = drawIndirectCount_ && has11.shaderDrawParameters == VK_TRUE && supportsMeshShaders(physical_);
   if (meshShaders_) {
     extensions.push_back(VK_EXT_MESH_SHADER_EXTENSION_NAME);
     mesh.taskShader = VK_TRUE;

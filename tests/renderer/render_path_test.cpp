@@ -35,7 +35,7 @@ constexpr const char* kForwardFeatures =
 TEST(RenderPath, BuiltInPathsAreEmbeddedAndHoldEveryDecision) {
   std::vector<std::string> names;
   for (const auto& builtin : features::builtinRenderPaths()) names.emplace_back(builtin.name);
-  EXPECT_EQ(names, (std::vector<std::string>{"forward", "visbuffer"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"forward", "meshlet", "visbuffer"}));
 
   const auto forward = loadRenderPath("forward");
   EXPECT_EQ(forward.name, "forward");
@@ -66,6 +66,19 @@ TEST(RenderPath, BuiltInPathsAreEmbeddedAndHoldEveryDecision) {
   EXPECT_FALSE(forwardPlan.computeWritesHdr);
   EXPECT_FALSE(forwardPlan.computeWritesDisplay);
   EXPECT_EQ(forwardPlan.displayFormat, features::kDisplayFormat);
+
+  // The mesh-shader path: forward's depth attachment, MSAA and fragment post passes, the clusters
+  // uploaded, its feature drawing the opaque scene before forward's transparent meshes.
+  const auto meshlet = loadRenderPath("meshlet");
+  EXPECT_EQ(meshlet.post, PostPassForm::Fragment);
+  EXPECT_EQ(meshlet.depthTest, DepthTest::Attachment);
+  EXPECT_EQ(meshlet.maxMsaa, 8u);
+  EXPECT_TRUE(meshlet.uploadClusters);
+  const auto meshletPlan = planRenderPath(meshlet);
+  ASSERT_EQ(meshletPlan.features.size(), 9u);
+  EXPECT_EQ(meshletPlan.features[1]->name(), "meshlets");
+  EXPECT_EQ(meshletPlan.features[2]->name(), "meshes");
+  EXPECT_FALSE(meshletPlan.computeWritesHdr);
 }
 
 TEST(RenderPath, DefaultsAreTheForwardPathsAndMaxMsaaTheFeaturesLimit) {
@@ -102,7 +115,7 @@ TEST(RenderPath, BadFilesSayWhatIsWrongOnOneLine) {
       {pathWith(kForwardFeatures, R"(, "colour": 1)"),
        R"(--set render.path=my.json: unknown field "colour" (known: name, description, features, post, depth_test, max_msaa, upload))"},
       {replaced(R"("feature": "bloom")", R"("feature": "blom")"),
-       R"(--set render.path=my.json: features[5]: unknown feature "blom" (known: bloom, clustered_lighting, exposure, meshes, msaa_resolve, particles, ssaa_resolve, tonemap, visbuffer))"},
+       R"(--set render.path=my.json: features[5]: unknown feature "blom" (known: bloom, clustered_lighting, exposure, meshes, meshlets, msaa_resolve, particles, ssaa_resolve, tonemap, visbuffer))"},
       {replaced(R"({"feature": "meshes"})", R"({"feature": "meshes", "options": {"opaq": true}})"),
        R"(--set render.path=my.json: features[1] "meshes": unknown option "opaq" (known: opaque))"},
       {replaced(R"({"feature": "bloom"})", R"({"feature": "bloom", "options": {"mips": 3}})"),
@@ -111,7 +124,7 @@ TEST(RenderPath, BadFilesSayWhatIsWrongOnOneLine) {
        R"(--set render.path=my.json: features[1] "meshes": option "opaque": 0 is not a boolean like its default true)"},
       // Without the opaque meshes, nothing writes the depth attachment the particles test against.
       {replaced(R"({"feature": "meshes"})", R"({"feature": "meshes", "options": {"opaque": false}})"),
-       R"(--set render.path=my.json: features[1] "meshes": needs depth_attachment, which no entry before it provides (depth_attachment comes from meshes with "opaque": true; available here: light_lists))"},
+       R"(--set render.path=my.json: features[1] "meshes": needs depth_attachment, which no entry before it provides (depth_attachment comes from meshes with "opaque": true, or meshlets; available here: light_lists))"},
       // The visibility buffer has one sample per pixel ...
       {pathWith(R"([{"feature": "visbuffer"}, {"feature": "meshes", "options": {"opaque": false}},
                     {"feature": "msaa_resolve"}, {"feature": "ssaa_resolve"}, {"feature": "tonemap"}])",
@@ -159,7 +172,8 @@ TEST(RenderPath, AFileThatCannotBeReadOrIsNotJsonIsNamed) {
     FAIL() << "expected InputError";
   } catch (const InputError& error) {
     EXPECT_STREQ(error.what(),
-                 "--set render.path=no/such/path.json: cannot read the file (a built-in path is one of forward, visbuffer)");
+                 "--set render.path=no/such/path.json: cannot read the file (a built-in path is one of forward, meshlet, "
+                 "visbuffer)");
   }
 }
 

@@ -44,12 +44,13 @@ TEST(RenderSettings, RenderPathTakesABuiltInNameOrAJsonFile) {
   RenderSettings settings;
   EXPECT_NO_THROW(applyRendererKnobs(settings, {{"render.path", "visbuffer"}}));
   EXPECT_NO_THROW(applyRendererKnobs(settings, {{"render.path", "forward"}}));
+  EXPECT_NO_THROW(applyRendererKnobs(settings, {{"render.path", "meshlet"}}));
   EXPECT_NO_THROW(applyRendererKnobs(settings, {{"render.path", "my-path.json"}}));
   try {
     applyRendererKnobs(settings, {{"render.path", "deferred"}});
     FAIL() << "expected InputError";
   } catch (const InputError& error) {
-    EXPECT_NE(std::string(error.what()).find("forward|visbuffer or FILE.json"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("forward|meshlet|visbuffer or FILE.json"), std::string::npos) << error.what();
   }
 }
 

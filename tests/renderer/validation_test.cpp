@@ -61,8 +61,8 @@ INSTANTIATE_TEST_SUITE_P(Scenes, SceneValidation,
 // buffer those passes read is declared for both stages. At this size with auto exposure the
 // transient "luminance partials" reuses memory that "Particle Render" read: with its reads
 // declared for the vertex stage only, the WAR barrier before the reuse missed the fragment stage.
-TEST(SceneValidation, AutoExposureAtriumRunsCleanOnBothRenderPaths) {
-  for (const char* path : {"forward", "visbuffer"}) {
+TEST(SceneValidation, AutoExposureAtriumRunsCleanOnEveryRenderPath) {
+  for (const char* path : {"forward", "visbuffer", "meshlet"}) {
     WorkloadConfig config;
     config.scenePath = kRepo + "/atrium.json";
     config.device = "lavapipe";

@@ -16,19 +16,12 @@
 
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_shader_atomic_int64 : require
-#include "common.glsl"
-#include "renderer/shared/visbuffer.h"
+#include "clusters.glsl"
 
 const uint kClusterTriangleBits = 7u;  // 128 triangles per cluster
 const uint kTileSize = 8u;             // large triangles are rasterised in 8x8-pixel tiles
 const uint kDispatchWidth = 32768u;    // indirect dispatches are (min(n, W), ceil(n / W)) groups
 
-uvec3 clusterTriangleVertices(uint packed, uint firstVertex) {
-  return uvec3(packed & 0xffu, (packed >> 8) & 0xffu, packed >> 16) + firstVertex;
-}
-
-FGB_READONLY_STORAGE_BUFFER(ClusterBlock, visClusters) { ClusterData clusters[]; } visClusters[FGB_MAX_STORAGE_BUFFERS];
-FGB_READONLY_STORAGE_BUFFER(ClusterDrawBlock, visDraws) { ClusterDraw draws[]; } visDraws[FGB_MAX_STORAGE_BUFFERS];
 FGB_STORAGE_BUFFER(VisCounterBlock, visCounters, ) { VisCounters c; } visCounters[FGB_MAX_STORAGE_BUFFERS];
 FGB_READONLY_STORAGE_BUFFER(VisCounterReadBlock, visCountersRead) { VisCounters c; } visCountersRead[FGB_MAX_STORAGE_BUFFERS];
 FGB_STORAGE_BUFFER(VisWordBlock, visWords, ) { uint64_t words[]; } visWords[FGB_MAX_STORAGE_BUFFERS];
@@ -40,7 +33,6 @@ layout(set = 0, binding = FGB_BINDING_INT64_STORAGE_TEXTURES, r64ui) uniform u64
 FGB_READONLY_STORAGE_BUFFER(FloatReadBlock, visFloatsRead) { float values[]; } visFloatsRead[FGB_MAX_STORAGE_BUFFERS];
 FGB_STORAGE_BUFFER(FloatBlock, visFloats, ) { float values[]; } visFloats[FGB_MAX_STORAGE_BUFFERS];
 FGB_STORAGE_BUFFER(Uvec4Block, visUvec4s, ) { uvec4 values[]; } visUvec4s[FGB_MAX_STORAGE_BUFFERS];
-FGB_READONLY_STORAGE_BUFFER(Uvec4ReadBlock, visUvec4sRead) { uvec4 values[]; } visUvec4sRead[FGB_MAX_STORAGE_BUFFERS];
 
 // The visibility buffer `words` (a storage-buffer index, or with the image backing a storage-texture
 // index) at a pixel of a viewport `width` pixels wide: atomic max, and plain read.
@@ -66,14 +58,6 @@ uvec3 dispatchFor(uint items, uint perGroup) {
 }
 uint linearGroup() { return gl_WorkGroupID.y * kDispatchWidth + gl_WorkGroupID.x; }
 
-// Depth key: larger = nearer, never 0 for a depth in range.
-uint depthKey(float z, bool reversedZ) {
-  return reversedZ ? floatBitsToUint(max(z, 1e-30)) : 0xffffffffu - floatBitsToUint(max(z, 0.0));
-}
-float depthFromKey(uint key, bool reversedZ) {
-  return reversedZ ? uintBitsToFloat(key) : uintBitsToFloat(0xffffffffu - key);
-}
-
 // The triangle behind a visibility id: its instance and three cluster vertices (indices into the
 // cluster vertex stream, which also gives their vertices in the scene's attribute streams).
 struct VisTriangle {
@@ -91,22 +75,6 @@ VisTriangle visTriangle(uint drawIndex, uint triangle, uint drawsBuffer, uint cl
   t.vertices =
       clusterTriangleVertices(fgbUintsRead[trianglesBuffer].values[cluster.firstTriangle + triangle], cluster.firstVertex);
   return t;
-}
-
-// Vertex attribute fetches from the scene's vertex buffer (float streams at the given float offsets).
-vec3 fetchVec3(uint vertexBuffer, uint streamOffset, uint vertex) {
-  uint at = streamOffset + 3u * vertex;
-  return vec3(uintBitsToFloat(fgbUintsRead[vertexBuffer].values[at]), uintBitsToFloat(fgbUintsRead[vertexBuffer].values[at + 1u]),
-              uintBitsToFloat(fgbUintsRead[vertexBuffer].values[at + 2u]));
-}
-vec4 fetchVec4(uint vertexBuffer, uint streamOffset, uint vertex) {
-  uint at = streamOffset + 4u * vertex;
-  return vec4(uintBitsToFloat(fgbUintsRead[vertexBuffer].values[at]), uintBitsToFloat(fgbUintsRead[vertexBuffer].values[at + 1u]),
-              uintBitsToFloat(fgbUintsRead[vertexBuffer].values[at + 2u]), uintBitsToFloat(fgbUintsRead[vertexBuffer].values[at + 3u]));
-}
-vec2 fetchVec2(uint vertexBuffer, uint streamOffset, uint vertex) {
-  uint at = streamOffset + 2u * vertex;
-  return vec2(uintBitsToFloat(fgbUintsRead[vertexBuffer].values[at]), uintBitsToFloat(fgbUintsRead[vertexBuffer].values[at + 1u]));
 }
 
 // Perspective-correct barycentrics of a triangle from its clip-space x, y, w (homogeneous

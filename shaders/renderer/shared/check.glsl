@@ -10,6 +10,7 @@
 #define FGB_SHARED_LAYOUT_CHECK
 #include "renderer/shared/lighting.h"
 #include "renderer/shared/meshes.h"
+#include "renderer/shared/meshlets.h"
 #include "renderer/shared/opaque_depth.h"
 #include "renderer/shared/particles.h"
 #include "renderer/shared/post.h"

@@ -119,13 +119,16 @@ FGB_CHECK_PUSH(LateCullPush, 40)
 
 // "HiZ Build" (hiz_build.comp).
 struct HizPush {
-  uint words;   // level 1: the visibility buffer (storage buffer, or R64 image: render.vis_backing)
+  uint words;   // level 1: the visibility buffer (storage buffer, or R64 image: render.vis_backing);
+                // variant "depth": the depth texture's sampled index
   uint hiz;     // the pyramid (read-write)
   uint width;   // the viewport
   uint height;
   uint level;   // the level written (>= 1)
+  uint fetchSampler;  // variant "depth": a sampler for the fetch
+  uint reversedZ;     // variant "depth": the depth keys' convention
 };
-FGB_CHECK_PUSH(HizPush, 20)
+FGB_CHECK_PUSH(HizPush, 28)
 
 // The HiZ build's indirect arguments (hiz_args.comp).
 struct HizArgsPush {

@@ -3,9 +3,15 @@
 // dispatch, one invocation per texel. Level 1 reduces the visibility buffer's depth keys (the
 // high 32 bits of each word; 0 where no triangle is, the farthest), every later level the one
 // before it; each texel keeps the smallest key (the farthest depth) of its 2 x 2 children that lie
-// inside the level below.
+// inside the level below. The variant "depth" (FGB_HIZ_FROM_DEPTH, the meshlet path's) reads level
+// 1's children from a single-sampled depth texture instead (HizPush::words: its sampled index),
+// the cleared depth (kDepthClear: 0, the far plane) as key 0, like a pixel with no triangle.
 #extension GL_GOOGLE_include_directive : require
+#ifdef FGB_HIZ_FROM_DEPTH
+#include "../include/clusters.glsl"
+#else
 #include "../include/visbuffer.glsl"
+#endif
 #define FGB_HIZ_BUILD_ONLY
 #include "hiz_occlusion.glsl"
 
@@ -14,7 +20,14 @@ layout(local_size_x = FGB_HIZ_GROUP_SIZE, local_size_y = FGB_HIZ_GROUP_SIZE) in;
 layout(push_constant) uniform Push { HizPush pc; };
 
 uint childKey(uvec2 viewport, uvec2 child, uint childBase, uvec2 childSize) {
+#ifdef FGB_HIZ_FROM_DEPTH
+  if (pc.level == 1u) {
+    float z = texelFetch(sampler2D(fgbTextures[pc.words], fgbSamplers[pc.fetchSampler]), ivec2(child), 0).r;
+    return z == 0.0 ? 0u : depthKey(z, pc.reversedZ != 0u);
+  }
+#else
   if (pc.level == 1u) return uint(visWordAt(pc.words, ivec2(child), viewport.x) >> 32);
+#endif
   return fgbUintsRead[pc.hiz].values[childBase + child.y * childSize.x + child.x];
 }
 

@@ -1,5 +1,5 @@
-// HiZ occlusion (render.occlusion=1; included by cluster_cull.comp, cluster_cull_late.comp and
-// hiz_build.comp). The HiZ pyramid is a storage buffer of depth keys (depthKey in visbuffer.glsl:
+// HiZ occlusion (render.occlusion=1; included by cluster_cull.comp, cluster_cull_late.comp,
+// hiz_build.comp and the meshlet path's meshlet.task). The HiZ pyramid is a storage buffer of depth keys (depthKey in clusters.glsl:
 // larger = nearer, 0 = no triangle): level k >= 1 has ceil(W / 2^k) x ceil(H / 2^k) texels, row
 // major, levels one after another from level 1; texel (i, j) of level k holds the smallest key,
 // i.e. the farthest depth, of the viewport's pixels [i * 2^k, (i + 1) * 2^k) x [j * 2^k, ...)
@@ -24,10 +24,6 @@ uint hizLevelOffset(uvec2 viewport, uint level) {
 uint hizLevels(uvec2 viewport) { return uint(max(1, findMSB(max(viewport.x, viewport.y) - 1u) + 1)); }
 
 #ifndef FGB_HIZ_BUILD_ONLY
-float maxScale(mat4 model) {
-  return sqrt(max(dot(model[0].xyz, model[0].xyz), max(dot(model[1].xyz, model[1].xyz), dot(model[2].xyz, model[2].xyz))));
-}
-
 // Whether a world-space sphere is certainly hidden behind the depths the pyramid `hiz` holds.
 // Conservative: a sphere crossing the near plane or behind the eye is visible; the sphere is
 // enlarged, its screen rectangle grown by a pixel, and its depth key must be below the texels'

@@ -4,6 +4,7 @@
 #include "exposure/exposure_feature.hpp"
 #include "lighting/clustered_lighting.hpp"
 #include "meshes/mesh_feature.hpp"
+#include "meshlets/meshlet_feature.hpp"
 #include "particles/particle_feature.hpp"
 #include "ssaa/msaa_resolve_feature.hpp"
 #include "ssaa/ssaa_resolve_feature.hpp"
@@ -74,6 +75,22 @@ FeatureKind visbuffer() {
   return kind;
 }
 
+FeatureKind meshlets() {
+  FeatureKind kind;
+  kind.name = "meshlets";
+  kind.phase = FeaturePhase::Opaque;
+  kind.help =
+      "task and mesh shaders draw the opaque scene from the clusters (\"Meshlet Instance Cull\", \"Meshlet Render\")";
+  kind.options = {{"lod", true, "draws each mesh's LOD cut at render.lod_error (false: full detail)"}};
+  kind.contract = [](const Options&, const RenderPath&) {
+    return FeatureContract{{"clusters"}, {"opaque_scene", "depth_attachment"}};
+  };
+  kind.create = [](const Options& options) -> std::unique_ptr<IRenderFeature> {
+    return std::make_unique<MeshletFeature>(options.at("lod").get<bool>());
+  };
+  return kind;
+}
+
 }  // namespace
 
 const char* phaseName(FeaturePhase phase) {
@@ -99,8 +116,8 @@ std::string phaseOrder() {
 
 std::string providersOf(std::string_view product) {
   if (product == "clusters") return "\"upload\": {\"clusters\": true}";
-  if (product == "opaque_scene") return "meshes with \"opaque\": true, or visbuffer";
-  if (product == "depth_attachment") return "meshes with \"opaque\": true";
+  if (product == "opaque_scene") return "meshes with \"opaque\": true, visbuffer, or meshlets";
+  if (product == "depth_attachment") return "meshes with \"opaque\": true, or meshlets";
   std::string names;
   for (const FeatureKind& kind : featureKinds()) {
     // Any path: the contract's products that do not depend on options or the path.
@@ -125,12 +142,14 @@ const std::vector<FeatureKind>& featureKinds() {
                                "\"Cluster Bounds\", \"Clustered Light Cull\": per-cluster light lists",
                                {{}, {"light_lists"}}),
       visbuffer(),
+      meshlets(),
       meshes(),
       particles(),
       // After the last feature that draws colour: the MSAA target becomes the HDR image here.
       plain<MsaaResolveFeature>("msaa_resolve", MsaaResolve, "\"MSAA Resolve\" (or \"Clear\" when nothing drew)",
                                 {{}, {"hdr"}}),
-      plain<SsaaResolveFeature>("ssaa_resolve", SsaaResolve, "\"SSAA Resolve\" (render.ssaa > 1), in the path's post form",
+      plain<SsaaResolveFeature>("ssaa_resolve", SsaaResolve,
+                                "\"SSAA Resolve\" (render.ssaa > 1), in the path's post form",
                                 {{"hdr"}, {"output_hdr"}}),
       plain<BloomFeature>("bloom", Bloom, "\"Bloom\"", {{"output_hdr"}, {"bloom"}}),
       plain<ExposureFeature>("exposure", Exposure, "\"Exposure\" (post.exposure=auto)", {{"output_hdr"}, {}}),

@@ -189,14 +189,18 @@ uint32_t clusterDrawFlags(const scene::Scene& scene, const scene::Instance& inst
 }
 
 // Every cluster, of every LOD level, of every opaque and alpha-masked GPU instance, in instance
-// order ("Cluster Cull" keeps one cut of each). `triangles` counts level 0: no cut has more.
-std::vector<gpu::ClusterDraw> clusterDraws(const scene::Scene& scene, const GpuScene& gpu, uint64_t& triangles) {
+// order ("Cluster Cull" keeps one cut of each), and each instance's range of them (`ranges`, per
+// GPU instance: ClusterGeometry::instanceDraws). `triangles` counts level 0: no cut has more.
+std::vector<gpu::ClusterDraw> clusterDraws(const scene::Scene& scene, const GpuScene& gpu, uint64_t& triangles,
+                                           std::vector<glm::uvec2>& ranges) {
   std::vector<gpu::ClusterDraw> draws;
   triangles = 0;
+  ranges.assign(gpu.instanceCount, glm::uvec2(0u));
   for (const auto& group : gpu.groups) {
     if (group.drawClass == features::DrawClass::Transparent) continue;
     const scene::Mesh& mesh = scene.meshes[group.mesh];
     for (uint32_t slot = group.firstSlot; slot < group.firstSlot + group.capacity; ++slot) {
+      ranges[slot] = {uint32_t(draws.size()), mesh.clusterCount};
       const uint32_t flags = clusterDrawFlags(scene, scene.instances[gpu.instanceOrder[slot]]);
       for (uint32_t c = mesh.firstCluster; c < mesh.firstCluster + mesh.clusterCount; ++c)
         draws.push_back({slot, c, mesh.firstVertex, flags});
@@ -225,7 +229,8 @@ std::vector<glm::uvec4> clusterVertexStream(const scene::Scene& scene) {
 
 void uploadClusters(SceneUploader& uploader, const scene::Scene& scene, GpuScene& gpu) {
   auto& geometry = gpu.clusterGeometry;
-  const auto draws = clusterDraws(scene, gpu, geometry.triangles);
+  std::vector<glm::uvec2> ranges;
+  const auto draws = clusterDraws(scene, gpu, geometry.triangles, ranges);
   geometry.drawCount = uint32_t(draws.size());
   geometry.clusters = uploader.buffer("scene clusters", bytesOf(scene.clusters), rhi::kBufferStorage);
   geometry.packedTriangles =
@@ -233,6 +238,7 @@ void uploadClusters(SceneUploader& uploader, const scene::Scene& scene, GpuScene
   geometry.vertices =
       uploader.buffer("scene cluster vertices", bytesOf(clusterVertexStream(scene)), rhi::kBufferStorage);
   geometry.draws = uploader.buffer("cluster draws", bytesOf(draws), rhi::kBufferStorage);
+  geometry.instanceDraws = uploader.buffer("cluster draws per instance", bytesOf(ranges), rhi::kBufferStorage);
 }
 
 void uploadGeometry(SceneUploader& uploader, const scene::Scene& scene, GpuScene& gpu) {

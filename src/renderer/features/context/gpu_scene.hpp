@@ -47,6 +47,9 @@ struct ClusterGeometry {
   rhi::BufferId packedTriangles;  // uint32 per triangle: scene::packClusterTriangle (cluster-local)
   rhi::BufferId vertices;         // uvec4 per cluster vertex: position (float bits), its vertex in GpuScene::vertices
   rhi::BufferId draws;            // gpu::ClusterDraw[]
+  // uvec2 per GPU instance: its first ClusterDraw and their number (every level's clusters; 0 for
+  // a transparent instance). The draws are in instance order: one instance's are contiguous.
+  rhi::BufferId instanceDraws;
   uint32_t drawCount = 0;
   uint64_t triangles = 0;  // triangles of all draws: the most "Triangle Filter" can keep
 };

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "../context/handles.hpp"
+#include "hiz_pyramid.hpp"
 #include "renderer/shared/visbuffer.h"
 
 namespace fgb::features {
@@ -34,34 +35,6 @@ constexpr uint64_t kTileArgsOffset = offsetof(VisCounters, tileGroups);
 // ClusterCullPush::occlusion packs two storage-buffer indices in 16 bits each.
 static_assert(FGB_MAX_STORAGE_BUFFERS <= 0x10000);
 constexpr uint64_t kHizLevelArgsBytes = 12;  // one VkDispatchIndirectCommand per level
-
-// A viewport side at a HiZ pyramid level: ceil(size / 2^level) (hizLevelSize in hiz_occlusion.glsl).
-uint32_t hizLevelSize(uint32_t size, uint32_t level) {
-  return (size + (1u << level) - 1) >> level;
-}
-// The HiZ pyramid's levels (>= 1; see hiz_occlusion.glsl) and its size in 32-bit keys.
-uint32_t hizLevels(uint32_t width, uint32_t height) {
-  uint32_t level = 1;
-  while (hizLevelSize(width, level) > 1 || hizLevelSize(height, level) > 1) ++level;
-  return level;
-}
-uint64_t hizKeys(uint32_t width, uint32_t height) {
-  uint64_t keys = 0;
-  const uint32_t levels = hizLevels(width, height);
-  for (uint32_t level = 1; level <= levels; ++level)
-    keys += uint64_t{hizLevelSize(width, level)} * hizLevelSize(height, level);
-  return keys;
-}
-
-// Reversed Z: the projection maps nearer points to larger depth.
-bool projectsReversedZ(const gpu::FrameConstants& constants) {
-  const float near = constants.depthRange.x;
-  const auto depthAt = [&](float distance) {
-    const glm::vec4 clip = constants.proj * glm::vec4(0.0f, 0.0f, -distance, 1.0f);
-    return clip.z / clip.w;
-  };
-  return depthAt(2.0f * near) > depthAt(4.0f * near);
-}
 
 // Material Shade's shader: the backing's word accesses, and the debug views' colours only where a
 // debug view needs them (shaders/CMakeLists.txt's "debug" variants).
@@ -428,7 +401,7 @@ void VisBufferFeature::declareHizBuild(graph::FrameGraph& graph, Buffers& b, boo
   node.setJob([pipeline = pipelines_.hizBuild, b, levels, late](graph::JobContext& context) {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
-    gpu::HizPush push{b.wordsIndex(ctx), ctx.storageBufferIndex(b.hiz), b.extent.width, b.extent.height, 0};
+    gpu::HizPush push{b.wordsIndex(ctx), ctx.storageBufferIndex(b.hiz), b.extent.width, b.extent.height, 0, 0, 0};
     cmd.bindPipeline(pipeline);
     for (uint32_t level = 1; level <= levels; ++level) {
       if (level > 1) cmd.computeBarrier();  // a level reads the one before it

@@ -113,6 +113,15 @@ void VulkanCommandBuffer::drawIndexedIndirectCount(rhi::BufferId arguments, uint
   vkCmdDrawIndexedIndirectCount(cmd, vkBuffer(arguments), offset, vkBuffer(count), countOffset, maxDrawCount, stride);
 }
 
+void VulkanCommandBuffer::drawMeshTasksIndirectCount(rhi::BufferId arguments, uint64_t offset, rhi::BufferId count,
+                                                     uint64_t countOffset, uint32_t maxDrawCount, uint32_t stride) {
+  const VkCommandBuffer cmd = recording();
+  if (vkCmdDrawMeshTasksIndirectCountEXT == nullptr)
+    throw std::logic_error("drawMeshTasksIndirectCount: VK_EXT_mesh_shader is not enabled on this device");
+  vkCmdDrawMeshTasksIndirectCountEXT(cmd, vkBuffer(arguments), offset, vkBuffer(count), countOffset, maxDrawCount,
+                                     stride);
+}
+
 void VulkanCommandBuffer::copyBuffer(rhi::BufferId src, rhi::BufferId dst, std::span<const rhi::BufferCopy> regions) {
   const VkCommandBuffer cmd = recording();
   std::vector<VkBufferCopy> copies;

@@ -53,6 +53,8 @@ class VulkanCommandBuffer final : public rhi::CommandBuffer {
   void drawIndexed(uint32_t indexCount, uint32_t instanceCount, uint32_t firstIndex, int32_t vertexOffset,
                    uint32_t firstInstance) override;
   void drawIndexedIndirect(rhi::BufferId arguments, uint64_t offset, uint32_t drawCount, uint32_t stride) override;
+  void drawMeshTasksIndirectCount(rhi::BufferId arguments, uint64_t offset, rhi::BufferId count, uint64_t countOffset,
+                                  uint32_t maxDrawCount, uint32_t stride) override;
   void drawIndexedIndirectCount(rhi::BufferId arguments, uint64_t offset, rhi::BufferId count, uint64_t countOffset,
                                 uint32_t maxDrawCount, uint32_t stride) override;
   void copyBuffer(rhi::BufferId src, rhi::BufferId dst, std::span<const rhi::BufferCopy> regions) override;

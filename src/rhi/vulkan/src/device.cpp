@@ -7,6 +7,7 @@
 #include <fgb/vulkan/backend.hpp>
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <string_view>
 #include <vector>
@@ -67,6 +68,28 @@ bool supportsImageInt64Atomics(VkPhysicalDevice physical) {
   return (format.optimalTilingFeatures & kNeeded) == kNeeded;
 }
 
+// VK_EXT_mesh_shader with task and mesh shaders (the meshlet path's), unless the environment
+// hides it: FGBENCH_HIDE_MESH_SHADERS=1 opens the device without the extension, as on a device
+// that lacks it (how the tests reach "needs VK_EXT_mesh_shader" on a device that has it).
+bool supportsMeshShaders(VkPhysicalDevice physical) {
+  if (const char* hide = std::getenv("FGBENCH_HIDE_MESH_SHADERS"); hide != nullptr && std::string_view(hide) == "1")
+    return false;
+  uint32_t count = 0;
+  vkEnumerateDeviceExtensionProperties(physical, nullptr, &count, nullptr);
+  std::vector<VkExtensionProperties> extensions(count);
+  vkEnumerateDeviceExtensionProperties(physical, nullptr, &count, extensions.data());
+  const bool listed = std::any_of(extensions.begin(), extensions.end(), [](const VkExtensionProperties& e) {
+    return std::string_view(e.extensionName) == VK_EXT_MESH_SHADER_EXTENSION_NAME;
+  });
+  if (!listed) return false;
+  auto mesh =
+      vkStruct<VkPhysicalDeviceMeshShaderFeaturesEXT>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MESH_SHADER_FEATURES_EXT);
+  auto features = vkStruct<VkPhysicalDeviceFeatures2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2);
+  features.pNext = &mesh;
+  vkGetPhysicalDeviceFeatures2(physical, &features);
+  return mesh.taskShader == VK_TRUE && mesh.meshShader == VK_TRUE;
+}
+
 }  // namespace
 
 VulkanDevice::VulkanDevice(const rhi::DeviceOptions& options) : framesInFlight_(std::max(1u, options.framesInFlight)) {
@@ -84,6 +107,7 @@ VulkanDevice::VulkanDevice(const rhi::DeviceOptions& options) : framesInFlight_(
   sampleCounts_ = (properties.limits.framebufferColorSampleCounts & properties.limits.framebufferDepthSampleCounts &
                    (VK_SAMPLE_COUNT_2_BIT | VK_SAMPLE_COUNT_4_BIT | VK_SAMPLE_COUNT_8_BIT)) |
                   VK_SAMPLE_COUNT_1_BIT;
+  standardSampleLocations_ = properties.limits.standardSampleLocations == VK_TRUE;
   debugLabels_ = options.debugLabels && instance_->debugUtils();
 
   createLogicalDevice();
@@ -175,14 +199,27 @@ void VulkanDevice::createLogicalDevice() {
   shaderCapabilities_.bufferInt64Atomics =
       shaderCapabilities_.int64 && has12.shaderBufferInt64Atomics == VK_TRUE && has12.shaderSharedInt64Atomics == VK_TRUE;
   shaderCapabilities_.imageInt64Atomics = shaderCapabilities_.int64 && supportsImageInt64Atomics(physical_);
-  // The only device extension: everything else the backend uses is Vulkan 1.3 core.
+  // The only device extensions, both optional: everything else the backend uses is Vulkan 1.3 core.
   std::vector<const char*> extensions;
   auto imageAtomics = vkStruct<VkPhysicalDeviceShaderImageAtomicInt64FeaturesEXT>(
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_IMAGE_ATOMIC_INT64_FEATURES_EXT);
   if (shaderCapabilities_.imageInt64Atomics) {
     extensions.push_back(VK_EXT_SHADER_IMAGE_ATOMIC_INT64_EXTENSION_NAME);
     imageAtomics.shaderImageInt64Atomics = VK_TRUE;
+    imageAtomics.pNext = v13.pNext;
     v13.pNext = &imageAtomics;
+  }
+  // Mesh pipelines are drawn with drawMeshTasksIndirectCount, which needs drawIndirectCount, and
+  // their task shaders find their draw by gl_DrawID (shaderDrawParameters).
+  auto mesh =
+      vkStruct<VkPhysicalDeviceMeshShaderFeaturesEXT>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MESH_SHADER_FEATURES_EXT);
+  meshShaders_ = drawIndirectCount_ && has11.shaderDrawParameters == VK_TRUE && supportsMeshShaders(physical_);
+  if (meshShaders_) {
+    extensions.push_back(VK_EXT_MESH_SHADER_EXTENSION_NAME);
+    mesh.taskShader = VK_TRUE;
+    mesh.meshShader = VK_TRUE;
+    mesh.pNext = v13.pNext;
+    v13.pNext = &mesh;
   }
 
   auto info = vkStruct<VkDeviceCreateInfo>(VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO);

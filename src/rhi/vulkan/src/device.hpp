@@ -76,6 +76,8 @@ class VulkanDevice final : public rhi::Device {
   bool bindless() const override { return descriptors_->bindless(); }
   bool drawIndirectCount() const override { return drawIndirectCount_; }
   rhi::ShaderCapabilities shaderCapabilities() const override { return shaderCapabilities_; }
+  bool meshShaders() const override { return meshShaders_; }
+  bool standardSampleLocations() const override { return standardSampleLocations_; }
   rhi::BufferId createBuffer(const rhi::BufferDesc& desc) override;
   rhi::TextureId createTexture(const rhi::TextureDesc& desc) override;
   rhi::SamplerId createSampler(const rhi::SamplerDesc& desc) override;
@@ -128,6 +130,8 @@ class VulkanDevice final : public rhi::Device {
   std::vector<TimelinePoint>& sequentialTail() { return sequentialTail_; }
 
  private:
+  // A graphics pipeline's stages before rasterisation (pipelines.cpp).
+  std::vector<VkPipelineShaderStageCreateInfo> geometryStages(const rhi::GraphicsPipelineDesc& desc);
   void createLogicalDevice();
   void createView(TextureRecord& record);
   void createDescriptors(bool forceFallback);
@@ -146,6 +150,8 @@ class VulkanDevice final : public rhi::Device {
   bool debugLabels_ = false;
   bool drawIndirectCount_ = false;
   rhi::ShaderCapabilities shaderCapabilities_;
+  bool standardSampleLocations_ = false;
+  bool meshShaders_ = false;  // VK_EXT_mesh_shader enabled (task + mesh shaders, drawIndirectCount)
   uint32_t framesInFlight_ = 2;
 
   std::unique_ptr<MemoryAllocator> memory_;

@@ -64,9 +64,22 @@ VkPipelineColorBlendAttachmentState blendState(rhi::BlendMode mode) {
 
 }  // namespace
 
+// The pre-rasterisation stages: the vertex shader, or a mesh pipeline's task (optional) and mesh shaders.
+std::vector<VkPipelineShaderStageCreateInfo> VulkanDevice::geometryStages(const rhi::GraphicsPipelineDesc& desc) {
+  if (desc.meshShader.empty()) return {stage(VK_SHADER_STAGE_VERTEX_BIT, shaderModule(desc.vertexShader))};
+  if (!meshShaders_)
+    throw std::logic_error("mesh pipeline '" + desc.name + "' on a device without mesh shaders (" + adapter_.name +
+                           ")");
+  std::vector<VkPipelineShaderStageCreateInfo> stages;
+  if (!desc.taskShader.empty()) stages.push_back(stage(VK_SHADER_STAGE_TASK_BIT_EXT, shaderModule(desc.taskShader)));
+  stages.push_back(stage(VK_SHADER_STAGE_MESH_BIT_EXT, shaderModule(desc.meshShader)));
+  return stages;
+}
+
 rhi::PipelineId VulkanDevice::createGraphicsPipeline(const rhi::GraphicsPipelineDesc& desc) {
-  std::vector<VkPipelineShaderStageCreateInfo> stages{stage(VK_SHADER_STAGE_VERTEX_BIT, shaderModule(desc.vertexShader))};
+  std::vector<VkPipelineShaderStageCreateInfo> stages = geometryStages(desc);
   if (!desc.fragmentShader.empty()) stages.push_back(stage(VK_SHADER_STAGE_FRAGMENT_BIT, shaderModule(desc.fragmentShader)));
+  const bool meshPipeline = !desc.meshShader.empty();
 
   std::vector<VkVertexInputBindingDescription> bindings;
   for (const auto& b : desc.vertexBindings) {
@@ -120,8 +133,9 @@ rhi::PipelineId VulkanDevice::createGraphicsPipeline(const rhi::GraphicsPipeline
   info.pNext = &rendering;
   info.stageCount = static_cast<uint32_t>(stages.size());
   info.pStages = stages.data();
-  info.pVertexInputState = &vertexInput;
-  info.pInputAssemblyState = &assembly;
+  // A mesh pipeline has neither (its mesh shader emits the primitives).
+  info.pVertexInputState = meshPipeline ? nullptr : &vertexInput;
+  info.pInputAssemblyState = meshPipeline ? nullptr : &assembly;
   info.pViewportState = &viewport;
   info.pRasterizationState = &raster;
   info.pMultisampleState = &multisample;

@@ -71,6 +71,8 @@ VkPipelineStageFlags2 toVkStages(graph::StageMask stages) {
       {graph::kStageResolve, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT},
       {graph::kStageHost, VK_PIPELINE_STAGE_2_HOST_BIT},
       {graph::kStageAllCommands, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT},
+      {graph::kStageTaskShader, VK_PIPELINE_STAGE_2_TASK_SHADER_BIT_EXT},
+      {graph::kStageMeshShader, VK_PIPELINE_STAGE_2_MESH_SHADER_BIT_EXT},
   };
   VkPipelineStageFlags2 result = VK_PIPELINE_STAGE_2_NONE;
   for (const auto& pair : kPairs) {

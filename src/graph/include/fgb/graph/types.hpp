@@ -30,6 +30,8 @@ enum StageBits : uint32_t {
   kStageResolve = 1u << 9,  // dynamic-rendering resolve runs in ColorAttachmentOutput
   kStageHost = 1u << 10,
   kStageAllCommands = 1u << 11,
+  kStageTaskShader = 1u << 12,  // mesh pipelines (VK_EXT_mesh_shader): only on devices that have them
+  kStageMeshShader = 1u << 13,
 };
 using StageMask = uint32_t;
 

@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <stdexcept>
 
 namespace fgb::rhi {
 
@@ -54,6 +55,14 @@ class CommandBuffer {
   virtual void drawIndexedIndirect(BufferId arguments, uint64_t offset, uint32_t drawCount, uint32_t stride) = 0;
   virtual void drawIndexedIndirectCount(BufferId arguments, uint64_t offset, BufferId count, uint64_t countOffset,
                                         uint32_t maxDrawCount, uint32_t stride) = 0;
+  // Mesh pipelines (Device::meshShaders()): up to maxDrawCount draws, each a
+  // VkDrawMeshTasksIndirectCommandEXT (three uint32 workgroup counts) at `stride` bytes from the
+  // last, their number read from `count` (vkCmdDrawMeshTasksIndirectCountEXT). Devices without
+  // mesh shaders throw std::logic_error.
+  virtual void drawMeshTasksIndirectCount(BufferId /*arguments*/, uint64_t /*offset*/, BufferId /*count*/,
+                                          uint64_t /*countOffset*/, uint32_t /*maxDrawCount*/, uint32_t /*stride*/) {
+    throw std::logic_error("drawMeshTasksIndirectCount on a device without mesh shaders");
+  }
 
   virtual void copyBuffer(BufferId src, BufferId dst, std::span<const BufferCopy> regions) = 0;
   void copyBuffer(BufferId src, BufferId dst, uint64_t size) {

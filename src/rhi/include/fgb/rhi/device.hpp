@@ -170,6 +170,13 @@ class Device {
   // CommandBuffer::drawIndexedIndirectCount is available (Vulkan 1.2 drawIndirectCount).
   [[nodiscard]] virtual bool drawIndirectCount() const = 0;
   [[nodiscard]] virtual ShaderCapabilities shaderCapabilities() const { return {}; }
+  // Task and mesh shaders (VK_EXT_mesh_shader with its taskShader and meshShader features, enabled
+  // where present; drawIndirectCount too, for drawMeshTasksIndirectCount): mesh pipelines
+  // (GraphicsPipelineDesc::meshShader) and the kStageTaskShader/kStageMeshShader stages.
+  [[nodiscard]] virtual bool meshShaders() const { return false; }
+  // Multisampled rasterisation samples at Vulkan's standard sample positions
+  // (VkPhysicalDeviceLimits::standardSampleLocations), which a shader may then rely on.
+  [[nodiscard]] virtual bool standardSampleLocations() const { return false; }
 
   virtual BufferId createBuffer(const BufferDesc& desc) = 0;
   virtual TextureId createTexture(const TextureDesc& desc) = 0;

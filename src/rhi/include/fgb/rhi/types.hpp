@@ -107,10 +107,15 @@ enum class IndexType : uint8_t { Uint16, Uint32 };
 
 // Graphics pipelines render with dynamic rendering into the formats listed here; viewport and
 // scissor are dynamic (the executor sets them to the attachments' extent before the job runs).
+// A mesh pipeline (Device::meshShaders()) names meshShader (and optionally taskShader) instead of
+// vertexShader; it has no vertex input or topology (the mesh shader emits triangles) and is drawn
+// with CommandBuffer::drawMeshTasks*.
 struct GraphicsPipelineDesc {
   std::string name{};
   std::string vertexShader{};    // path under shaders/, e.g. "proof/scene.vert"
   std::string fragmentShader{};  // empty: depth-only
+  std::string taskShader{};      // mesh pipelines: optional, e.g. "renderer/meshlets/meshlet.task"
+  std::string meshShader{};      // non-empty: a mesh pipeline (vertexShader, vertex input unused)
   std::vector<VertexBinding> vertexBindings{};
   std::vector<VertexAttribute> vertexAttributes{};
   Topology topology = Topology::TriangleList;

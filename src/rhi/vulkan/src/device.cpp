@@ -231,9 +231,14 @@ void VulkanDevice::createLogicalDevice() {
   check(vkCreateDevice(physical_, &info, nullptr, &device_), "vkCreateDevice on " + adapter_.name);
   volkLoadDevice(device_);
 
+  uint32_t familyCount = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(physical_, &familyCount, nullptr);
+  std::vector<VkQueueFamilyProperties> familyProperties(familyCount);
+  vkGetPhysicalDeviceQueueFamilyProperties(physical_, &familyCount, familyProperties.data());
   for (uint32_t family : distinct) {
     DeviceQueue queue;
     queue.family = family;
+    queue.flags = familyProperties[family].queueFlags;
     vkGetDeviceQueue(device_, family, 0, &queue.queue);
     queues_.push_back(queue);
     queueFamilies_.push_back(family);

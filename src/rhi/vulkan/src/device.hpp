@@ -56,6 +56,7 @@ struct PipelineRecord {
 struct DeviceQueue {
   VkQueue queue = VK_NULL_HANDLE;
   uint32_t family = 0;
+  VkQueueFlags flags = 0;  // the family's capabilities (which stages its barriers may name)
 };
 
 // A timeline semaphore value a submission can wait for.

@@ -252,6 +252,14 @@ void VulkanGraph::translateBarriers() {
     // The half of an ownership transfer recorded on the other queue has no scope here.
     if (b.kind == graph::Barrier::Kind::Release && !sameFamily) dstStages = dstAccess = 0;
     if (b.kind == graph::Barrier::Kind::Acquire) srcStages = srcAccess = 0;
+    // A barrier names only accesses its queue can make: an import's final state may list every
+    // later read (index, vertex, shader), but on a transfer queue ALL_COMMANDS covers transfers
+    // only. Later readers on other queues are ordered by the semaphore, whose signal makes every
+    // write available, and by their own queue's barriers.
+    const VkQueueFlags recordedOn =
+        device_.queues()[deviceQueueOf_[b.kind == graph::Barrier::Kind::Acquire ? b.dstQueue : b.srcQueue]].flags;
+    srcAccess &= supportedAccess(recordedOn);
+    dstAccess &= supportedAccess(recordedOn);
     if (texture) {
       const TextureRecord& record = device_.texture(textures_[b.resource]);
       auto barrier = vkStruct<VkImageMemoryBarrier2>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2);
@@ -519,12 +527,7 @@ void VulkanGraph::createSpin() {
     throw InputError("slow pass '" + options_.slowNode + "': no node of that name runs in graph '" + options_.name +
                      "'");
   }
-  uint32_t familyCount = 0;
-  vkGetPhysicalDeviceQueueFamilyProperties(device_.physical(), &familyCount, nullptr);
-  std::vector<VkQueueFamilyProperties> families(familyCount);
-  vkGetPhysicalDeviceQueueFamilyProperties(device_.physical(), &familyCount, families.data());
-  const uint32_t family = device_.queues()[deviceQueueOf_[steps_[slowStep_].logicalQueue]].family;
-  if ((families[family].queueFlags & VK_QUEUE_COMPUTE_BIT) == 0) {
+  if ((device_.queues()[deviceQueueOf_[steps_[slowStep_].logicalQueue]].flags & VK_QUEUE_COMPUTE_BIT) == 0) {
     throw InputError("slow pass '" + options_.slowNode +
                      "': it runs on a queue without compute work (a transfer queue)");
   }

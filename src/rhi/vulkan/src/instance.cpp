@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <string_view>
 
 namespace fgb::vulkan {
 namespace {
@@ -42,10 +43,21 @@ bool hasInstanceExtension(const char* layer, const char* name) {
   return false;
 }
 
+// volkLoadDevice asks vkGetDeviceProcAddr for every function volk knows. Debian 12's volk
+// (1.3.239) files a few instance-level functions among them (e.g.
+// vkGetPhysicalDeviceVideoEncodeQualityLevelPropertiesKHR), and newer validation layers warn about
+// each ask on drivers that expose them (NVIDIA). That is volk's table, not our use of Vulkan: the
+// pointer is never called. Only this exact warning is dropped.
+bool isVolkDeviceTableNoise(const VkDebugUtilsMessengerCallbackDataEXT& data) {
+  const std::string_view message = data.pMessage ? data.pMessage : "";
+  return message.starts_with("vkGetDeviceProcAddr(): pName is trying to grab ") &&
+         message.ends_with(" which is an instance level function");
+}
+
 VKAPI_ATTR VkBool32 VKAPI_CALL onMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
                                          VkDebugUtilsMessageTypeFlagsEXT /*types*/,
                                          const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
-  static_cast<Instance*>(user)->record(severity, *data);
+  if (!isVolkDeviceTableNoise(*data)) static_cast<Instance*>(user)->record(severity, *data);
   return VK_FALSE;  // never abort the call that triggered the message
 }
 

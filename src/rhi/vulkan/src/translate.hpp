@@ -14,6 +14,10 @@ VkImageAspectFlags aspectOf(graph::Format format);
 VkSampleCountFlagBits toVkSamples(uint32_t samples);
 
 VkPipelineStageFlags2 toVkStages(graph::StageMask stages);
+// The access types a barrier recorded on a queue of a family with these flags may name (a
+// transfer-only family: transfers, host and memory accesses; compute adds shader and indirect
+// reads; graphics adds vertex input and attachments).
+VkAccessFlags2 supportedAccess(VkQueueFlags family);
 VkAccessFlags2 toVkAccess(graph::AccessMask access);
 VkImageLayout toVk(graph::Layout layout);
 

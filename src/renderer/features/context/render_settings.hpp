@@ -47,6 +47,7 @@ struct RenderSettings {
   uint32_t bloomMips = 6;             // bloom.mips
   uint32_t particleSeedOffset = 0;    // particles.seed (added to every emitter's seed)
   bool checkFinite = false;           // --check-finite (not a knob: a run option)
+  bool capture = false;               // --capture (a run option): PassCaptureFeature declares copies
   std::string injectNanPass;          // debug.inject_nan: the pass whose shader writes a NaN ("": none)
   std::string slowPass;               // debug.slow_pass: "NAME:PERCENT" as given ("": none)
 

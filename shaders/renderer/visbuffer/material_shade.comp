@@ -84,5 +84,6 @@ void main() {
   vec4 base = surfaceBaseColor(m, p.uv);
   vec4 color = shadeSurface(frame, m, base, p, LightLists(pc.lights, pc.clusterCounts, pc.clusterIndices));
   if (frame.counts.w >= kDebugViewLod) color.rgb = debugViewColor(frame, drawIndex, p);
+  if ((pc.flags & kFlagInjectBias) != 0u) color.rgb += kInjectedBias;  // debug.inject_bias
   imageStore(fgbImagesRgba16f[pc.hdr], ivec2(pixel), vec4(color.rgb, 1.0));  // alpha > 0: metered geometry
 }

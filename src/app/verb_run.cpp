@@ -38,6 +38,7 @@ struct RunVerbOptions {
   bool noIsolate = false;
   int isolateFrames = -1;  // -1: defaultIsolatedFrames(frames)
   std::string capture;     // --capture passes | NODE,NODE,...
+  bool comparePasses = false;  // --compare-passes: judge the per-pass goldens even when the frame passes
 };
 
 // --detect 2% | 0.02: a relative change in (0, 1).
@@ -152,6 +153,9 @@ std::string failureLine(const harness::RunResult& run) {
     }
     if (!run.golden->diffImage.empty()) line += " heat map " + run.golden->diffImage;
     if (!run.firstDifference.empty()) line += "; " + run.firstDifference;
+  } else if (run.passesGolden.is_object() && !run.passesGolden["differing"].empty()) {
+    // --compare-passes: the frame passed, but a pass moved beyond its noise.
+    line += (line.empty() ? "" : " ") + std::string("per-pass goldens: ") + run.firstDifference;
   }
   return line;
 }
@@ -177,7 +181,8 @@ int runVerb(const CLI::App& command, RunVerbOptions o) {
   harness::RunResult& run = artifacts.run;
   if (budget) run.budget = harness::checkBudget(*budget, run.medians(), o.tolerance);
   if (golden) run.golden = harness::checkGolden(*golden, artifacts.images, o.out, &artifacts.golden);
-  if (golden && run.golden->verdict == "fail") harness::localiseAgainstPassGoldens(*golden, artifacts);
+  if (golden && (run.golden->verdict == "fail" || o.comparePasses))
+    harness::localiseAgainstPassGoldens(*golden, artifacts);
   harness::writeRunOutputs(o.out, artifacts);
 
   if (o.common.json) {
@@ -205,6 +210,9 @@ static VerbRegistrar reg(20, [](CLI::App& app) {
   sub->add_option("--capture", options->capture,
                   "Write the last frame's output images of each node to OUT/passes/ (with passes.json and the "
                   "culling counts in stats.json): 'passes' for every node, or NODE,NODE,...");
+  sub->add_flag("--compare-passes", options->comparePasses,
+                "With --golden: compare every pass with its per-pass golden even when the frame passes, and fail "
+                "(exit 1) when one differs beyond its noise (checks that unchanged runs show no difference)");
   sub->add_flag("--dart", options->dart, "Print <DartMeasurement> tags for CTest/CDash");
   sub->add_flag("--until-stable", options->untilStable,
                 "Measure until the 95% CI of the median frame time is within +-2% (--frames is the cap)");

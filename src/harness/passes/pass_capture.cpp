@@ -6,6 +6,7 @@
 #include <fgb/harness/base/json_io.hpp>
 #include <fgb/harness/image/image_io.hpp>
 #include <fgb/harness/passes/pass_capture.hpp>
+#include <set>
 
 namespace fgb::harness {
 namespace {
@@ -66,6 +67,22 @@ CaptureContent contentOf(const std::string& name, const std::filesystem::path& f
   if (name == "depth") return CaptureContent::Depth;
   if (name == "visibility") return CaptureContent::Visibility;
   throw InputError(file.string() + ": unknown image content '" + name + "'");
+}
+
+// Images an earlier capture or bless left in `dir` that this set does not have (a node renamed or
+// gone): removed, so the folder holds exactly what its passes.json lists.
+void removeStaleImages(const std::filesystem::path& dir, const PassCaptureSet& set) {
+  std::set<std::string> kept;
+  for (const CapturedImage& image : set.images) {
+    kept.insert(image.file);
+    kept.insert(std::filesystem::path(image.file).stem().string() + ".png");
+  }
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+    const std::string extension = entry.path().extension().string();
+    if ((extension == ".exr" || extension == ".png") && !kept.count(entry.path().filename().string()))
+      std::filesystem::remove(entry.path(), ec);
+  }
 }
 
 }  // namespace
@@ -144,6 +161,7 @@ void writeCaptureSet(const std::filesystem::path& dir, const PassCaptureSet& set
   // The images first, then the files that refer to them.
   writeFileAtomic(dir / "stats.json", dumpJson(stats));
   writeFileAtomic(dir / "passes.json", dumpJson(index));
+  removeStaleImages(dir, set);
 }
 
 LoadedCaptureSet readCaptureSet(const std::filesystem::path& dir) {

@@ -43,8 +43,10 @@ std::vector<ReportImages::PassThumb> passStripOf(const PassLocalisation& localis
   constexpr uint32_t kThumbWidth = 160;
   std::vector<ReportImages::PassThumb> strip;
   for (const PassImageVerdict& image : localisation.images) {
-    const bool first = std::find(localisation.firstDifferences.begin(), localisation.firstDifferences.end(),
-                                 image.pass) != localisation.firstDifferences.end();
+    // Marked where the difference enters: a differing image of a first-difference node.
+    const bool first =
+        image.differs && std::find(localisation.firstDifferences.begin(), localisation.firstDifferences.end(),
+                                   image.pass) != localisation.firstDifferences.end();
     Image shown = image.test;
     if (image.content != render::CaptureContent::Color) {
       // Depth and ids as grey levels of their range, so the thumbnail shows shapes.

@@ -39,6 +39,7 @@ struct RunVerbOptions {
   int isolateFrames = -1;  // -1: defaultIsolatedFrames(frames)
   std::string capture;     // --capture passes | NODE,NODE,...
   bool comparePasses = false;  // --compare-passes: judge the per-pass goldens even when the frame passes
+  int asyncFrames = -1;    // -1: defaultAsyncFrames(frames)
 };
 
 // --detect 2% | 0.02: a relative change in (0, 1).
@@ -91,6 +92,8 @@ harness::RunArtifacts render(const RunVerbOptions& o, const std::map<std::string
     request.isolateFrames =
         o.isolateFrames >= 0 ? static_cast<uint32_t>(o.isolateFrames) : harness::defaultIsolatedFrames(request.frames);
   }
+  request.asyncFrames =
+      o.asyncFrames >= 0 ? static_cast<uint32_t>(o.asyncFrames) : harness::defaultAsyncFrames(request.frames);
   request.slowestFrames = 3;  // along a camera path: the report's thumbnails
   request.progress = [&](uint32_t done, uint32_t total) { bar.update(done, total); };
   harness::RunArtifacts a = harness::renderConfiguration(render::openWorkload, request);
@@ -123,6 +126,7 @@ void printSummary(const harness::RunResult& run, const std::string& out) {
   std::cout << "\n";
   if (run.device.hostTimestamps) std::cout << "  note: " << harness::timestampSourceNote(run.device) << "\n";
   std::cout << "  clock: " << harness::describeWallClock(run.wallClock) << "\n";
+  if (run.asyncCompute.compared()) std::cout << "  " << harness::describeAsync(run.asyncCompute) << "\n";
   if (!run.deviceState.source.empty()) std::cout << "  " << harness::describeDeviceState(run.deviceState) << "\n";
   if (run.deviceState.clocksChanged()) std::cerr << "warning: the GPU's clocks changed during measurement\n";
   if (run.checkedFinite) {
@@ -221,6 +225,11 @@ static VerbRegistrar reg(20, [](CLI::App& app) {
       "Skip the calibration that times each pass alone on an idle device (isolated cost, critical-path share)");
   sub->add_option("--isolate-frames", options->isolateFrames,
                   "Calibration frames for the isolated costs (default: a quarter of --frames, 3 to 16; 0 skips)")
+      ->check(CLI::Range(0, 1024));
+  sub->add_option("--async-frames", options->asyncFrames,
+                  "Frames rendered again with every pass on the graphics queue (render.async=0), to state what "
+                  "async compute saved; only where the frame ran on two or more queues (default: a quarter of "
+                  "--frames, 8 to 32; 0 skips)")
       ->check(CLI::Range(0, 1024));
   sub->add_option("--detect", options->detect,
                   "Measure until a change this small in the frame time is detectable (e.g. 2% or 0.02; alpha 0.05, "

@@ -13,6 +13,7 @@
 #include <fgb/harness/sweep/sweep.hpp>
 #include <fgb/harness/sweep_report/sweep_report.hpp>
 #include <fgb/renderer/workload.hpp>
+#include <fgb/scene/scene_file.hpp>
 #include <iostream>
 
 #include "verb.hpp"
@@ -34,7 +35,25 @@ struct SweepOptions {
   uint64_t seed = 1;
   uint32_t referenceSsaa = 4;
   std::string shard;  // "K/N"
+  uint32_t pathTimes = 4;  // along a camera path: judge error at this many path times (0: frame 2 only)
 };
+
+// The path times a sweep judges error at: spread over the scene file's camera path, unless the
+// scene holds still (no path, camera.path=none, or camera.time fixed or varied) or K is 0.
+std::vector<double> sweepPathTimes(const SweepOptions& o, const std::map<std::string, std::string>& knobs,
+                                   const std::vector<harness::SweepAxis>& axes) {
+  if (o.pathTimes == 0 || o.scene.starts_with("builtin:")) return {};
+  for (const char* key : {"camera.path", "camera.time"}) {
+    if (knobs.count(key)) return {};
+    for (const auto& axis : axes)
+      if (axis.key == key) return {};
+  }
+  const scene::SceneDescription description = scene::parseSceneFile(o.scene);
+  const nlohmann::json& path =
+      description.camera.is_object() ? description.camera.value("path", nlohmann::json()) : nlohmann::json();
+  if (!path.is_array() || path.empty()) return {};
+  return harness::spreadPathTimes(path.back().at("time").get<double>(), o.pathTimes);
+}
 
 // Axes from the sweep file, then --vary (a --vary of a key the file also varies replaces it).
 std::vector<harness::SweepAxis> gatherAxes(const SweepOptions& o, const harness::SweepFile* file) {
@@ -117,6 +136,7 @@ harness::SweepPlan makePlan(const CLI::App& command, SweepOptions& o, std::vecto
   plan.roundFrames = o.roundFrames;
   plan.maxMinutes = o.maxMinutes;
   plan.seed = o.seed;
+  plan.pathTimes = sweepPathTimes(o, knobs, axes);
   return plan;
 }
 
@@ -195,6 +215,12 @@ static VerbRegistrar reg(30, [](CLI::App& app) {
   sub->add_option("--shard", o->shard,
                   "K/N: measure only shard K of N of the grid, cut along reference groups (no reference is rendered "
                   "twice); run the N shards on N devices or machines, then `fgbench sweep-merge DIR...`");
+  sub->add_option("--path-times", o->pathTimes,
+                  "K: on a scene with a camera path, judge each configuration's error at K path times spread over "
+                  "it (camera.time), each against its reference at that time; the front takes the mean (0: the "
+                  "compared frame only)")
+      ->capture_default_str()
+      ->check(CLI::Range(0u, 64u));
   return Verb{sub, [sub, o] { return sweepVerb(*sub, *o); }};
 });
 

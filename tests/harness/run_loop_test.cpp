@@ -235,3 +235,86 @@ TEST(Knobs, ParsesAssignmentsAndRejectsMalformedOnes) {
 
 }  // namespace
 }  // namespace fgb::harness
+
+namespace fgb::harness {
+namespace {
+
+// Async compute on: "Cull" (compute) runs inside "Draw" (graphics), 0.1 ms of overlap, a 1.0 ms
+// frame. On one queue: Cull, a 0.1 ms gap, then Draw, a 1.2 ms frame.
+class TwoQueueWorkload : public testing::FakeWorkload {
+ public:
+  TwoQueueWorkload() { constantTimes(); }
+  uint32_t queuesUsed() const override { return async_ ? 2 : 1; }
+  bool setAsyncCompute(bool on) override {
+    async_ = on;
+    ++switches;
+    return true;
+  }
+  render::FrameTiming renderFrame() override {
+    render::FrameTiming t = FakeWorkload::renderFrame();  // Cull [0, 0.1], Draw [0.1, 1.1]
+    if (async_) {
+      t.passes[0].gpuStartMs = 0.5;
+      t.passes[1].gpuStartMs = 0.0;
+      t.gpuFrameMs = 1.0;
+    } else {
+      t.passes[1].gpuStartMs = 0.2;
+      t.gpuFrameMs = 1.2;
+    }
+    return t;
+  }
+  int switches = 0;
+
+ private:
+  bool async_ = true;
+};
+
+TEST(AsyncCompute, StatesWhatTheSecondQueueSavedAndHowLongTheQueuesOverlapped) {
+  TwoQueueWorkload workload;
+  RunResult run = runBenchmark(workload, RunOptions{1, 8, kDefaultUnstableSpread, {}});
+  compareAsyncCompute(workload, run, 10);
+  EXPECT_EQ(workload.switches, 2);  // to one queue and back
+  EXPECT_EQ(workload.queuesUsed(), 2u);
+  ASSERT_TRUE(run.asyncCompute.compared());
+  EXPECT_EQ(run.asyncCompute.singleQueueMs.size(), 10u);  // the 2 warm-up frames dropped
+  EXPECT_NEAR(run.asyncCompute.savedMs, 0.2, 1e-12);
+  EXPECT_NEAR(run.asyncCompute.savedLowMs, 0.2, 1e-12);
+  EXPECT_NEAR(run.asyncCompute.overlapMs, 0.1, 1e-12);
+  EXPECT_NEAR(run.asyncCompute.idleGapsMs.front(), 0.1, 1e-12);
+  const nlohmann::json json = toJson(run).at("async_compute");
+  EXPECT_EQ(json.at("queues"), 2);
+  EXPECT_NEAR(json.at("saved_ms").at("median").get<double>(), 0.2, 1e-12);
+  EXPECT_NEAR(json.at("single_queue_frame_ms").at("median").get<double>(), 1.2, 1e-12);
+  EXPECT_NE(describeAsync(run.asyncCompute).find("async compute saved 0.2000 ms"), std::string::npos);
+  EXPECT_NE(markdownReport(run).find("the queues overlapped 0.1000 ms per frame"), std::string::npos);
+}
+
+TEST(AsyncCompute, OneQueueOrACameraPathIsNotCompared) {
+  testing::FakeWorkload oneQueue;
+  RunResult run = runBenchmark(oneQueue, RunOptions{1, 4, kDefaultUnstableSpread, {}});
+  compareAsyncCompute(oneQueue, run, 8);
+  EXPECT_FALSE(run.asyncCompute.compared());
+  EXPECT_NE(run.asyncCompute.skipped.find("one queue"), std::string::npos);
+  EXPECT_TRUE(toJson(run).at("async_compute").contains("skipped"));
+  EXPECT_EQ(markdownReport(run).find("Async compute:"), std::string::npos);
+
+  TwoQueueWorkload path;
+  path.flyPath(0.5);
+  RunResult pathRun = runBenchmark(path, RunOptions{1, 4, kDefaultUnstableSpread, {}});
+  compareAsyncCompute(path, pathRun, 8);
+  EXPECT_EQ(path.switches, 0);
+  EXPECT_NE(pathRun.asyncCompute.skipped.find("camera path"), std::string::npos);
+}
+
+TEST(AsyncCompute, OverlapCountsTimeWithTwoQueuesBusyAndGapsTimeWithNone) {
+  const std::vector<PassInterval> passes = {{"graphics", 0.0, 1.0},
+                                            {"graphics", 0.5, 2.0},  // one busy interval [0, 2] on graphics
+                                            {"compute", 1.5, 3.0},   // overlaps graphics over [1.5, 2]
+                                            {"transfer", 2.0, 2.5},  // touches graphics' end: overlaps compute only
+                                            {"compute", 4.0, 5.0}};  // alone after a 1 ms gap
+  EXPECT_NEAR(queueOverlapMs(passes), 0.5 + 0.5, 1e-12);
+  EXPECT_NEAR(idleGapsMs(passes, 5.5), 1.0 + 0.5, 1e-12);
+  EXPECT_DOUBLE_EQ(queueOverlapMs({}), 0.0);
+}
+
+}  // namespace
+}  // namespace fgb::harness

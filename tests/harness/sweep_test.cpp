@@ -567,5 +567,59 @@ TEST(SweepHtml, LabelsThatFindNoPlaceBecomeNumbersAndStillDoNotOverlap) {
   EXPECT_GT(numbered, 0u);
 }
 
+TEST(SweepPath, TimesAreMidpointsOfEqualSpans) {
+  EXPECT_EQ(spreadPathTimes(34.0, 4), (std::vector<double>{4.25, 12.75, 21.25, 29.75}));
+  EXPECT_EQ(spreadPathTimes(1.0, 3), (std::vector<double>{0.167, 0.5, 0.833}));  // to the millisecond
+  EXPECT_TRUE(spreadPathTimes(34.0, 0).empty());
+  EXPECT_TRUE(spreadPathTimes(0.0, 4).empty());
+  EXPECT_EQ(atPathTime({}, 12.75).knobs.at("camera.time"), "12.75");
+}
+
+// Along a camera path each configuration is judged at every path time against its reference at
+// the same time: the image's value depends on camera.time, so a frame compared with another
+// time's reference would be off. msaa 8 renders what its reference (msaa 8, SSAA 4) renders: no
+// error at any time; msaa 1 drifts further from it the later the time.
+TEST(SweepPath, JudgesEachPathTimeAgainstItsOwnReference) {
+  std::vector<std::string> log;
+  std::vector<render::WorkloadConfig> opened;
+  const auto valueAt = [](const render::WorkloadConfig& c) {
+    const auto time = c.knobs.find("camera.time");
+    const float t = time == c.knobs.end() ? 0.0f : std::stof(time->second);
+    return 0.2f + 0.05f * t + (c.msaa == 1 ? 0.02f * t : 0.0f);
+  };
+  const WorkloadOpener open = [&](const render::WorkloadConfig& c) {
+    opened.push_back(c);
+    return std::make_unique<GridWorkload>(c, log, valueAt);
+  };
+  SweepPlan plan = gridPlan();
+  plan.configurations = expandGrid(render::WorkloadConfig{}, {parseVary("msaa=1,8")});
+  plan.pathTimes = {1.0, 3.0, 5.0};
+  SweepResult result = runSweep(open, plan);
+  result.axes = {parseVary("msaa=1,8")};
+  std::size_t atTimes = 0;
+  for (const auto& c : opened) atTimes += c.knobs.count("camera.time");
+  EXPECT_EQ(atTimes, 3u * (1 + 2));  // the reference and both configurations at each time
+  const auto& exact = result.configurations[1];
+  ASSERT_EQ(exact.pathErrors.size(), 3u);
+  EXPECT_EQ(exact.pathErrorWorst(), 0.0);
+  const auto& coarse = result.configurations[0];
+  ASSERT_EQ(coarse.pathErrors.size(), 3u);
+  EXPECT_EQ(coarse.pathErrors[2].timeS, 5.0);
+  EXPECT_GT(displayError(coarse.pathErrors[0].display), 0.0);
+  EXPECT_GT(displayError(coarse.pathErrors[2].display), displayError(coarse.pathErrors[1].display));
+  EXPECT_EQ(coarse.pathErrorWorstTime(), 5.0);
+  EXPECT_DOUBLE_EQ(coarse.pathErrorMean(),
+                   (displayError(coarse.pathErrors[0].display) + displayError(coarse.pathErrors[1].display) +
+                    displayError(coarse.pathErrors[2].display)) /
+                       3.0);
+  EXPECT_DOUBLE_EQ(sweepError(coarse), coarse.pathErrorMean());  // the front judges the mean
+  const nlohmann::json j = sweepJson(result);
+  EXPECT_EQ(j["method"]["path_times_s"], (std::vector<double>{1.0, 3.0, 5.0}));
+  EXPECT_DOUBLE_EQ(j["configurations"][0]["path_error"]["ldr_flip_worst"].get<double>(), coarse.pathErrorWorst());
+  EXPECT_EQ(j["configurations"][0]["path_error"]["times"].size(), 3u);
+  EXPECT_NE(sweepMarkdown(result).find("## Along the camera path"), std::string::npos);
+  EXPECT_NE(sweepTable(result).find("msaa=1: LDR-FLIP mean"), std::string::npos);
+  EXPECT_NE(sweepCsv(result).find("path_ldr_flip_mean,path_ldr_flip_worst\n"), std::string::npos);
+}
 }  // namespace
 }  // namespace fgb::harness

@@ -334,3 +334,37 @@ TEST(MsaaResolve, IsItsOwnNodeAfterTheLastColourPass) {
 
 }  // namespace
 }  // namespace fgb::render
+
+// render.async measured: compiling the frame graph for one queue and back between frames keeps
+// the features' state (particles, the occlusion pyramid, exposure), so the frames after it are
+// the frames a run without the switch renders, and validation stays silent across the switch.
+namespace fgb::render {
+namespace {
+
+TEST(AsyncCompute, RecompilingForOneQueueAndBackKeepsTheFrames) {
+  const std::map<std::string, std::string> knobs = {{"render.path", "visbuffer"}, {"render.occlusion", "1"}};
+  const auto config = sized(lavapipeConfig("atrium-small.json", knobs, true), 160, 90, 1);
+  const auto straight = renderImages(config, 4);
+
+  Rendered switched{openSceneWorkload(config), {}};
+  Workload& workload = *switched.workload;
+  EXPECT_EQ(workload.queuesUsed(), 1u);  // lavapipe has one queue
+  workload.renderFrame();
+  workload.finish();
+  ASSERT_TRUE(workload.setAsyncCompute(false));
+  workload.renderFrame();
+  workload.renderFrame();
+  workload.finish();
+  ASSERT_TRUE(workload.setAsyncCompute(true));
+  workload.renderFrame();
+  const auto last = workload.finish();
+  ASSERT_FALSE(last.empty());
+  switched.passes = last.back().passes;
+  const auto images = imagesOf(switched);
+  EXPECT_EQ(images.validationMessages, 0u);
+  EXPECT_EQ(images.passes, straight.passes);
+  EXPECT_TRUE(images.hdr.pixels == straight.hdr.pixels);
+}
+
+}  // namespace
+}  // namespace fgb::render

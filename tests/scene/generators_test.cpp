@@ -157,6 +157,36 @@ TEST(Generators, ParamsAreValidatedWithFieldNames) {
   EXPECT_THAT(error("sponza", {}), HasSubstr("generator.type"));
   EXPECT_THAT(error("atrium", {}, {"atrium.scale=0"}), HasSubstr("--set"));
   EXPECT_THAT(error("showcase", {{"alpha", "glass"}}), HasSubstr("generator.alpha"));
+  EXPECT_THAT(error("city", {{"blocks", 1}}), HasSubstr("generator.blocks"));
+  EXPECT_THAT(error("city", {{"scale", 1}}), HasSubstr("unknown parameter"));
+}
+
+// The default city: the occluder-rich scene, at least 5 M triangles and 200 lights, from
+// instanced building archetypes (far fewer unique triangles), clean geometry.
+TEST(City, DefaultHasFiveMillionTrianglesAndTwoHundredLights) {
+  const Scene s = generate("city", resolveGeneratorParams({"city", {{"texture_size", 16}}}, {}, "test.json"));
+  const SceneStats st = stats(s);
+  EXPECT_GE(st.triangles, 5000000u);
+  EXPECT_GE(st.lights, 200u);
+  EXPECT_LT(st.uniqueTriangles * 4, st.triangles);
+  EXPECT_EQ(st.repairs.total(), 0u) << toJson(st.repairs).dump();
+  EXPECT_TRUE(everythingFinite(s));
+  EXPECT_TRUE(s.hasCamera);
+  EXPECT_TRUE(s.sun.enabled);
+}
+
+TEST(City, BlocksSizeItSameSeedSameHash) {
+  const json small = {{"blocks", 2}, {"texture_size", 16}};
+  const Scene a = generateCooked("city", small);
+  EXPECT_EQ(contentHash(a), contentHash(generateCooked("city", small)));
+  json otherSeed = small;
+  otherSeed["seed"] = 2;
+  EXPECT_NE(contentHash(generateCooked("city", otherSeed)), contentHash(a));
+  const SceneStats st = stats(a);
+  EXPECT_LT(st.triangles, 1000000u);   // the CI variant
+  EXPECT_EQ(st.lights, 3u * 2u * 4u);  // two lamps a block side, on each of 3 x 2 street lines' 2 blocks
+  const SceneStats three = stats(generateCooked("city", {{"texture_size", 16}}, {"city.blocks=3"}));
+  EXPECT_GT(three.triangles, st.triangles);
 }
 
 TEST(Stress, TrianglesKeepsSliversAndHugeRemovesDegenerateAndZeroArea) {

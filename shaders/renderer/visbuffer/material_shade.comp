@@ -16,7 +16,9 @@ layout(set = 0, binding = FGB_BINDING_STORAGE_TEXTURES, rgba16f) uniform writeon
 
 vec3 interpolate3(vec3 a, vec3 b, vec3 c, vec3 w) { return a * w.x + b * w.y + c * w.z; }
 
-// debug.view (FrameConstants::counts.w, render_settings.hpp's DebugView order).
+#ifdef FGB_DEBUG_VIEWS
+// debug.view (FrameConstants::counts.w, render_settings.hpp's DebugView order). Only the "debug"
+// variants carry these views (shaders/CMakeLists.txt), so the measured shader has no such branch.
 const uint kDebugViewLod = 2u;
 const uint kDebugViewClusters = 3u;
 
@@ -38,6 +40,7 @@ vec3 debugViewColor(FrameConstants frame, uint drawIndex, SurfacePoint p) {
   float facing = abs(dot(normalize(p.normal), normalize(p.worldPosition - frame.cameraPosition.xyz)));
   return color * (0.35 + 0.65 * facing) * 2.0 * preExposure(frame);
 }
+#endif
 
 void main() {
   loadFrameGlobals();
@@ -83,7 +86,9 @@ void main() {
   Material m = fgbMaterials[pc.materials].materials[inst.material];
   vec4 base = surfaceBaseColor(m, p.uv);
   vec4 color = shadeSurface(frame, m, base, p, LightLists(pc.lights, pc.clusterCounts, pc.clusterIndices));
+#ifdef FGB_DEBUG_VIEWS
   if (frame.counts.w >= kDebugViewLod) color.rgb = debugViewColor(frame, drawIndex, p);
+#endif
   if ((pc.flags & kFlagInjectBias) != 0u) color.rgb += kInjectedBias;  // debug.inject_bias
   imageStore(fgbImagesRgba16f[pc.hdr], ivec2(pixel), vec4(color.rgb, 1.0));  // alpha > 0: metered geometry
 }

@@ -179,6 +179,8 @@ std::string htmlReport(const RunResult& run, const ReportImages& images) {
                       kDefaultUnstableSpread);
   html += "<p class=\"note\">" + escapeXml(hostOverheadNote(run)) + "</p>\n";
   html += "<p class=\"note\">" + escapeXml(wallClockNote(run)) + "</p>\n";
+  if (const std::string async = asyncComputeNote(run); !async.empty())
+    html += "<p class=\"note\">" + escapeXml(async) + "</p>\n";
   if (run.isolatedFrames > 0) html += "<h2>Span, isolated cost and critical path</h2>\n" + isolatedTableHtml(run);
   html += "<h2>Budget</h2>\n" + budgetHtml(run);
   html += "<h2>Golden image</h2>\n" + goldenHtml(run);

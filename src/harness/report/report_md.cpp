@@ -162,6 +162,23 @@ std::string wallClockNote(const RunResult& run) {
          describeWallClock(run.wallClock) + ". " + describeDeviceState(run.deviceState) + ".";
 }
 
+std::string asyncComputeNote(const RunResult& run) {
+  const AsyncComparison& async = run.asyncCompute;
+  if (!async.compared()) return "";
+  std::string note = "Async compute: " + describeAsync(async) + ".";
+  double isolatedSum = 0.0;
+  for (const auto& pass : run.passes) isolatedSum += pass.hasIsolated() ? pass.isolated.median : 0.0;
+  const double gaps = summarize(async.idleGapsMs).median;
+  const double busy = async.singleQueueFrame.median - gaps;
+  if (isolatedSum > 0.0 && busy > 0.0) {
+    note += fmt::format(
+        " On one queue the frame idles {:.4f} ms between passes (barriers, submits, waits); the isolated costs add "
+        "up to {:.4f} ms, {:+.1f}% of the one-queue frame without those gaps.",
+        gaps, isolatedSum, 100.0 * (isolatedSum / busy - 1.0));
+  }
+  return note;
+}
+
 std::string markdownReport(const RunResult& run) {
   std::string out = fmt::format("# fgbench report: {}\n\n", run.scene);
   out += fmt::format("- Device: {} ({}), driver {}, Vulkan {}\n", run.device.name, run.device.type, run.device.driver,
@@ -181,6 +198,7 @@ std::string markdownReport(const RunResult& run) {
   out += fmt::format("Unstable: (p95 − p5) / median > {:.0f}%.\n\n", kDefaultUnstableSpread * 100.0);
   out += hostOverheadNote(run) + "\n\n";
   out += wallClockNote(run) + "\n\n";
+  if (const std::string async = asyncComputeNote(run); !async.empty()) out += async + "\n\n";
   out += pathSection(run);
   out += finiteSection(run);
   out += budgetSection(run) + "\n" + goldenSection(run);

@@ -176,6 +176,7 @@ nlohmann::json toJson(const RunResult& run) {
       {"wall_clock", toJson(run.wallClock)},
       {"device_state", toJson(run.deviceState)},
   };
+  if (run.asyncCompute.queues > 0) j["async_compute"] = toJson(run.asyncCompute);
   if (!run.slowestFrames(1).empty()) {
     j["samples"]["path_time_s"] = run.framePathTimeS;
     j["path"] = pathJson(run);

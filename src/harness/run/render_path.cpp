@@ -179,6 +179,10 @@ RunArtifacts renderConfiguration(const WorkloadOpener& open, const RenderRequest
     calibrateIsolated(renderer.workload(), a.run, request.isolateFrames);
     renderer.checkValidation();
   }
+  if (request.asyncFrames > 0) {
+    compareAsyncCompute(renderer.workload(), a.run, request.asyncFrames);
+    renderer.checkValidation();
+  }
   a.run.overhead.readbackMs = readbackMs;
   a.run.scene = request.workload.scenePath;
   a.run.sceneHash = sceneHash(request.workload.scenePath);

@@ -164,6 +164,72 @@ void calibrateIsolated(render::Workload& workload, RunResult& run, uint32_t fram
   }
 }
 
+uint32_t defaultAsyncFrames(uint32_t frames) {
+  return std::clamp(frames / 4, 8u, 32u);
+}
+
+namespace {
+
+std::vector<PassInterval> intervalsOf(const render::FrameTiming& frame) {
+  std::vector<PassInterval> intervals;
+  for (const auto& pass : frame.passes) {
+    if (!pass.culled && pass.gpuStartMs >= 0.0)
+      intervals.push_back({pass.queue, pass.gpuStartMs, pass.gpuStartMs + pass.gpuMs});
+  }
+  return intervals;
+}
+
+// Per measured frame, the time at least two queues were busy (passes without start offsets are
+// left out).
+std::vector<double> measuredOverlaps(const RunResult& run) {
+  std::vector<double> overlaps;
+  for (std::size_t f = 0; f < run.frameGpuMs.size(); ++f) {
+    std::vector<PassInterval> intervals;
+    for (const auto& pass : run.passes) {
+      if (f < pass.startMs.size() && f < pass.samplesMs.size())
+        intervals.push_back({pass.queue, pass.startMs[f], pass.startMs[f] + pass.samplesMs[f]});
+    }
+    overlaps.push_back(queueOverlapMs(intervals));
+  }
+  return overlaps;
+}
+
+}  // namespace
+
+void compareAsyncCompute(render::Workload& workload, RunResult& run, uint32_t frames) {
+  const auto start = Clock::now();
+  const uint32_t queues = workload.queuesUsed();
+  if (queues < 2) {
+    run.asyncCompute = skippedAsync(queues, "every pass ran on one queue: the device has one, or render.async=0");
+    return;
+  }
+  if (!run.framePathTimeS.empty()) {
+    run.asyncCompute = skippedAsync(queues, "a camera path: frames at other path times would not compare");
+    return;
+  }
+  if (!workload.setAsyncCompute(false)) {
+    run.asyncCompute = skippedAsync(queues, "the workload cannot compile its graph for one queue");
+    return;
+  }
+  constexpr uint32_t kWarmup = 2;  // the recompiled graph's first frames record every node
+  std::vector<render::FrameTiming> single;
+  for (uint32_t i = 0; i < kWarmup + frames; ++i) {
+    render::FrameTiming timing = workload.renderFrame();
+    if (hasTimings(timing)) single.push_back(std::move(timing));
+  }
+  for (auto& timing : workload.finish()) {
+    if (hasTimings(timing)) single.push_back(std::move(timing));
+  }
+  workload.setAsyncCompute(true);
+  std::vector<double> spans, gaps;
+  for (std::size_t i = std::min<std::size_t>(kWarmup, single.size()); i < single.size(); ++i) {
+    spans.push_back(single[i].gpuFrameMs);
+    gaps.push_back(idleGapsMs(intervalsOf(single[i]), single[i].gpuFrameMs));
+  }
+  run.asyncCompute = compareAsync(queues, run.frameGpuMs, measuredOverlaps(run), std::move(spans), std::move(gaps));
+  run.asyncCompute.wallMs = millisecondsBetween(start, Clock::now());
+}
+
 std::map<std::string, std::string> parseKnobs(const std::vector<std::string>& assignments) {
   return splitKnobAssignments(assignments);
 }

@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <fgb/core/error.hpp>
 #include <fgb/core/stopwatch.hpp>
@@ -190,6 +191,7 @@ SweepResult runSweep(const WorkloadOpener& open, const SweepPlan& requested, con
   result.sceneHash = sceneHash(plan.scene);
   result.alpha = plan.alpha;
   result.seed = plan.seed;
+  result.pathTimes = plan.pathTimes;
   auto say = [&](const std::string& what) {
     if (progress.phase) progress.phase(what);
   };
@@ -265,6 +267,7 @@ SweepResult runSweep(const WorkloadOpener& open, const SweepPlan& requested, con
   renderers.clear();  // every device closed before the metrics (memory)
   result.overhead.closeMs = phase.lap();
 
+  judgeAlongPath(open, plan, result, say);
   say("comparing with the reference");
   compareWithReferences(result);
   markFront(result);
@@ -301,8 +304,83 @@ std::optional<std::size_t> ReferenceOutcome::biasIndex(const std::string& label)
   return static_cast<std::size_t>(it - biases.begin());
 }
 
+std::vector<double> spreadPathTimes(double durationS, uint32_t count) {
+  std::vector<double> times;
+  if (!(durationS > 0.0)) return times;
+  for (uint32_t k = 0; k < count; ++k) times.push_back(std::round((k + 0.5) * durationS / count * 1000.0) / 1000.0);
+  return times;
+}
+
+render::WorkloadConfig atPathTime(render::WorkloadConfig config, double timeS) {
+  config.knobs["camera.time"] = fmt::format("{}", timeS);
+  return config;
+}
+
+void judgeAlongPath(const WorkloadOpener& open, const SweepPlan& plan, SweepResult& result,
+                    const std::function<void(const std::string&)>& say) {
+  if (plan.pathTimes.empty()) return;
+  const auto tell = [&](const std::string& what) {
+    if (say) say(what);
+  };
+  // The references first, each image kept: every configuration sharing one compares with it.
+  for (std::size_t r = 0; r < result.references.size(); ++r) {
+    ReferenceOutcome& ref = result.references[r];
+    tell(fmt::format("reference {}/{} at {} path times", r + 1, result.references.size(), plan.pathTimes.size()));
+    ref.pathImages.clear();
+    for (double t : plan.pathTimes) {
+      ReferenceRenderWall wall;
+      ref.pathImages.push_back(renderImagesAfter(open, atPathTime(ref.workload, t), plan.imageFrame, wall));
+    }
+  }
+  for (std::size_t i = 0; i < result.configurations.size(); ++i) {
+    ConfigurationOutcome& c = result.configurations[i];
+    tell(fmt::format("configuration {}/{} at {} path times", i + 1, result.configurations.size(),
+                     plan.pathTimes.size()));
+    const ReferenceOutcome& ref = result.references.at(c.reference);
+    c.pathErrors.clear();
+    for (std::size_t k = 0; k < plan.pathTimes.size(); ++k) {
+      ReferenceRenderWall wall;
+      const RenderedImages images =
+          renderImagesAfter(open, atPathTime(c.configuration.workload, plan.pathTimes[k]), plan.imageFrame, wall);
+      const RenderedImages& want = ref.pathImages.at(k);
+      if (images.display.width != want.display.width || images.display.height != want.display.height) {
+        throw DeviceError(fmt::format("{}: rendered {} but its reference {}", c.configuration.label,
+                                      describeSize(images.display), describeSize(want.display)));
+      }
+      PathTimeError e;
+      e.timeS = plan.pathTimes[k];
+      e.display = compareImages(quantizeToSrgb8(want.display), quantizeToSrgb8(images.display)).metrics;
+      e.hdr = compareImages(want.hdr, images.hdr).metrics;
+      c.pathErrors.push_back(std::move(e));
+    }
+  }
+}
+
+double ConfigurationOutcome::pathErrorMean() const {
+  double sum = 0.0;
+  for (const PathTimeError& e : pathErrors) sum += displayError(e.display);
+  return pathErrors.empty() ? 0.0 : sum / double(pathErrors.size());
+}
+
+double ConfigurationOutcome::pathErrorWorst() const {
+  double worst = 0.0;
+  for (const PathTimeError& e : pathErrors) worst = std::max(worst, displayError(e.display));
+  return worst;
+}
+
+double ConfigurationOutcome::pathErrorWorstTime() const {
+  double worst = -1.0, at = 0.0;
+  for (const PathTimeError& e : pathErrors) {
+    if (displayError(e.display) > worst) {
+      worst = displayError(e.display);
+      at = e.timeS;
+    }
+  }
+  return at;
+}
+
 double sweepError(const ConfigurationOutcome& c) {
-  return displayError(c.display);
+  return c.pathErrors.empty() ? displayError(c.display) : c.pathErrorMean();
 }
 
 void markFront(SweepResult& result) {

@@ -151,6 +151,13 @@ ConfigurationOutcome configurationOf(const ShardFile& s, const SweepResult& merg
   c.display = metricsOf(s, field(s, field(s, j, "error"), "display"));
   c.hdr = metricsOf(s, field(s, field(s, j, "error"), "hdr"));
   c.unresolved = field(s, j, "unresolved").get<bool>();
+  // Along a camera path (absent in sweeps written before path times, null for a still scene).
+  if (j.contains("path_error") && !j["path_error"].is_null()) {
+    for (const auto& t : field(s, j["path_error"], "times")) {
+      c.pathErrors.push_back(
+          {number(s, t, "time_s"), metricsOf(s, field(s, t, "display")), metricsOf(s, field(s, t, "hdr"))});
+    }
+  }
   if (const auto& bias = field(s, j, "bias"); !bias.is_null()) {
     const std::string label = field(s, bias, "label").get<std::string>();
     c.bias = merged.references.at(c.reference).biasIndex(label);
@@ -200,7 +207,7 @@ void checkCompatible(const ShardFile& first, const ShardFile& s) {
   same(first.json["axes"], s.json["axes"], "grid (axes)");
   same(first.json["shard"]["count"], s.json["shard"]["count"], "shard count");
   same(first.json["shard"]["grid_size"], s.json["shard"]["grid_size"], "grid size");
-  for (const char* key : {"alpha", "reference_ssaa", "frame_cap", "error"})
+  for (const char* key : {"alpha", "reference_ssaa", "frame_cap", "error", "path_times_s"})
     same(first.json["method"][key], s.json["method"][key], std::string("method.") + key);
 }
 
@@ -292,6 +299,7 @@ SweepResult mergeSweepShards(const std::vector<std::filesystem::path>& directori
   merged.lookKeys = method.value("look_knobs", std::vector<std::string>{});
   merged.roles = method.value("roles", std::map<std::string, std::string>{});
   merged.stopReason = method.value("stop_reason", "");
+  merged.pathTimes = method.value("path_times_s", std::vector<double>{});
   merged.mergedShards = shards.size();
 
   std::vector<std::optional<ConfigurationOutcome>> placed(first.shard.gridSize);

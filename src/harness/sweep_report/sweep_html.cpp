@@ -328,7 +328,8 @@ std::string sweepHtml(const SweepResult& result) {
         c.onFront ? "<b>front</b> " : "", escapeXml(c.configuration.label),
         escapeXml(durationLabel(c.frameGpu.median, 3)), sweepError(c));
   }
-  html += "</div>\n<h2>Method</h2>\n<p>" + escapeXml(sweepMethodNote(result)) + "</p>\n</body></html>\n";
+  html += "</div>\n<h2>Method</h2>\n<p>" + escapeXml(sweepMethodNote(result) + pathMethodNote(result)) +
+          "</p>\n</body></html>\n";
   return html;
 }
 

@@ -72,6 +72,19 @@ nlohmann::json biasJson(const SweepResult& result, const ConfigurationOutcome& c
   return {{"label", b.label}, {"ldr_flip_mean", b.gap()}};
 }
 
+// The configuration's errors along the camera path (null for a still scene): each path time's
+// metrics, their mean and the worst (the front judges the mean).
+nlohmann::json pathErrorJson(const ConfigurationOutcome& c) {
+  if (c.pathErrors.empty()) return nullptr;
+  nlohmann::json times = nlohmann::json::array();
+  for (const PathTimeError& e : c.pathErrors)
+    times.push_back({{"time_s", e.timeS}, {"display", toJson(e.display)}, {"hdr", toJson(e.hdr)}});
+  return {{"times", times},
+          {"ldr_flip_mean", c.pathErrorMean()},
+          {"ldr_flip_worst", c.pathErrorWorst()},
+          {"worst_time_s", c.pathErrorWorstTime()}};
+}
+
 nlohmann::json configurationJson(const SweepResult& result, const ConfigurationOutcome& c) {
   nlohmann::json point = nlohmann::json::object();
   for (const auto& [k, v] : c.configuration.point) point[k] = v;
@@ -88,6 +101,7 @@ nlohmann::json configurationJson(const SweepResult& result, const ConfigurationO
           {"stable", c.stable},
           {"passes", passesJson(c.run)},
           {"error", {{"display", toJson(c.display)}, {"hdr", toJson(c.hdr)}}},
+          {"path_error", pathErrorJson(c)},
           {"front", c.onFront},
           {"unresolved", c.unresolved},
           {"bias", biasJson(result, c)},
@@ -179,7 +193,8 @@ nlohmann::json methodJson(const SweepResult& result) {
           {"rewarm_frames", result.rewarmFrames},
           {"until_stable", stable},
           {"stop_reason", result.stopReason},
-          {"note", sweepMethodNote(result)}};
+          {"path_times_s", result.pathTimes},
+          {"note", sweepMethodNote(result) + pathMethodNote(result)}};
 }
 
 std::string csvField(const std::string& text) {
@@ -202,6 +217,36 @@ std::string biasText(const SweepResult& result, const ConfigurationOutcome& c) {
 
 uint64_t nonFinite(const ConfigurationOutcome& c) {
   return c.display.nonFiniteTest + c.hdr.nonFiniteTest;
+}
+
+std::string pathErrorText(const ConfigurationOutcome& c) {
+  return c.pathErrors.empty() ? "" : fmt::format("{:.4f}", c.pathErrorMean());
+}
+std::string pathWorstText(const ConfigurationOutcome& c) {
+  return c.pathErrors.empty() ? "" : fmt::format("{:.4f}", c.pathErrorWorst());
+}
+
+std::string pathTimesText(const SweepResult& result) {
+  std::string times;
+  for (double t : result.pathTimes) times += (times.empty() ? "" : ", ") + fmt::format("{:g}", t);
+  return times + " s";
+}
+
+// One line per configuration along the camera path: the mean and worst LDR-FLIP over the path
+// times and where the worst is.
+std::vector<std::string> pathLines(const SweepResult& result) {
+  std::vector<std::string> lines;
+  if (result.pathTimes.empty()) return lines;
+  lines.push_back(
+      fmt::format("along the camera path, each configuration against its reference at {} path times "
+                  "(camera.time = {}); the front judges the mean:",
+                  result.pathTimes.size(), pathTimesText(result)));
+  for (const auto& c : result.configurations) {
+    if (c.pathErrors.empty()) continue;
+    lines.push_back(fmt::format("{}: LDR-FLIP mean {:.4f}, worst {:.4f} at {:g} s", c.configuration.label,
+                                c.pathErrorMean(), c.pathErrorWorst(), c.pathErrorWorstTime()));
+  }
+  return lines;
 }
 
 std::string frontSentence(const SweepResult& result) {
@@ -277,6 +322,15 @@ std::vector<std::size_t> frontByTime(const SweepResult& result) {
   return front;
 }
 
+std::string pathMethodNote(const SweepResult& result) {
+  if (result.pathTimes.empty()) return "";
+  return fmt::format(
+      " The scene flies a camera path: each configuration and each reference was also rendered alone at {} path "
+      "times ({}: camera.time=T, the compared frame of a fresh workload), and the error the front judges is the "
+      "mean of their LDR-FLIP means against the reference at the same time (the worst is reported beside it).",
+      result.pathTimes.size(), pathTimesText(result));
+}
+
 std::string sweepMethodNote(const SweepResult& result) {
   std::string stop = result.untilStable
                          ? fmt::format(
@@ -349,7 +403,8 @@ std::string sweepCsv(const SweepResult& result) {
   }
   csv +=
       ",width,height,msaa,frame_gpu_median_ms,ci_low_ms,ci_high_ms,frames,stable,ldr_flip_mean,hdr_flip_mean,"
-      "rmse,psnr_db,hdr_rmse,nonfinite,front,unresolved,bias_ldr_flip_mean,dominated_by\n";
+      "rmse,psnr_db,hdr_rmse,nonfinite,front,unresolved,bias_ldr_flip_mean,dominated_by,path_ldr_flip_mean,"
+      "path_ldr_flip_worst\n";
   for (const auto& c : result.configurations) {
     csv += csvField(c.configuration.label);
     for (const auto& [key, value] : c.configuration.point) {
@@ -359,12 +414,13 @@ std::string sweepCsv(const SweepResult& result) {
     std::string dominatedBy;
     for (std::size_t d : c.dominatedBy)
       dominatedBy += (dominatedBy.empty() ? "" : ";") + result.configurations[d].configuration.label;
-    csv += fmt::format(",{},{},{},{:.6f},{:.6f},{:.6f},{},{},{},{},{:.6f},{},{:.6f},{},{},{},{},{}\n",
+    csv += fmt::format(",{},{},{},{:.6f},{:.6f},{:.6f},{},{},{},{},{:.6f},{},{:.6f},{},{},{},{},{},{},{}\n",
                        renderedSize(c.configuration.workload, c.images).first,
                        renderedSize(c.configuration.workload, c.images).second, msaaUsed(c), c.frameGpu.median,
                        c.frameGpu.lower, c.frameGpu.upper, c.frameGpu.n, c.stable ? 1 : 0, flipText(c.display),
                        flipText(c.hdr), c.display.rmse, psnrText(c.display), c.hdr.rmse, nonFinite(c),
-                       c.onFront ? 1 : 0, c.unresolved ? 1 : 0, biasText(result, c), csvField(dominatedBy));
+                       c.onFront ? 1 : 0, c.unresolved ? 1 : 0, biasText(result, c), csvField(dominatedBy),
+                       pathErrorText(c), pathWorstText(c));
   }
   return csv;
 }
@@ -391,6 +447,7 @@ std::string sweepTable(const SweepResult& result) {
   out += fmt::format("  error floor (reference vs itself): {:.5f}; {} round(s), stop: {}\n", result.errorFloor,
                      result.rounds, result.stopReason);
   for (const std::string& line : referenceLines(result)) out += "  " + line + "\n";
+  for (const std::string& line : pathLines(result)) out += "  " + line + "\n";
   return out;
 }
 
@@ -414,9 +471,26 @@ std::string sweepMarkdown(const SweepResult& result) {
                       flipText(c.hdr), c.display.rmse, psnrText(c.display), nonFinite(c),
                       c.bias ? biasText(result, c) : "-", dominatedBy);
   }
+  if (!result.pathTimes.empty()) {
+    md += fmt::format(
+        "\n## Along the camera path\n\nEach configuration rendered alone at {} path times "
+        "(`camera.time` = {}), each against its reference at the same time; the front judges the "
+        "mean.\n\n| configuration | mean LDR-FLIP | worst | worst at s |",
+        result.pathTimes.size(), pathTimesText(result));
+    for (double t : result.pathTimes) md += fmt::format(" {:g} s |", t);
+    md += "\n|---|---:|---:|---:|";
+    for (std::size_t k = 0; k < result.pathTimes.size(); ++k) md += "---:|";
+    md += "\n";
+    for (const auto& c : result.configurations) {
+      md += fmt::format("| {} | {} | {} | {:g} |", c.configuration.label, pathErrorText(c), pathWorstText(c),
+                        c.pathErrorWorstTime());
+      for (const PathTimeError& e : c.pathErrors) md += fmt::format(" {} |", flipText(e.display));
+      md += "\n";
+    }
+  }
   md += "\n## References\n\n";
   for (const std::string& line : referenceLines(result)) md += "- " + line + "\n";
-  md += "\n## Method\n\n" + sweepMethodNote(result) + "\n";
+  md += "\n## Method\n\n" + sweepMethodNote(result) + pathMethodNote(result) + "\n";
   return md;
 }
 

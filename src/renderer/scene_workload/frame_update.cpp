@@ -27,26 +27,6 @@ std::pair<glm::vec4, glm::vec4> renderSpaceBounds(const scene::Aabb& box, const 
   return {lo, hi};
 }
 
-void writeInstances(std::span<gpu::Instance> out, const scene::Scene& scene, const DrawOrder& order,
-                    const glm::dvec3& origin) {
-  const glm::dmat4 toRenderSpace = glm::translate(glm::dmat4(1.0), -origin);
-  for (uint32_t group = 0; group < order.groups.size(); ++group) {
-    const auto& g = order.groups[group];
-    for (uint32_t slot = g.firstSlot; slot < g.firstSlot + g.capacity; ++slot) {
-      const auto& source = scene.instances[order.instanceOrder[slot]];
-      gpu::Instance instance{};
-      // Composed in double, then rounded: the float matrix holds only the camera-relative offset.
-      instance.model = glm::mat4(toRenderSpace * source.transform);
-      instance.normalMatrix = glm::mat4(glm::mat3(glm::transpose(glm::inverse(glm::dmat3(source.transform)))));
-      std::tie(instance.boundsMin, instance.boundsMax) = renderSpaceBounds(source.worldBounds, origin);
-      instance.material = source.material;
-      instance.drawGroup = group;
-      instance.triangles = scene.meshes[source.mesh].triangleCount();
-      out[slot] = instance;
-    }
-  }
-}
-
 void writeLights(std::span<gpu::PointLight> out, const scene::Scene& scene, const glm::dvec3& origin) {
   for (size_t i = 0; i < scene.lights.size(); ++i) {
     const auto& light = scene.lights[i];
@@ -59,21 +39,74 @@ void writeLights(std::span<gpu::PointLight> out, const scene::Scene& scene, cons
   }
 }
 
-void writeCommandTemplate(std::span<gpu::DrawCommand> out, const scene::Scene& scene, const DrawOrder& order) {
-  for (size_t i = 0; i < order.groups.size(); ++i) {
-    const auto& group = order.groups[i];
-    const auto& mesh = scene.meshes[group.mesh];
-    out[i] = {mesh.indexCount, 0, mesh.firstIndex, int32_t(mesh.firstVertex), group.firstSlot};
-  }
-}
-
 template <class T>
 std::span<T> mappedAs(rhi::Device& device, rhi::BufferId buffer) {
   const std::span<std::byte> bytes = device.mapped(buffer);
   return {reinterpret_cast<T*>(bytes.data()), bytes.size() / sizeof(T)};
 }
 
+// M moved into render space: translate(-origin) * M, one column at a time (exactly the product:
+// the translation's other terms add zeros).
+glm::mat4 renderSpaceModel(glm::dmat4 model, const glm::dvec3& origin) {
+  for (int column = 0; column < 4; ++column) model[column] -= glm::dvec4(origin * model[column].w, 0.0);
+  return glm::mat4(model);
+}
+
 }  // namespace
+
+InstanceWriter::InstanceWriter(const scene::Scene& scene) : scene_(scene) {
+  for (const auto& source : scene.instances) {
+    gpu::Instance instance{};
+    instance.normalMatrix = glm::mat4(glm::mat3(glm::transpose(glm::inverse(glm::dmat3(source.transform)))));
+    instance.material = source.material;
+    instance.triangles = scene.meshes[source.mesh].triangleCount();
+    templates_.push_back(instance);
+  }
+  // drawOrder puts the camera-independent groups first; its transparent tail is redone per frame.
+  DrawOrder order = drawOrder(scene, scene.camera.position);
+  for (const auto& group : order.groups) {
+    if (group.drawClass == features::DrawClass::Transparent) break;
+    ++sharedGroups_;
+    sharedInstances_ += group.capacity;
+  }
+  groups_ = std::move(order.groups);
+  order_ = std::move(order.instanceOrder);
+  transparentInstances_.assign(order_.begin() + std::ptrdiff_t(sharedInstances_), order_.end());
+  std::sort(transparentInstances_.begin(), transparentInstances_.end());
+  staging_.resize(order_.size());
+}
+
+void InstanceWriter::write(const glm::dvec3& origin, std::span<gpu::Instance> instances,
+                           std::span<gpu::DrawCommand> commands) {
+  // Back to front (as drawOrder sorts): the multi-draw executes commands in order, the blend order.
+  transparent_.clear();
+  for (const uint32_t index : transparentInstances_) {
+    const auto& bounds = scene_.instances[index].worldBounds;
+    transparent_.emplace_back(glm::distance(0.5 * (bounds.min + bounds.max), origin), index);
+  }
+  std::stable_sort(transparent_.begin(), transparent_.end(), [](auto a, auto b) { return a.first > b.first; });
+  for (size_t i = 0; i < transparent_.size(); ++i) {
+    const uint32_t index = transparent_[i].second;
+    order_[sharedInstances_ + i] = index;
+    groups_[sharedGroups_ + i] = {scene_.instances[index].mesh, features::DrawClass::Transparent,
+                                  uint32_t(sharedInstances_ + i), 1};
+  }
+  for (uint32_t group = 0; group < groups_.size(); ++group) {
+    const auto& g = groups_[group];
+    for (uint32_t slot = g.firstSlot; slot < g.firstSlot + g.capacity; ++slot) {
+      const auto& source = scene_.instances[order_[slot]];
+      gpu::Instance& instance = staging_[slot];
+      instance = templates_[order_[slot]];
+      // Composed in double, then rounded: the float matrix holds only the camera-relative offset.
+      instance.model = renderSpaceModel(source.transform, origin);
+      std::tie(instance.boundsMin, instance.boundsMax) = renderSpaceBounds(source.worldBounds, origin);
+      instance.drawGroup = group;
+    }
+    const auto& mesh = scene_.meshes[g.mesh];
+    commands[group] = {mesh.indexCount, 0, mesh.firstIndex, int32_t(mesh.firstVertex), g.firstSlot};
+  }
+  std::copy(staging_.begin(), staging_.end(), instances.begin());
+}
 
 void createFrameBuffers(rhi::Device& device, features::GpuScene& gpu) {
   const scene::Scene& scene = *gpu.scene;
@@ -112,7 +145,7 @@ FrameClock FrameClock::of(const scene::Scene& scene, double timeStep) {
 
 FrameUpdate::FrameUpdate(rhi::Device& device, features::GpuScene& gpu, const scene::Scene& scene,
                          const features::RenderSettings& settings, FrameClock clock)
-    : device_(device), gpu_(gpu), scene_(scene), settings_(settings), clock_(clock) {}
+    : device_(device), gpu_(gpu), scene_(scene), settings_(settings), clock_(clock), instances_(scene) {}
 
 void FrameUpdate::write(uint64_t execution) {
   const scene::Camera camera = scene_.cameraPath.at(scene_.camera, clock_.pathTime(execution));
@@ -133,10 +166,9 @@ void FrameUpdate::write(uint64_t execution) {
 
   auto& written = writtenFor_[execution % features::kFramesInFlight];
   if (written && *written == camera.position) return;  // this copy already holds this camera's values
-  const DrawOrder order = drawOrder(scene_, camera.position);
-  writeInstances(mappedAs<gpu::Instance>(device_, frame.instances), scene_, order, camera.position);
+  instances_.write(camera.position, mappedAs<gpu::Instance>(device_, frame.instances),
+                   mappedAs<gpu::DrawCommand>(device_, frame.commandTemplate));
   writeLights(mappedAs<gpu::PointLight>(device_, frame.lights), scene_, camera.position);
-  writeCommandTemplate(mappedAs<gpu::DrawCommand>(device_, frame.commandTemplate), scene_, order);
   written = camera.position;
 }
 

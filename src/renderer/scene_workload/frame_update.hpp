@@ -11,6 +11,9 @@
 #include <fgb/scene/scene.hpp>
 
 #include <optional>
+#include <span>
+#include <utility>
+#include <vector>
 
 namespace fgb::render {
 
@@ -32,6 +35,29 @@ struct FrameClock {
   static FrameClock of(const scene::Scene& scene, double timeStep);
   [[nodiscard]] double pathTime(uint64_t execution) const { return flies ? double(execution) * timeStep : stillTime; }
   [[nodiscard]] bool simulates(uint64_t execution) const { return !stillSteps || execution < *stillSteps; }
+};
+
+// The render-space instances of a camera position, in draw order: what does not depend on the
+// camera (normal matrices, materials, the opaque and masked groups) is composed once, so a moving
+// camera only offsets each model matrix and bounds and sorts the transparent instances.
+class InstanceWriter {
+ public:
+  explicit InstanceWriter(const scene::Scene& scene);
+  // The instances (GPU order) and draw commands for a camera at `origin`, into mapped memory.
+  void write(const glm::dvec3& origin, std::span<gpu::Instance> instances, std::span<gpu::DrawCommand> commands);
+
+ private:
+  const scene::Scene& scene_;
+  // Per scene instance: all but the model matrix, the bounds and the group.
+  std::vector<gpu::Instance> templates_;
+  // The opaque and masked groups, then this frame's transparent ones; GPU instance i is scene
+  // instance order_[i]. The first sharedGroups_ / sharedInstances_ do not depend on the camera.
+  std::vector<features::DrawGroup> groups_;
+  std::vector<uint32_t> order_;
+  size_t sharedGroups_ = 0, sharedInstances_ = 0;
+  std::vector<uint32_t> transparentInstances_;            // scene indices, ascending (drawOrder's tie order)
+  std::vector<std::pair<double, uint32_t>> transparent_;  // this frame's distances, back to front
+  std::vector<gpu::Instance> staging_;                    // the frame's instances, copied to mapped memory in one go
 };
 
 class FrameUpdate {
@@ -60,6 +86,7 @@ class FrameUpdate {
     bool operator==(const CameraKey&) const = default;
   };
   std::optional<std::pair<CameraKey, gpu::FrameConstants>> lastCamera_;
+  InstanceWriter instances_;
 };
 
 }  // namespace fgb::render

@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <iostream>
 #include <optional>
+#include <set>
 
 #include "../features/context/render_feature.hpp"
 #include "../features/exposure/exposure_feature.hpp"
@@ -186,6 +187,23 @@ class SceneWorkload final : public Workload {
   FrameTiming renderIsolatedFrame() override { return runFrame(rhi::RunMode::Isolated); }
   std::vector<double> criticalPathShares(const std::vector<double>& costMs) const override {
     return graph::criticalPath(graph::schedulePredecessors(graph_->compiled()), costMs).shareOfPath;
+  }
+
+  uint32_t queuesUsed() const override {
+    std::set<uint32_t> queues;
+    for (const auto& submit : graph_->compiled().submits) queues.insert(submit.queue);
+    return uint32_t(queues.size());
+  }
+  bool setAsyncCompute(bool on) override {
+    if (settings_.asyncCompute == on) return true;
+    (void)timer_.finish(*device_, *graph_);  // nothing of the old graph may still be in flight
+    device_->waitIdle();
+    settings_.asyncCompute = on;
+    graph_.reset();
+    const double compileMs = startup_.graphCompileMs;  // start-up figures describe the first compile
+    buildFrameGraph();
+    startup_.graphCompileMs = compileMs;
+    return true;
   }
 
   ImageRGBA32F readHdr() override { return hdrReadback_->read(); }

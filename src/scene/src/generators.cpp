@@ -2,6 +2,7 @@
 #include <fgb/scene/generators.hpp>
 
 #include "atrium.hpp"
+#include "city.hpp"
 #include "json_fields.hpp"
 #include "small_generators.hpp"
 
@@ -33,6 +34,7 @@ json defaultsFor(const std::string& type) {
   }
   if (type == "stress-triangles") return {{"count", 2000}, {"seed", 1}};
   if (type == "stress-nan") return {{"fraction", 0.01}, {"seed", 1}};
+  if (type == "city") return {{"blocks", 9}, {"seed", 1}, {"texture_size", 512}};
   return nullptr;
 }
 
@@ -52,6 +54,9 @@ void applyKnobs(json& params, const std::string& type, const Knobs& knobs) {
   if (isAtriumBased(type)) {
     for (const auto& kv : knobs.withPrefix("atrium.")) applicable.push_back(kv);
   }
+  if (type == "city") {
+    for (const auto& kv : knobs.withPrefix("city.")) applicable.push_back(kv);
+  }
   if (type.starts_with("stress-")) {
     for (const auto& kv : knobs.withPrefix("stress.")) {
       if (params.contains(kv.first)) applicable.push_back(kv);  // e.g. stress.offset only for stress-far
@@ -69,6 +74,9 @@ void validate(const json& params, const std::string& type, const detail::Fields&
       if (f.positive(v, field(key)) > 1000.0f) f.fail(field(key), "a density multiplier in (0, 1000]", &v);
     } else if (key == "seed" || key == "objects" || key == "lights" || key == "count") {
       if (f.count(v, field(key)) > 1000000u) f.fail(field(key), "an integer <= 1000000", &v);
+    } else if (key == "blocks") {
+      const uint32_t blocks = f.count(v, field(key));
+      if (blocks < 2 || blocks > 64) f.fail(field(key), "an integer in [2, 64]", &v);
     } else if (key == "texture_size") {
       const uint32_t size = f.count(v, field(key));
       if (size < 4 || size > 4096 || (size & (size - 1)) != 0) f.fail(field(key), "a power of two in [4, 4096]", &v);
@@ -104,8 +112,8 @@ AlphaMode alphaMode(const std::string& text) {
 }  // namespace
 
 const std::vector<std::string>& generatorNames() {
-  static const std::vector<std::string> names = {"atrium",       "showcase",      "stress-far",      "stress-depth",
-                                                 "stress-lights", "stress-triangles", "stress-nan"};
+  static const std::vector<std::string> names = {"atrium",       "city",          "showcase",         "stress-far",
+                                                 "stress-depth", "stress-lights", "stress-triangles", "stress-nan"};
   return names;
 }
 
@@ -143,6 +151,13 @@ Scene generate(const std::string& type, const json& p) {
   if (type == "stress-lights") return buildStressLights(atriumParams(p), p.at("count").get<uint32_t>(), p.at("seed").get<uint32_t>());
   if (type == "stress-triangles") return buildStressTriangles(p.at("count").get<uint32_t>(), p.at("seed").get<uint32_t>());
   if (type == "stress-nan") return buildStressNan(p.at("fraction").get<double>(), p.at("seed").get<uint32_t>());
+  if (type == "city") {
+    CityParams c;
+    c.blocks = p.at("blocks").get<uint32_t>();
+    c.seed = p.at("seed").get<uint32_t>();
+    c.textureSize = p.at("texture_size").get<uint32_t>();
+    return buildCity(c);
+  }
   if (type == "showcase") {
     ShowcaseParams s;
     s.objects = p.at("objects").get<uint32_t>();

@@ -13,7 +13,7 @@
 namespace fgb::scene {
 namespace {
 
-const std::vector<std::string> kOwnedPrefixes = {"atrium.", "stress.", "camera.", "scene.", "post."};
+const std::vector<std::string> kOwnedPrefixes = {"atrium.", "city.", "stress.", "camera.", "scene.", "post."};
 
 KnobSpec number(std::string key, double min, double max, bool minExclusive, std::string help) {
   return {std::move(key),  KnobType::Number,     min, max, minExclusive, false, {}, "scene",
@@ -93,7 +93,7 @@ void scaleCameraDistance(Scene& scene, double factor) {
 
 // One scene knob, one line of the table below: its registry entry with its reference role, and
 // where its value (parsed once) lands in the loaded scene; none for the generator parameters
-// (atrium.*, stress.*: the parameter of the same name, generators.cpp).
+// (atrium.*, city.*, stress.*: the parameter of the same name, generators.cpp).
 struct SceneKnob {
   KnobSpec spec;
   std::function<void(Scene&, const KnobValue&)> land;
@@ -122,6 +122,9 @@ const std::vector<SceneKnob>& sceneKnobs() {
       knob(number("atrium.scale", 0.0, 1000.0, true, "geometry density multiplier"), Content),
       knob(integer("atrium.seed", 0, 1000000, "atrium layout seed"), Content),
       knob(integer("atrium.texture_size", 4, 4096, "procedural texture size (a power of two)"), Content),
+      knob(integer("city.blocks", 2, 64, "city blocks per side"), Content),
+      knob(integer("city.seed", 0, 1000000, "city layout seed"), Content),
+      knob(integer("city.texture_size", 4, 4096, "procedural texture size (a power of two)"), Content),
       knob(number("stress.offset", -kInf, kInf, false, "stress-far: distance of the scene from the origin, m"), Content),
       knob(integer("stress.seed", 0, 1000000, "stress scenes' seed"), Content),
       knob(exclusiveMax(number("camera.fov", 0.0, 179.0, true, "vertical field of view, degrees")), Content,

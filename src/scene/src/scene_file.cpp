@@ -141,7 +141,7 @@ GeneratorRef parseGenerator(const Fields& f, const json& value) {
     return ref;
   }
   f.object(value, "generator");
-  if (!value.contains("type")) f.fail("generator.type", "a generator name (atrium, showcase, stress-*)", nullptr);
+  if (!value.contains("type")) f.fail("generator.type", "a generator name (atrium, city, showcase, stress-*)", nullptr);
   ref.type = f.string(value["type"], "generator.type");
   ref.params = value;
   ref.params.erase("type");

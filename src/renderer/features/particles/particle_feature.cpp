@@ -129,6 +129,7 @@ void ParticleFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
     ctx.cmd().push(push);
     ctx.cmd().dispatch(emitters);
   });
+  emit.recordingFixed();  // the step and the time step come from the frame's constants
 
   auto update = graph.addNode("Particle Update", graph::NodeType::Compute);
   pool = update.write(pool, Access::StorageReadWrite);

@@ -134,6 +134,7 @@ void PassCaptureFeature::declareCopy(graph::FrameGraph& graph, Captured& capture
 
 void PassCaptureFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
   if (!enabled_) return;
+  captured_.clear();  // declared again when the workload recompiles its graph (one queue, and back)
   const auto wanted = [&](const std::string& name) {
     return wanted_.empty() || std::find(wanted_.begin(), wanted_.end(), name) != wanted_.end();
   };

@@ -63,6 +63,18 @@ bool projectsReversedZ(const gpu::FrameConstants& constants) {
   return depthAt(2.0f * near) > depthAt(4.0f * near);
 }
 
+// Material Shade's shader: the backing's word accesses, and the debug views' colours only where a
+// debug view needs them (shaders/CMakeLists.txt's "debug" variants).
+std::string materialShadeShader(const RenderSettings& settings) {
+  const bool image = settings.visBacking == VisBacking::Image;
+  const bool debug = settings.debugView == DebugView::Lod || settings.debugView == DebugView::Clusters;
+  const char* shader = "renderer/visbuffer/material_shade.comp";
+  if (image && debug) return shaders::variantPath(shader, "image_debug");
+  if (image) return shaders::variantPath(shader, "image");
+  if (debug) return shaders::variantPath(shader, "debug");
+  return shader;
+}
+
 }  // namespace
 
 // One culling phase's counters: render.occlusion runs the filter and raster twice, the second
@@ -143,8 +155,7 @@ void VisBufferFeature::initialize(FeatureInit& init) {
   pipelines_.filter = init.device.createComputePipeline({"triangle filter", "renderer/visbuffer/triangle_filter.comp"});
   pipelines_.raster =
       init.device.createComputePipeline({"visibility raster", backed("renderer/visbuffer/visibility_raster.comp")});
-  pipelines_.shade =
-      init.device.createComputePipeline({"material shade", backed("renderer/visbuffer/material_shade.comp")});
+  pipelines_.shade = init.device.createComputePipeline({"material shade", materialShadeShader(init.settings)});
   if (imageBacking_)
     pipelines_.clearImage =
         init.device.createComputePipeline({"visibility clear", "renderer/visbuffer/vis_clear.comp"});
@@ -291,7 +302,7 @@ void VisBufferFeature::declareClusterCull(graph::FrameGraph& graph, Buffers& b) 
     cmd.push(gpu::ArgsPush{push.counters, ctx.storageBufferIndex(args), FGB_VIS_RASTER_GROUP_SIZE, jobCapacity});
     cmd.dispatch(1);
   });
-  if (!occlusion_) node.recordingFixed();  // else the job reads ctx.execution()
+  node.recordingFixed();  // the frame's values, the HiZ flag included, come from its constants
 }
 
 // Phase 2 of render.occlusion: the clusters phase 1 held back, tested again against this frame's

@@ -148,6 +148,15 @@ class Workload {
     (void)costMs;
     return {};
   }
+  // render.async measured: how many queues the compiled frame graph runs on (1: every pass on the
+  // graphics queue), and a switch that compiles the graph again with async compute on or off,
+  // keeping the features, their resources and the per-frame state (particles, HiZ). Call after
+  // finish(). A workload that cannot switch returns false.
+  virtual uint32_t queuesUsed() const { return 1; }
+  virtual bool setAsyncCompute(bool on) {
+    (void)on;
+    return false;
+  }
   // The last frame's HDR image (before tone mapping) and the tone-mapped display image (linear
   // values in [0,1]; the PNG writer applies the sRGB curve).
   virtual ImageRGBA32F readHdr() = 0;

@@ -3,6 +3,10 @@
 //   atrium            Sponza-like two-storey courtyard: 115 instances, ~3.78 M triangles, 28 point
 //                     lights, one brazier emitter, procedural textures. Params: scale (geometry
 //                     density, default 1), seed (1), texture_size (512).
+//   city              Occluder-rich street grid (issue 26): blocks x blocks blocks of 4-15 storey
+//                     buildings with detailed facades, a street lamp (point light) every half block
+//                     side. Params: blocks (9: 6.0 M triangles, 360 lights; 2 for CI), seed (1),
+//                     texture_size (512).
 //   showcase          Small feature scenes: a floor and a grid of objects. Params: objects (9),
 //                     alpha ("opaque"|"mask"|"blend"), floor (true), lights (4), emissive (false),
 //                     sun (true), seed (1).
@@ -29,7 +33,7 @@ namespace fgb::scene {
 
 const std::vector<std::string>& generatorNames();
 
-// Defaults, then the scene file's params, then --set knobs (atrium.*, stress.*); validated.
+// Defaults, then the scene file's params, then --set knobs (atrium.*, city.*, stress.*); validated.
 // The result is canonical (sorted keys, numbers) and is what the cache key hashes.
 // InputError names `where` (the scene file) and the offending field.
 nlohmann::json resolveGeneratorParams(const GeneratorRef& generator, const Knobs& knobs, const std::string& where);

@@ -56,6 +56,9 @@ std::string hostOverheadNote(const RunResult& run);
 std::string isolatedCostNote(const RunResult& run);
 // The span against the wall time per frame, and the device's clocks (where sampled), in words.
 std::string wallClockNote(const RunResult& run);
+// What async compute saved (render.async=0 against 1), how long the queues overlapped, and the
+// one-queue frame's idle gaps against the isolated costs' sum; "" when the run did not compare.
+std::string asyncComputeNote(const RunResult& run);
 
 std::string escapeXml(const std::string& text);
 std::string msaaLabel(uint32_t msaa);  // "4", or "scene default" for 0

@@ -2,6 +2,7 @@
 // so `compare-runs` can test significance) and timings.csv (one row per pass per frame).
 #pragma once
 
+#include <fgb/harness/results/async_check.hpp>
 #include <fgb/harness/results/budget.hpp>
 #include <fgb/harness/results/clock_check.hpp>
 #include <fgb/harness/results/golden.hpp>
@@ -88,6 +89,8 @@ struct RunResult {
   uint32_t isolatedFrames = 0;  // calibration frames behind PassRecord::isolatedMs (0: none)
   WallClock wallClock;      // the spans against the wall time per measured frame
   DeviceState deviceState;  // clocks and temperature at the start and end of measurement
+  // render.async measured (compareAsyncCompute); queues == 0 when the run did not look.
+  AsyncComparison asyncCompute;
   std::optional<BudgetResult> budget;
   std::optional<GoldenResult> golden;
   bool checkedFinite = false;                       // --check-finite was on

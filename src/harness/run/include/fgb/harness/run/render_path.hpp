@@ -48,6 +48,9 @@ struct RenderRequest {
   // Calibration frames after the images were read (each pass alone on an idle device: the
   // isolated costs and critical-path shares); 0 skips it.
   uint32_t isolateFrames = 0;
+  // Then frames with every pass on the graphics queue, against the measured ones (what render.async
+  // saved; only where the graph ran on two or more queues); 0 skips it.
+  uint32_t asyncFrames = 0;
   bool graphDumps = false;                   // fill graphBrief / graphFull
   // Along a camera path: render this many of the slowest measured frames again, each alone at its
   // path time (camera.time=T, its particles simulated to T), for the report's thumbnails.

@@ -37,6 +37,14 @@ void calibrateIsolated(render::Workload& workload, RunResult& run, uint32_t fram
 // The calibration frames of a run measuring `frames` frames: a quarter of them, 3 to 16.
 uint32_t defaultIsolatedFrames(uint32_t frames);
 
+// render.async measured: where the measured frames' graph ran on two or more queues, compiles it
+// again with every pass on the graphics queue, renders 2 warm-up and `frames` measured frames,
+// and compiles it back. Fills run.asyncCompute: the single-queue frames against the measured
+// ones, the queues' overlap in the measured frames, and the single-queue frames' idle gaps.
+void compareAsyncCompute(render::Workload& workload, RunResult& run, uint32_t frames);
+// The single-queue frames of a run measuring `frames` frames: a quarter of them, 8 to 32.
+uint32_t defaultAsyncFrames(uint32_t frames);
+
 // "--set key=value" arguments as a map; a malformed one is InputError naming it.
 std::map<std::string, std::string> parseKnobs(const std::vector<std::string>& assignments);
 

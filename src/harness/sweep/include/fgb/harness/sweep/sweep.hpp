@@ -147,7 +147,20 @@ struct SweepPlan {
   double maxMinutes = 0.0;    // 0: no limit; else measuring stops after this (after one full round)
   uint64_t seed = 1;          // order of the configurations within each round
   double alpha = 0.05;
+  // A scene flown along a camera path (`fgbench sweep --path-times K`): each configuration is also
+  // rendered alone at each of these path times (camera.time=T, frame imageFrame of a fresh
+  // workload) and compared with its reference rendered at the same time; the front then judges
+  // the mean of those errors (sweepError). Empty: a still scene, judged at frame imageFrame only.
+  std::vector<double> pathTimes;
 };
+
+// Path times spread over a camera path of `durationS` seconds: the midpoints of K equal spans,
+// (k + 1/2) x duration / K, rounded to the millisecond (each is a camera.time knob's text). K = 0,
+// or a path without duration: none.
+std::vector<double> spreadPathTimes(double durationS, uint32_t count);
+
+// `config` seen still at path time `timeS` (the knob camera.time).
+render::WorkloadConfig atPathTime(render::WorkloadConfig config, double timeS);
 
 // Wall time of one render of a reference (ms): opening its workload, rendering its frames (up to
 // the compared one) and reading the images back.
@@ -180,6 +193,7 @@ struct ReferenceOutcome {
   // The same reference one SSAA step down, against it: how converged the reference is.
   std::optional<ReferenceCheck> convergence;
   std::vector<ReferenceCheck> biases;  // converged renders of the varied cost-only knobs' values
+  std::vector<RenderedImages> pathImages;  // at SweepPlan::pathTimes, one render each
   [[nodiscard]] double convergenceGap() const { return convergence ? convergence->gap() : 0.0; }
   // The index in `biases` of the render labelled `label` (none for "" or a label not rendered).
   [[nodiscard]] std::optional<std::size_t> biasIndex(const std::string& label) const;
@@ -192,6 +206,12 @@ struct ConfigurationWall {
   double measureMs = 0.0;  // every measuring visit: re-warm frames, measured frames, waiting for the GPU
   double metricsMs = 0.0;  // its comparison with the reference
   uint32_t warmupFrames = 0, rewarmFrames = 0, visits = 0;
+};
+
+// A configuration's error at one path time, against its reference at that time.
+struct PathTimeError {
+  double timeS = 0.0;
+  ImageMetrics display, hdr;
 };
 
 struct ConfigurationOutcome {
@@ -209,6 +229,12 @@ struct ConfigurationOutcome {
   bool unresolved = false;
   std::optional<std::size_t> bias;  // index into its reference's biases (its cost-only knobs' bias)
   ConfigurationWall wall;
+  std::vector<PathTimeError> pathErrors;  // one per SweepPlan::pathTimes (empty for a still scene)
+  // Over pathErrors: the mean and the worst LDR-FLIP mean (0 when there are none), and where the
+  // worst is.
+  [[nodiscard]] double pathErrorMean() const;
+  [[nodiscard]] double pathErrorWorst() const;
+  [[nodiscard]] double pathErrorWorstTime() const;
 };
 
 // Wall time of the sweep by phase (ms), in the order they run: opening every configuration, the
@@ -251,6 +277,7 @@ struct SweepResult {
   uint32_t rewarmFrames = 0;       // dropped at the start of each visit
   uint32_t stableCheckFrames = 0;  // measured frames between stability checks (0: not until stable)
   SweepOverhead overhead;
+  std::vector<double> pathTimes;   // SweepPlan::pathTimes: where each configuration was judged
   std::optional<ShardInfo> shard;  // set on a shard's result (its outputs then carry its images)
   std::size_t mergedShards = 0;    // sweep-merge: how many shards this result joins
 };
@@ -305,7 +332,14 @@ void checkReference(const WorkloadOpener& open, ReferenceOutcome& reference, con
 void compareWithReferences(SweepResult& result);
 void markFront(SweepResult& result);
 
-// The error the front is built on: LDR-FLIP mean against the reference (RMSE without FLIP).
+// Renders each configuration and each reference at every path time of `plan` and fills the
+// configurations' pathErrors (runSweep's step before compareWithReferences; nothing without path
+// times).
+void judgeAlongPath(const WorkloadOpener& open, const SweepPlan& plan, SweepResult& result,
+                    const std::function<void(const std::string&)>& say = {});
+
+// The error the front is built on: LDR-FLIP mean against the reference (RMSE without FLIP); along a
+// camera path, the mean of that error over the path times.
 double sweepError(const ConfigurationOutcome& c);
 
 }  // namespace fgb::harness

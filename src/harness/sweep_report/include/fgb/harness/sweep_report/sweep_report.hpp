@@ -26,6 +26,8 @@ std::pair<uint32_t, uint32_t> renderedSize(const render::WorkloadConfig& workloa
 std::string sizeText(const render::WorkloadConfig& workload, const RenderedImages& images);
 // How the sweep measured and decided, in one paragraph (reports and --help say the same).
 std::string sweepMethodNote(const SweepResult& result);
+// Along a camera path, what the method note adds: where the error was judged (empty when still).
+std::string pathMethodNote(const SweepResult& result);
 
 // The error column's name: "LDR-FLIP", or "LDR-FLIP change from the scene's look" where the sweep
 // varies a look knob (bloom.mips, post.*), whose reference keeps the scene's own value.

@@ -58,6 +58,6 @@ void main() {
     for (int n = 0; n < 5; ++n) sum += boxes[n] * weights[n];
   }
   vec4 result = vec4(clamp(sum, vec3(0.0), vec3(kHalfMax)), 1.0);
-  if (pc.injectNan != 0u && texel == pc.targetSize / 2) result.r = uintBitsToFloat(0x7fc00000u);
+  if (pc.inject == kInjectNan && texel == pc.targetSize / 2) result.r = uintBitsToFloat(0x7fc00000u);
   imageStore(fgbImagesRgba16f[pc.target], texel, result);
 }

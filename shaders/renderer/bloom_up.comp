@@ -23,6 +23,7 @@ void main() {
   const vec4 below = imageLoad(fgbImagesRgba16f[pc.target], texel);
   // Adding levels can pass the half-float maximum: saturate rather than store Inf.
   vec4 result = vec4(min(below.rgb + sum / 16.0, vec3(kHalfMax)), 1.0);
-  if (pc.injectNan != 0u && texel == pc.targetSize / 2) result.r = uintBitsToFloat(0x7fc00000u);
+  if (pc.inject == kInjectNan && texel == pc.targetSize / 2) result.r = uintBitsToFloat(0x7fc00000u);
+  if (pc.inject == kInjectBias) result.rgb += kInjectedBias;
   imageStore(fgbImagesRgba16f[pc.target], texel, result);
 }

@@ -34,6 +34,7 @@ void main() {
   SurfacePoint p = SurfacePoint(inWorldPosition, inNormal, inTangent, uv, gl_FrontFacing, gl_FragCoord.xy,
                                 geometricNormal);
   outColor = shadeSurface(frame, m, base, p, LightLists(pc.lights, pc.clusterCounts, pc.clusterIndices));
+  if ((pc.flags & kForwardInjectBias) != 0u) outColor.rgb += kInjectedBias;  // debug.inject_bias
   if ((pc.flags & kForwardInjectNan) != 0u && ivec2(gl_FragCoord.xy) == ivec2(frame.viewport.xy) / 2) {
     outColor.rgb = vec3(uintBitsToFloat(0x7fc00000u));  // debug.inject_nan: a NaN at the centre pixel
   }

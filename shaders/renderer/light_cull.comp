@@ -96,7 +96,7 @@ void main() {
     if (index < lightCount) {
       PointLight point = fgbLights[pc.lights].lights[index];
       light = vec4((frame.view * vec4(point.positionRadius.xyz, 1.0)).xyz, point.positionRadius.w);
-      touchesBlock = sphereIntersectsBox(light.xyz, light.w, blockMin, blockMax);
+      touchesBlock = sphereIntersectsBox(light.xyz, light.w, blockMin, blockMax) && index + 1u != pc.dropLight;
     }
     if (touchesBlock) atomicOr(sharedMask[lane / 32u], 1u << (lane % 32u));
     barrier();  // every mark before the slots are counted

@@ -1,25 +1,25 @@
 // `fgbench bless SCENE`: renders the scene several times, measures the run-to-run noise, and
 // replaces golden/<scene>/<device-class>/<config>.{png,exr,json} — each file atomically, images
 // before the JSON that refers to them. Never blesses a render with NaN/Inf.
-#include "verb.hpp"
+#include <fmt/chrono.h>
+#include <fmt/format.h>
 
+#include <chrono>
 #include <fgb/core/atomic_file.hpp>
 #include <fgb/core/error.hpp>
 #include <fgb/harness/base/json_io.hpp>
 #include <fgb/harness/base/progress.hpp>
 #include <fgb/harness/image/image_io.hpp>
+#include <fgb/harness/passes/pass_golden.hpp>
 #include <fgb/harness/results/golden.hpp>
 #include <fgb/harness/run/render_path.hpp>
 #include <fgb/harness/run/run_loop.hpp>
 #include <fgb/harness/run/run_outputs.hpp>
 #include <fgb/renderer/workload.hpp>
-
-#include <fmt/chrono.h>
-#include <fmt/format.h>
-
-#include <chrono>
 #include <iostream>
 #include <optional>
+
+#include "verb.hpp"
 
 namespace fgb::app {
 namespace {
@@ -34,12 +34,14 @@ struct BlessOptions {
   std::string config = harness::kDefaultGoldenConfig;
   uint32_t renders = 3;
   bool resetThresholds = false;
+  bool passes = false;  // --passes: per-pass goldens beside the frame's
 };
 
 struct Render {
   harness::Image display, hdr;  // quantised exactly as the golden files store them
   render::DeviceDescription device;
   std::map<std::string, double> stats;
+  std::optional<harness::PassCaptureSet> passes;
 };
 
 // Next to the scenes: <dir>/scenes/x.json -> <dir>/golden; otherwise ./golden.
@@ -59,7 +61,8 @@ Render renderOnce(const render::WorkloadConfig& config, const BlessOptions& o, u
   request.progress = [&](uint32_t done, uint32_t total) { bar.update(done, total); };
   const harness::RunArtifacts a = harness::renderConfiguration(render::openWorkload, request);
   bar.finish();
-  return {harness::quantizeToSrgb8(a.images.display), harness::quantizeToHalf(a.images.hdr), a.run.device, a.run.stats};
+  return {harness::quantizeToSrgb8(a.images.display), harness::quantizeToHalf(a.images.hdr), a.run.device, a.run.stats,
+          a.passes};
 }
 
 // The largest difference between the first render and any other: what "the same" looks like.
@@ -112,12 +115,23 @@ nlohmann::json goldenDocument(const BlessOptions& o, const render::WorkloadConfi
   };
 }
 
+// <config>/passes/: the first render's captures with thresholds from the noise between all renders.
+void writePassGoldens(const std::filesystem::path& dir, const std::vector<Render>& renders,
+                      const nlohmann::json& made) {
+  std::vector<harness::PassCaptureSet> sets;
+  for (const Render& render : renders) sets.push_back(*render.passes);
+  harness::CaptureExtras extras = harness::passGoldenExtras(sets);
+  extras.made = made;
+  harness::writeCaptureSet(dir, sets.front(), extras);
+}
+
 int blessVerb(const CLI::App& command, BlessOptions o) {
   if (!command.count("--width")) o.common.width = kBlessWidth;
   if (!command.count("--height")) o.common.height = kBlessHeight;
   if (!command.count("--frames")) o.common.frames = kBlessFrames;
   if (!command.count("--warmup")) o.common.warmup = kBlessWarmup;
-  const render::WorkloadConfig config = workloadConfig(o.scene, o.common, harness::parseKnobs(o.common.sets));
+  render::WorkloadConfig config = workloadConfig(o.scene, o.common, harness::parseKnobs(o.common.sets));
+  config.capture = o.passes;
 
   std::vector<Render> renders;
   for (uint32_t i = 0; i < o.renders; ++i) renders.push_back(renderOnce(config, o, i));
@@ -136,6 +150,7 @@ int blessVerb(const CLI::App& command, BlessOptions o) {
 
   harness::writePng(dir / (o.config + ".png"), first.display);
   harness::writeExr(dir / (o.config + ".exr"), first.hdr);
+  if (o.passes) writePassGoldens(harness::passGoldenDir(jsonPath), renders, document["made"]);
   writeFileAtomic(jsonPath, harness::dumpJson(document));
   if (!o.common.quiet) {
     std::cout << fmt::format("blessed {} ({}x{}, {} renders) -> {}\n", o.scene, first.display.width, first.display.height,
@@ -152,6 +167,9 @@ static VerbRegistrar reg(60, [](CLI::App& app) {
   sub->add_option("--golden-root", o->goldenRoot, "Golden tree root (default: golden/ next to scenes/)");
   sub->add_option("--config", o->config, "Golden configuration name (file stem)")->capture_default_str();
   sub->add_option("--renders", o->renders, "Repeated renders to measure noise")->capture_default_str()->check(CLI::Range(1u, 100u));
+  sub->add_flag("--passes", o->passes,
+                "Also store per-pass goldens (every node's output images and culling counts, with their noise) in "
+                "<config>/passes/, which localise a failing frame to the pass where it first differs");
   sub->add_flag("--reset-thresholds", o->resetThresholds, "Derive thresholds from the measured noise, replacing edited ones");
   return Verb{sub, [sub, o] { return blessVerb(*sub, *o); }};
 });

@@ -6,6 +6,8 @@
 #include <fgb/core/error.hpp>
 #include <fgb/harness/base/json_io.hpp>
 #include <fgb/harness/base/progress.hpp>
+#include <fgb/harness/passes/pass_capture.hpp>
+#include <fgb/harness/passes/pass_golden.hpp>
 #include <fgb/harness/report/dart.hpp>
 #include <fgb/harness/report/report.hpp>
 #include <fgb/harness/results/budget.hpp>
@@ -35,6 +37,8 @@ struct RunVerbOptions {
   std::string detect;  // --detect: the change to be able to detect, "2%" or "0.02"
   bool noIsolate = false;
   int isolateFrames = -1;  // -1: defaultIsolatedFrames(frames)
+  std::string capture;     // --capture passes | NODE,NODE,...
+  bool comparePasses = false;  // --compare-passes: judge the per-pass goldens even when the frame passes
   int asyncFrames = -1;    // -1: defaultAsyncFrames(frames)
 };
 
@@ -72,6 +76,10 @@ harness::RunArtifacts render(const RunVerbOptions& o, const std::map<std::string
   harness::ProgressBar bar(std::cerr, "rendering", !o.common.quiet && harness::ProgressBar::stderrIsTerminal());
   harness::RenderRequest request;
   request.workload = workloadConfig(o.scene, o.common, knobs);
+  if (!o.capture.empty()) {
+    request.workload.capture = true;
+    request.workload.captureNodes = harness::parseCaptureList(o.capture);
+  }
   request.warmup = o.common.warmup;
   request.frames = o.common.frames;
   if (o.untilStable) request.untilStable = harness::StabilityRule{};
@@ -127,6 +135,7 @@ void printSummary(const harness::RunResult& run, const std::string& out) {
   }
   if (run.budget) std::cout << "  budget: " << run.budget->verdict << " (" << run.budget->judgedOn() << ")\n";
   if (run.golden) std::cout << "  golden: " << run.golden->verdict << "\n";
+  if (!run.firstDifference.empty()) std::cout << "  passes: " << run.firstDifference << "\n";
   std::cout << "  results in " << out << "\n";
 }
 
@@ -147,6 +156,10 @@ std::string failureLine(const harness::RunResult& run) {
       for (const auto& f : image.failures) line += " " + image.kind + " " + f + ";";
     }
     if (!run.golden->diffImage.empty()) line += " heat map " + run.golden->diffImage;
+    if (!run.firstDifference.empty()) line += "; " + run.firstDifference;
+  } else if (run.passesGolden.is_object() && !run.passesGolden["differing"].empty()) {
+    // --compare-passes: the frame passed, but a pass moved beyond its noise.
+    line += (line.empty() ? "" : " ") + std::string("per-pass goldens: ") + run.firstDifference;
   }
   return line;
 }
@@ -160,6 +173,11 @@ int runVerb(const CLI::App& command, RunVerbOptions o) {
   if (!o.golden.empty()) {
     golden = harness::loadGolden(o.golden);
     adoptGoldenConfig(*golden, command, o.common, knobs);
+    // Per-pass goldens beside it: capture every pass, to say where a failing frame went wrong.
+    std::error_code ec;
+    if (o.capture.empty() &&
+        std::filesystem::is_regular_file(harness::passGoldenDir(golden->jsonPath) / "passes.json", ec))
+      o.capture = "passes";
   }
   if (o.out.empty()) o.out = "out/" + harness::sceneName(o.scene);
 
@@ -167,6 +185,8 @@ int runVerb(const CLI::App& command, RunVerbOptions o) {
   harness::RunResult& run = artifacts.run;
   if (budget) run.budget = harness::checkBudget(*budget, run.medians(), o.tolerance);
   if (golden) run.golden = harness::checkGolden(*golden, artifacts.images, o.out, &artifacts.golden);
+  if (golden && (run.golden->verdict == "fail" || o.comparePasses))
+    harness::localiseAgainstPassGoldens(*golden, artifacts);
   harness::writeRunOutputs(o.out, artifacts);
 
   if (o.common.json) {
@@ -191,6 +211,12 @@ static VerbRegistrar reg(20, [](CLI::App& app) {
       ->check(CLI::Range(0.0, 10.0));
   sub->add_option("--golden", options->golden,
                   "Golden JSON (golden/<scene>/<device-class>/<config>.json) or its directory; exit 1 over threshold");
+  sub->add_option("--capture", options->capture,
+                  "Write the last frame's output images of each node to OUT/passes/ (with passes.json and the "
+                  "culling counts in stats.json): 'passes' for every node, or NODE,NODE,...");
+  sub->add_flag("--compare-passes", options->comparePasses,
+                "With --golden: compare every pass with its per-pass golden even when the frame passes, and fail "
+                "(exit 1) when one differs beyond its noise (checks that unchanged runs show no difference)");
   sub->add_flag("--dart", options->dart, "Print <DartMeasurement> tags for CTest/CDash");
   sub->add_flag("--until-stable", options->untilStable,
                 "Measure until the 95% CI of the median frame time is within +-2% (--frames is the cap)");

@@ -20,7 +20,7 @@ vec3 tonemapPixel(ivec2 pixel, vec2 uv) {
            textureLod(sampler2D(fgbTextures[pc.bloomTexture], fgbSamplers[pc.linearSampler]), uv, 0.0).rgb;
   }
   float scale = fgbExposures[pc.exposure].state.tonemapScale;
-  return 1.0 - exp(-max(hdr, vec3(0.0)) * scale);
+  return 1.0 - exp(-max(hdr, vec3(0.0)) * scale) + pc.bias;  // bias: debug.inject_bias
 }
 
 #endif

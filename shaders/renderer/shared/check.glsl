@@ -13,6 +13,7 @@
 #include "renderer/shared/meshlets.h"
 #include "renderer/shared/opaque_depth.h"
 #include "renderer/shared/particles.h"
+#include "renderer/shared/debug.h"
 #include "renderer/shared/post.h"
 #include "renderer/shared/scene.h"
 #include "renderer/shared/visbuffer.h"

@@ -26,8 +26,9 @@ struct LightCullPush {
   uint lights;
   uint counts;   // per cluster: lights found (may exceed the capacity: overflow is visible)
   uint indices;  // cluster c's lights at [c * capacity, c * capacity + min(count, capacity))
+  uint dropLight;  // debug.drop_light: K >= 1 leaves light K - 1 out of every cluster; 0: none
 };
-FGB_CHECK_PUSH(LightCullPush, 20)
+FGB_CHECK_PUSH(LightCullPush, 24)
 
 FGB_GPU_END
 

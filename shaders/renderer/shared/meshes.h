@@ -5,6 +5,7 @@
 #define FGB_RENDERER_SHARED_MESHES_H
 
 #include "fgb/rhi/shared/prelude.h"
+#include "renderer/shared/debug.h"
 #include "renderer/shared/opaque_depth.h"
 
 #define FGB_MESH_CULL_GROUP_SIZE 64      // mesh_cull.comp: one instance each
@@ -44,12 +45,13 @@ struct ForwardPush {
   uint clusterCounts;   // FGB_NONE: no clustered lighting (loop over all lights)
   uint clusterIndices;
   uint materialSampler;
-  uint flags;           // kForwardTransparent, kForwardInjectNan
+  uint flags;                   // kForwardTransparent, kForwardInjectNan, kForwardInjectBias
   OpaqueDepthTest opaqueDepth;  // visibility buffer, transparent pass: the depth test (forward.frag)
 };
 FGB_CHECK_PUSH(ForwardPush, 48)
 const uint kForwardTransparent = 2u;  // the transparent pass
 const uint kForwardInjectNan = 4u;    // debug.inject_nan names this pass: a NaN at the centre pixel
+const uint kForwardInjectBias = 8u;   // debug.inject_bias names this pass: + kInjectedBias (debug.h)
 
 FGB_GPU_END
 

@@ -5,6 +5,7 @@
 #define FGB_RENDERER_SHARED_POST_H
 
 #include "fgb/rhi/shared/prelude.h"
+#include "renderer/shared/debug.h"
 
 #define FGB_POST_GROUP_SIZE 8             // ssaa_resolve.comp, tonemap.comp: 8 x 8 pixels
 #define FGB_BLOOM_GROUP_SIZE 8            // bloom_down.comp, bloom_up.comp: 8 x 8 texels
@@ -51,7 +52,7 @@ struct BloomDownPush {
   float threshold;      // radiance; applied in the HDR image's pre-exposed units
   float knee;
   uint exposure;        // storage-buffer index of the exposure state
-  uint injectNan;       // debug.inject_nan=Bloom: the centre texel of the first level is a NaN
+  uint inject;          // kInjectNan (debug.inject_nan=Bloom): the centre texel of the first level is a NaN
 };
 FGB_CHECK_PUSH(BloomDownPush, 56)
 
@@ -62,7 +63,7 @@ struct BloomUpPush {
   ivec2 sourceSize;
   ivec2 targetSize;
   float radius;     // in source texels
-  uint injectNan;   // debug.inject_nan=Bloom: the centre texel of this (the first) level is a NaN
+  uint inject;      // the first level: kInjectNan, its centre texel a NaN; kInjectBias, + kInjectedBias
 };
 FGB_CHECK_PUSH(BloomUpPush, 32)
 
@@ -74,8 +75,9 @@ struct TonemapPush {
   uint exposure;      // storage-buffer index of the exposure state
   float bloomIntensity;
   uint display;       // tonemap.comp: storage-image index of the display image
+  float bias;         // debug.inject_bias=Tone mapping: kInjectedBias, else 0
 };
-FGB_CHECK_PUSH(TonemapPush, 24)
+FGB_CHECK_PUSH(TonemapPush, 28)
 
 // "Finite Check" (include/finite_check.glsl).
 struct FiniteCheckPush {

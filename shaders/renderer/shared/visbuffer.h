@@ -5,6 +5,7 @@
 #define FGB_RENDERER_SHARED_VISBUFFER_H
 
 #include "fgb/rhi/shared/prelude.h"
+#include "renderer/shared/debug.h"
 
 // Workgroup sizes (local_size_x/y of the shaders; the feature dispatches with them).
 #define FGB_VIS_CULL_GROUP_SIZE 64    // cluster_cull.comp, cluster_cull_late.comp: one cluster each
@@ -192,6 +193,7 @@ FGB_CHECK_PUSH(VisPush, 128)
 const uint kFlagReversedZ = 1u;
 const uint kFlagLargeTiles = 2u;        // raster the large-triangle tiles (else the small triangles)
 const uint kFlagSerialSubgroups = 4u;   // a CPU device: a workgroup's subgroups run one after another
+const uint kFlagInjectBias = 8u;        // debug.inject_bias=Material Shade: + kInjectedBias (debug.h)
 const uint kLargeTriangleBytes = 64u;   // 4 uvec4 (packLargeTriangle in visbuffer_triangle.glsl)
 const uint kTileJobBytes = 8u;          // uvec2: large-list slot, job index within the triangle
 

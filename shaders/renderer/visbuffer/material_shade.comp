@@ -89,5 +89,6 @@ void main() {
 #ifdef FGB_DEBUG_VIEWS
   if (frame.counts.w >= kDebugViewLod) color.rgb = debugViewColor(frame, drawIndex, p);
 #endif
+  if ((pc.flags & kFlagInjectBias) != 0u) color.rgb += kInjectedBias;  // debug.inject_bias
   imageStore(fgbImagesRgba16f[pc.hdr], ivec2(pixel), vec4(color.rgb, 1.0));  // alpha > 0: metered geometry
 }

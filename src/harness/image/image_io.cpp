@@ -1,22 +1,13 @@
-#include <fgb/harness/image/image_io.hpp>
-
-#include "exr_fast_reader.hpp"
-
-#include <fgb/core/atomic_file.hpp>
-#include <fgb/core/error.hpp>
-
+#include <Imath/half.h>
 #include <OpenEXR/ImfArray.h>
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfRgbaFile.h>
 #include <OpenEXR/ImfThreading.h>
 #include <png.h>
-
-#include <fgb/harness/base/parallel.hpp>
-
-#include <Imath/half.h>
 
 #include <algorithm>
 #include <array>
@@ -25,6 +16,10 @@
 #include <cstdint>
 #include <cstring>
 #include <exception>
+#include <fgb/core/atomic_file.hpp>
+#include <fgb/core/error.hpp>
+#include <fgb/harness/base/parallel.hpp>
+#include <fgb/harness/image/image_io.hpp>
 #include <fstream>
 #include <future>
 #include <memory>
@@ -33,6 +28,7 @@
 #include <string_view>
 #include <thread>
 
+#include "exr_fast_reader.hpp"
 
 namespace fgb::harness {
 namespace {
@@ -208,6 +204,26 @@ void writeExr(const std::filesystem::path& path, const Image& linear) {
     Imf::RgbaOutputFile file(temporary.c_str(), static_cast<int>(linear.width), static_cast<int>(linear.height),
                              Imf::WRITE_RGBA, 1.0f, Imath::V2f(0, 0), 1.0f, Imf::INCREASING_Y, Imf::ZIP_COMPRESSION);
     file.setFrameBuffer(pixels.data(), 1, linear.width);
+    file.writePixels(static_cast<int>(linear.height));
+  });
+}
+
+void writeExrFloat(const std::filesystem::path& path, const Image& linear, int channels) {
+  if (channels < 1 || channels > 4) throw std::invalid_argument("writeExrFloat: 1 to 4 channels");
+  enableExrThreads();
+  const std::array<const char*, 4> names{"R", "G", "B", "A"};
+  writeViaTemporary(path, [&](const std::filesystem::path& temporary) {
+    Imf::Header header(static_cast<int>(linear.width), static_cast<int>(linear.height));
+    header.compression() = Imf::ZIP_COMPRESSION;
+    for (int c = 0; c < channels; ++c) header.channels().insert(names[c], Imf::Channel(Imf::FLOAT));
+    Imf::OutputFile file(temporary.c_str(), header);
+    Imf::FrameBuffer frameBuffer;
+    constexpr std::size_t xStride = 4 * sizeof(float);
+    const std::size_t yStride = xStride * linear.width;
+    auto* base = reinterpret_cast<char*>(const_cast<float*>(linear.rgba.data()));
+    for (int c = 0; c < channels; ++c)
+      frameBuffer.insert(names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xStride, yStride));
+    file.setFrameBuffer(frameBuffer);
     file.writePixels(static_cast<int>(linear.height));
   });
 }

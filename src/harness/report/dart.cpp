@@ -38,6 +38,11 @@ std::string dartMeasurements(const RunResult& run) {
       }
     }
     if (run.golden->verdict == "fail" && !run.golden->diffImage.empty()) out += dartMeasurementFile("diff", run.golden->diffImage);
+    if (!run.firstDifference.empty()) {
+      out += fmt::format(R"(<DartMeasurement name="first difference" type="text/string">{}</DartMeasurement>)",
+                         escapeXml(run.firstDifference)) +
+             "\n";
+    }
   }
   return out;
 }

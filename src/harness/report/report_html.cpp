@@ -16,7 +16,9 @@ constexpr const char* kStyle =
     "td:first-child,th:first-child{text-align:left}.bad{color:#c0392b;font-weight:bold}.ok{color:#2e7d32}"
     ".note{color:#555}"
     "figure{margin:0}figcaption{color:#555;font-size:90%}img.shot{width:100%;height:auto;border:1px solid #ccc}"
-    ".trio{display:flex;gap:8px}.trio figure{flex:1;min-width:0}#flipper button{font-size:100%}";
+    ".trio{display:flex;gap:8px}.trio figure{flex:1;min-width:0}#flipper button{font-size:100%}"
+    ".strip{display:flex;flex-wrap:wrap;gap:6px}.strip img{display:block;width:160px}.pass.first{outline:3px solid "
+    "#c0392b}";
 
 // Flips #flip-view between the reference and the test image (the sources are those of the images
 // above it, so each picture is in the file once).
@@ -103,6 +105,19 @@ std::string figure(const std::string& id, std::span<const uint8_t> png, const Re
                      id, pngDataUri(png), images.width, images.height, escapeXml(alt), captionHtml);
 }
 
+// Where the difference enters: each compared pass's image over its heat map, in declaration order.
+std::string passStripHtml(const RunResult& run, const ReportImages& images) {
+  std::string html = "<p id=\"first-difference\">" + escapeXml(run.firstDifference) + "</p>\n<div class=\"strip\">\n";
+  for (const auto& thumb : images.passStrip) {
+    const char* mark = thumb.firstDifference ? "first difference" : thumb.differs ? "differs" : "matches";
+    html += fmt::format(R"(<figure class="pass {}"><img src="{}" alt="{}">)", thumb.firstDifference ? "first" : "",
+                        pngDataUri(thumb.png), escapeXml(thumb.file));
+    if (!thumb.heatMap.empty()) html += fmt::format(R"(<img src="{}" alt="heat map">)", pngDataUri(thumb.heatMap));
+    html += fmt::format("<figcaption>{}<br>{}</figcaption></figure>\n", escapeXml(thumb.file), mark);
+  }
+  return html + "</div>\n";
+}
+
 // The frame inline; with a golden, reference | test | heat map side by side and a flip view.
 std::string picturesHtml(const RunResult& run, const ReportImages& images) {
   const std::string files = "<a href=\"frame.png\">frame.png</a> (tone-mapped) · <a href=\"frame.exr\">frame.exr</a> (linear HDR)";
@@ -169,6 +184,7 @@ std::string htmlReport(const RunResult& run, const ReportImages& images) {
   if (run.isolatedFrames > 0) html += "<h2>Span, isolated cost and critical path</h2>\n" + isolatedTableHtml(run);
   html += "<h2>Budget</h2>\n" + budgetHtml(run);
   html += "<h2>Golden image</h2>\n" + goldenHtml(run);
+  if (!run.firstDifference.empty()) html += "<h2>Per-pass goldens</h2>\n" + passStripHtml(run, images);
   return html + "</body></html>\n";
 }
 

@@ -119,6 +119,7 @@ std::string goldenSection(const RunResult& run) {
                        m.nonFiniteReference + m.nonFiniteTest, failures.empty() ? "none" : failures);
   }
   if (!g.diffImage.empty()) out += "\nDiff heat map: `" + g.diffImage + "`\n";
+  if (!run.firstDifference.empty()) out += "\nPer-pass goldens: " + run.firstDifference + "\n";
   return out;
 }
 

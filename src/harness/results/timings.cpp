@@ -189,6 +189,7 @@ nlohmann::json toJson(const RunResult& run) {
                        {"first_bad_pass", firstBad ? nlohmann::json(firstBad->pass) : nlohmann::json(nullptr)}};
   j["golden"] = run.golden ? toJson(*run.golden)
                            : nlohmann::json{{"file", ""}, {"verdict", "none"}, {"metrics", nlohmann::json::object()}};
+  if (!run.passesGolden.is_null()) j["passes_golden"] = run.passesGolden;
   return j;
 }
 

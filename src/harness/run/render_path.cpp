@@ -164,6 +164,11 @@ RunArtifacts renderConfiguration(const WorkloadOpener& open, const RenderRequest
   RunArtifacts a;
   Stopwatch readback;
   a.images = renderer.readImages();
+  if (request.workload.capture) {
+    // The same frame as the images: before the calibration renders more.
+    a.passes =
+        makeCaptureSet(renderer.workload().capturedPasses(), renderer.workload().passGraph(), renderer.result().stats);
+  }
   const double readbackMs = readback.elapsedMs();
   if (request.graphDumps) {
     a.graphBrief = renderer.workload().graphviz(render::GraphDetail::Brief);

@@ -1,14 +1,13 @@
-#include <fgb/harness/run/run_outputs.hpp>
+#include <fmt/format.h>
 
+#include <algorithm>
 #include <fgb/core/atomic_file.hpp>
 #include <fgb/core/error.hpp>
 #include <fgb/core/stopwatch.hpp>
 #include <fgb/harness/base/json_io.hpp>
 #include <fgb/harness/image/image_io.hpp>
 #include <fgb/harness/report/report.hpp>
-
-#include <fmt/format.h>
-
+#include <fgb/harness/run/run_outputs.hpp>
 #include <fstream>
 
 namespace fgb::harness {
@@ -36,6 +35,37 @@ ImageVerdict compareWithGoldenFile(const std::string& kind, const std::filesyste
 
 }  // namespace
 
+namespace {
+
+// report.html's strip: each compared pass's image beside its heat map, in declaration order, so the
+// place where the difference enters shows.
+std::vector<ReportImages::PassThumb> passStripOf(const PassLocalisation& localisation) {
+  constexpr uint32_t kThumbWidth = 160;
+  std::vector<ReportImages::PassThumb> strip;
+  for (const PassImageVerdict& image : localisation.images) {
+    // Marked where the difference enters: a differing image of a first-difference node.
+    const bool first =
+        image.differs && std::find(localisation.firstDifferences.begin(), localisation.firstDifferences.end(),
+                                   image.pass) != localisation.firstDifferences.end();
+    Image shown = image.test;
+    if (image.content != render::CaptureContent::Color) {
+      // Depth and ids as grey levels of their range, so the thumbnail shows shapes.
+      float top = 0.0f;
+      for (std::size_t i = 0; i < shown.pixelCount(); ++i) top = std::max(top, shown.rgba[i * 4]);
+      for (std::size_t i = 0; i < shown.pixelCount(); ++i) {
+        const float v = top > 0.0f ? shown.rgba[i * 4] / top : 0.0f;
+        shown.rgba[i * 4] = shown.rgba[i * 4 + 1] = shown.rgba[i * 4 + 2] = v;
+      }
+    }
+    strip.push_back(
+        {image.pass, image.file, image.differs, first, encodePng(shrinkToWidth(shown, kThumbWidth)),
+         image.heatMap.width ? encodePng(shrinkToWidth(image.heatMap, kThumbWidth)) : std::vector<uint8_t>{}});
+  }
+  return strip;
+}
+
+}  // namespace
+
 void writeRunOutputs(const std::filesystem::path& dir, const RunArtifacts& a) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
@@ -54,6 +84,8 @@ void writeRunOutputs(const std::filesystem::path& dir, const RunArtifacts& a) {
   if (a.golden.reference.width > 0) pictures.reference = encodePng(a.golden.reference);
   if (a.golden.heatMap.width > 0) pictures.heatMap = encodePng(a.golden.heatMap);
   for (const SlowFrame& slow : a.slowest) pictures.slowest.push_back({slow.frame, slow.pathTimeS, encodePng(slow.display)});
+  if (a.passes) writeCaptureSet(dir / "passes", *a.passes);
+  if (a.localisation) pictures.passStrip = passStripOf(*a.localisation);
   writeFileAtomic(dir / "timings.json", dumpJson(toJson(run)));
   writeFileAtomic(dir / "timings.csv", toCsv(run));
   writeFileAtomic(dir / "graph.dot", a.graphBrief);
@@ -78,6 +110,17 @@ GoldenResult checkGolden(const Golden& golden, const RenderedImages& images, con
   for (const auto& image : result.images) failed = failed || !image.failures.empty();
   result.verdict = failed ? "fail" : "pass";
   return result;
+}
+
+void localiseAgainstPassGoldens(const Golden& golden, RunArtifacts& artifacts) {
+  const std::filesystem::path dir = passGoldenDir(golden.jsonPath);
+  std::error_code ec;
+  if (!artifacts.passes || !std::filesystem::is_regular_file(dir / "passes.json", ec)) return;
+  PassLocalisation localisation = localise(readCaptureSet(dir), *artifacts.passes);
+  localisation.goldenDir = dir.string();
+  artifacts.run.firstDifference = localisation.line;
+  artifacts.run.passesGolden = toJson(localisation);
+  artifacts.localisation = std::move(localisation);
 }
 
 std::string sceneHash(const std::string& scenePath) {

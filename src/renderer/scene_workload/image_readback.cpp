@@ -58,25 +58,52 @@ ImageReadback::ImageReadback(rhi::Device& device, rhi::TextureId texture, graph:
 ImageRGBA32F ImageReadback::read() {
   device_.waitIdle();
   device_.wait(device_.execute(*graph_));
-  ImageRGBA32F image{extent_.width, extent_.height, {}};
-  const size_t values = size_t{extent_.width} * extent_.height * 4;
-  image.pixels.resize(values);
-  const auto bytes = device_.mapped(buffer_);
-  if (format_ == graph::Format::R16G16B16A16Sfloat) {
-    for (size_t i = 0; i < values; ++i) {
-      uint16_t half = 0;
-      std::memcpy(&half, bytes.data() + 2 * i, 2);
-      image.pixels[i] = halfToFloat(half);
-    }
-  } else if (format_ == graph::Format::R8G8B8A8Srgb || format_ == graph::Format::R8G8B8A8Unorm) {
-    // 8-bit images read back are display images: sRGB-encoded bytes, encoded by the hardware (sRGB
-    // format) or by the compute tone mapping (UNORM, which storage images can be).
-    for (size_t i = 0; i < values; ++i) {
-      const auto encoded = uint8_t(bytes[i]);
-      image.pixels[i] = i % 4 == 3 ? float(encoded) / 255.0f : srgbToLinear(encoded);
-    }
-  } else {
-    throw DeviceError("image readback: unsupported format " + std::string(graph::toString(format_)));
+  return decodeTexels(format_, extent_, device_.mapped(buffer_));
+}
+
+ImageRGBA32F decodeTexels(graph::Format format, graph::Extent extent, std::span<const std::byte> bytes) {
+  ImageRGBA32F image{extent.width, extent.height, {}};
+  const size_t pixels = size_t{extent.width} * extent.height;
+  image.pixels.assign(pixels * 4, 0.0f);
+  const auto half = [&](size_t index) {
+    uint16_t value = 0;
+    std::memcpy(&value, bytes.data() + 2 * index, 2);
+    return halfToFloat(value);
+  };
+  const auto single = [&](size_t index) {
+    float value = 0;
+    std::memcpy(&value, bytes.data() + 4 * index, 4);
+    return value;
+  };
+  switch (format) {
+    case graph::Format::R16G16B16A16Sfloat:
+      for (size_t i = 0; i < pixels * 4; ++i) image.pixels[i] = half(i);
+      break;
+    case graph::Format::R32G32B32A32Sfloat:
+      for (size_t i = 0; i < pixels * 4; ++i) image.pixels[i] = single(i);
+      break;
+    case graph::Format::R16G16Sfloat:
+      for (size_t i = 0; i < pixels; ++i) image.pixels[i * 4] = half(2 * i), image.pixels[i * 4 + 1] = half(2 * i + 1);
+      break;
+    case graph::Format::R32Sfloat:
+    case graph::Format::D32Sfloat:  // depth: the value in every colour channel, opaque
+      for (size_t i = 0; i < pixels; ++i) {
+        const float value = single(i);
+        image.pixels[i * 4] = image.pixels[i * 4 + 1] = image.pixels[i * 4 + 2] = value;
+        image.pixels[i * 4 + 3] = 1.0f;
+      }
+      break;
+    case graph::Format::R8G8B8A8Srgb:
+    case graph::Format::R8G8B8A8Unorm:
+      // 8-bit images read back are display images: sRGB-encoded bytes, encoded by the hardware (sRGB
+      // format) or by the compute tone mapping (UNORM, which storage images can be).
+      for (size_t i = 0; i < pixels * 4; ++i) {
+        const auto encoded = uint8_t(bytes[i]);
+        image.pixels[i] = i % 4 == 3 ? float(encoded) / 255.0f : srgbToLinear(encoded);
+      }
+      break;
+    default:
+      throw DeviceError("image readback: unsupported format " + std::string(graph::toString(format)));
   }
   return image;
 }

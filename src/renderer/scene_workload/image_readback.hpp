@@ -3,10 +3,15 @@
 
 #include <fgb/renderer/workload.hpp>
 #include <fgb/rhi/device.hpp>
-
 #include <memory>
+#include <span>
 
 namespace fgb::render {
+
+// Tightly packed texels of `format` as linear float RGBA: half/float colour, one-channel floats and
+// depth (replicated into RGB), and 8-bit display images (sRGB-encoded bytes, decoded). DeviceError
+// for other formats.
+ImageRGBA32F decodeTexels(graph::Format format, graph::Extent extent, std::span<const std::byte> bytes);
 
 class ImageReadback {
  public:

@@ -1,17 +1,11 @@
 // SceneWorkload: a scene file rendered by the render features through one compiled frame graph.
-#include "frame_update.hpp"
-#include "gpu_upload.hpp"
-#include "image_readback.hpp"
-
-#include "render_paths.hpp"
-
-#include "../features/context/render_feature.hpp"
-#include "../features/finite_check/finite_check_feature.hpp"
-#include "../features/exposure/exposure_feature.hpp"
-
+#include <algorithm>
+#include <array>
+#include <cstring>
 #include <fgb/core/error.hpp>
 #include <fgb/core/stopwatch.hpp>
 #include <fgb/graph/critical_path.hpp>
+#include <fgb/graph/data_inputs.hpp>
 #include <fgb/graph/dot.hpp>
 #include <fgb/renderer/describe_device.hpp>
 #include <fgb/renderer/frame_timer.hpp>
@@ -20,13 +14,19 @@
 #include <fgb/scene/load.hpp>
 #include <fgb/scene/stats.hpp>
 #include <fgb/vulkan/backend.hpp>
-
-#include <algorithm>
-#include <array>
 #include <filesystem>
 #include <iostream>
 #include <optional>
 #include <set>
+
+#include "../features/context/render_feature.hpp"
+#include "../features/exposure/exposure_feature.hpp"
+#include "../features/finite_check/finite_check_feature.hpp"
+#include "../features/pass_capture/pass_capture_feature.hpp"
+#include "frame_update.hpp"
+#include "gpu_upload.hpp"
+#include "image_readback.hpp"
+#include "render_paths.hpp"
 
 namespace fgb::render {
 namespace {
@@ -111,9 +111,31 @@ features::RenderSettings makeSettings(const WorkloadConfig& config, const scene:
   settings.msaa = msaa;
   features::applyRendererKnobs(settings, config.knobs);
   settings.checkFinite = config.checkFinite;
+  settings.capture = config.capture;
   if (config.clampMsaaToPath) settings.msaa = std::min(settings.msaa, path.maxMsaa);
   checkRenderPathSettings(path, config.clampMsaaToPath ? settings.msaa : requestedMsaa);
   return settings;
+}
+
+// The visibility words (uint64 per pixel: reversed-Z depth key << 32 | draw << 7 | triangle, 0 where
+// nothing was drawn) in a form that compares across runs: depth, draw index and triangle as floats.
+// The draw index is the cluster's ClusterDraw index, not its slot in the visible list, so it does not
+// depend on the order of the culling appends.
+ImageRGBA32F decodeVisibilityWords(graph::Extent extent, const std::vector<std::byte>& bytes) {
+  ImageRGBA32F image{extent.width, extent.height, std::vector<float>(size_t{extent.width} * extent.height * 4, 0.0f)};
+  for (size_t i = 0; i < size_t{extent.width} * extent.height; ++i) {
+    uint64_t word = 0;
+    std::memcpy(&word, bytes.data() + 8 * i, 8);
+    if (word == 0) continue;
+    const auto key = uint32_t(word >> 32);
+    float depth = 0.0f;
+    std::memcpy(&depth, &key, 4);
+    image.pixels[i * 4] = depth;
+    image.pixels[i * 4 + 1] = float(uint32_t(word) >> 7);
+    image.pixels[i * 4 + 2] = float(uint32_t(word) & 0x7fu);
+    image.pixels[i * 4 + 3] = 1.0f;
+  }
+  return image;
 }
 
 class SceneWorkload final : public Workload {
@@ -147,8 +169,9 @@ class SceneWorkload final : public Workload {
     startup_.uploadMs = timer.lap();
     frameUpdate_ = std::make_unique<FrameUpdate>(*device_, gpu_, loaded_.scene, settings_,
                                                  FrameClock::of(loaded_.scene, timeStepOf(config, loaded_.description)));
-    createFeatures();
+    createFeatures(config.captureNodes);
     buildFrameGraph();
+    checkCaptureNodes(config.captureNodes);
     startup_.graphMs = timer.lap();
     simulateToStillTime();
     const rhi::PipelineStats pipelines = device_->pipelineStats();
@@ -218,6 +241,40 @@ class SceneWorkload final : public Workload {
   }
   StartupTimes startup() const override { return startup_; }
 
+  std::vector<PassCapture> capturedPasses() override {
+    device_->waitIdle();
+    std::vector<PassCapture> result;
+    for (const features::CapturedBytes& captured : passCapture_->read()) {
+      PassCapture capture{captured.pass, captured.resource, CaptureContent::Color, {}};
+      if (captured.content == features::CapturedContent::Visibility) {
+        capture.content = CaptureContent::Visibility;
+        capture.image = decodeVisibilityWords(captured.extent, captured.bytes);
+      } else {
+        capture.content =
+            captured.content == features::CapturedContent::Depth ? CaptureContent::Depth : CaptureContent::Color;
+        // The opaque-depth buffer holds one float per pixel, as an R32Sfloat texture would.
+        const graph::Format format =
+            captured.format == graph::Format::Undefined ? graph::Format::R32Sfloat : captured.format;
+        capture.image = decodeTexels(format, captured.extent, captured.bytes);
+      }
+      result.push_back(std::move(capture));
+    }
+    return result;
+  }
+
+  std::vector<PassNode> passGraph() const override {
+    const graph::FrameGraph& declaration = graph_->declaration();
+    const auto inputs = graph::dataInputs(declaration);
+    std::vector<PassNode> nodes;
+    for (size_t node = 0; node < inputs.size(); ++node) {
+      const std::string& name = declaration.nodes()[node].name;
+      // The inspecting nodes (--check-finite, --capture) are declared last: the frame's end.
+      if (name.rfind("Finite Check", 0) == 0 || name.rfind("Capture: ", 0) == 0) break;
+      nodes.push_back({name, inputs[node]});
+    }
+    return nodes;
+  }
+
   [[nodiscard]] const graph::FrameGraph& declaration() const { return graph_->declaration(); }
 
  private:
@@ -249,7 +306,21 @@ class SceneWorkload final : public Workload {
     (void)timer_.finish(*device_, *graph_);  // their timings are dropped
   }
 
-  void createFeatures() {
+  // --capture NAME,...: every name must be a node of this frame (exit 2 listing them).
+  void checkCaptureNodes(const std::vector<std::string>& wanted) const {
+    const auto& nodes = graph_->declaration().nodes();
+    for (const std::string& name : wanted) {
+      if (std::any_of(nodes.begin(), nodes.end(), [&](const auto& node) { return node.name == name; })) continue;
+      std::string known;
+      for (const auto& node : nodes) {
+        if (node.name.rfind("Capture: ", 0) == 0 || node.name.rfind("Finite Check", 0) == 0) continue;
+        known += (known.empty() ? "" : ", ") + node.name;
+      }
+      throw InputError("--capture: no node '" + name + "' in this frame; its nodes: " + known);
+    }
+  }
+
+  void createFeatures(const std::vector<std::string>& captureNodes) {
     RenderPathPlan plan = planRenderPath(path_);
     features_ = std::move(plan.features);
     hdrStorage_ = plan.computeWritesHdr;
@@ -259,6 +330,10 @@ class SceneWorkload final : public Workload {
     auto finiteCheck = std::make_unique<features::FiniteCheckFeature>();
     finiteCheck_ = finiteCheck.get();
     features_.push_back(std::move(finiteCheck));
+    // After the finite check, whose nodes it skips: it copies what the frame's own nodes wrote.
+    auto passCapture = std::make_unique<features::PassCaptureFeature>(captureNodes);
+    passCapture_ = passCapture.get();
+    features_.push_back(std::move(passCapture));
     features::FeatureInit init{*device_, gpu_, settings_, path_};
     for (auto& feature : features_) feature->initialize(init);
   }
@@ -340,6 +415,7 @@ class SceneWorkload final : public Workload {
   features::GpuScene gpu_;
   std::vector<std::unique_ptr<features::IRenderFeature>> features_;
   features::FiniteCheckFeature* finiteCheck_ = nullptr;  // owned by features_
+  features::PassCaptureFeature* passCapture_ = nullptr;  // owned by features_
   bool hdrStorage_ = false;  // a compute node writes the HDR target
   bool displayStorage_ = false;  // a compute node writes the display image
   graph::Format displayFormat_ = features::kDisplayFormat;  // holds sRGB-encoded bytes in either format

@@ -28,6 +28,7 @@ void dispatchOver(rhi::CommandBuffer& cmd, const graph::Extent& size) {
 void BloomFeature::initialize(FeatureInit& init) {
   bloom_ = init.scene.scene->post.bloom;
   injectNan_ = init.settings.injectNanPass == "Bloom";
+  injectBias_ = init.settings.injectBiasPass == "Bloom";
   // Nothing drawn (no instances, no particles): the cleared background has nothing to bloom.
   const bool drawsSomething = !init.scene.scene->instances.empty() || !init.scene.scene->emitters.empty();
   enabled_ = bloom_.enabled && bloom_.intensity > 0.0f && drawsSomething;
@@ -59,7 +60,8 @@ void BloomFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
   for (uint32_t level = 0; level <= mips_; ++level) sizes[level] = levelExtent(targets.extent, level);
 
   node.setJob([down = downPipeline_, up = upPipeline_, sampler = samplerIndex_, bloom = bloom_, mips = mips_, hdr,
-               levels, sizes, exposure = exposureIndex_, injectNan = injectNan_](graph::JobContext& context) {
+               levels, sizes, exposure = exposureIndex_, injectNan = injectNan_,
+               injectBias = injectBias_](graph::JobContext& context) {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
     const auto xy = [](const graph::Extent& e) { return glm::ivec2(int32_t(e.width), int32_t(e.height)); };
@@ -77,20 +79,24 @@ void BloomFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
                                     bloom.threshold,
                                     bloom.knee,
                                     exposure,
-                                    first && injectNan ? 1u : 0u};
+                                    first && injectNan ? gpu::kInjectNan : 0u};
       cmd.push(push);
       dispatchOver(cmd, sizes[level]);
     }
     cmd.bindPipeline(up);
     for (uint32_t level = mips; level >= 2; --level) {
       cmd.computeBarrier();
-      // debug.inject_nan=Bloom: the last write of level 1 (the level tone mapping reads) holds the NaN.
+      // debug.inject_nan / inject_bias=Bloom: the last write of level 1 (the level tone mapping reads)
+      // holds the NaN or the bias.
       const gpu::BloomUpPush push{ctx.storageTextureIndex(levels[level]),
                                   ctx.storageTextureIndex(levels[level - 1]),
                                   xy(sizes[level]),
                                   xy(sizes[level - 1]),
                                   bloom.radius,
-                                  level == 2 && injectNan ? 1u : 0u};
+                                  level != 2   ? 0u
+                                  : injectNan  ? gpu::kInjectNan
+                                  : injectBias ? gpu::kInjectBias
+                                               : 0u};
       cmd.push(push);
       dispatchOver(cmd, sizes[level - 1]);
     }

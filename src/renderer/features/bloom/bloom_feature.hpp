@@ -27,7 +27,8 @@ class BloomFeature final : public IRenderFeature {
   uint32_t mips_ = 0;
   scene::BloomSettings bloom_;
   bool enabled_ = false;
-  bool injectNan_ = false;  // debug.inject_nan=Bloom
+  bool injectNan_ = false;   // debug.inject_nan=Bloom
+  bool injectBias_ = false;  // debug.inject_bias=Bloom
 };
 
 }  // namespace fgb::features

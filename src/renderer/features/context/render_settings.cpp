@@ -84,7 +84,8 @@ const std::vector<RendererKnob>& rendererKnobs() {
            "debug visualisation", Look),
       flag("render.depth_prepass", &S::depthPrepass, "depth-only pass before shading", CostOnly, "0"),
       flag("render.async", &S::asyncCompute,
-           "compute nodes on a compute queue of their own where the device has one (0: all on graphics)", CostOnly, "1"),
+           "compute nodes on a compute queue of their own where the device has one (0: all on graphics)", CostOnly,
+           "1"),
       // The sweep's reference raises it to 4 (`fgbench sweep --reference-ssaa` up to 8).
       count("render.ssaa", 1, 8, &S::ssaa, "supersampling: scene passes at S*W x S*H, box-filtered to W x H",
             Approximation, "4"),
@@ -94,8 +95,8 @@ const std::vector<RendererKnob>& rendererKnobs() {
       // reads and checks (scene_workload/render_paths.cpp); it is the path, not a setting, so it
       // lands in no field.
       {spec("render.path", KnobType::WordOrFile,
-            "the render path: a built-in one, or a FILE.json naming its features (src/renderer/paths/*.json)",
-            CostOnly, "forward", builtinPathNames()),
+            "the render path: a built-in one, or a FILE.json naming its features (src/renderer/paths/*.json)", CostOnly,
+            "forward", builtinPathNames()),
        [](RenderSettings&, const KnobValue&) {}},
       word("render.vis_backing", &S::visBacking,
            {{"auto", VisBacking::Auto}, {"buffer", VisBacking::Buffer}, {"image", VisBacking::Image}},
@@ -125,6 +126,14 @@ const std::vector<RendererKnob>& rendererKnobs() {
       // The passes whose shaders can write a NaN on request (tests of --check-finite).
       text("debug.inject_nan", KnobType::Word, {"none", "Mesh Render", "Bloom"}, &S::injectNanPass,
            "pass that writes a NaN (tests of --check-finite)", Content),
+      // Known faults in known passes (tests of per-pass goldens: the harness must name that pass).
+      text("debug.inject_bias", KnobType::Word,
+           {"none", "Mesh Render", "Mesh Render Transparent", "Material Shade", "Bloom", "Tone mapping"},
+           &S::injectBiasPass, "pass whose shader adds a small constant to what it writes (tests of per-pass goldens)",
+           Content),
+      count("debug.drop_light", 0, 1 << 20, &S::dropLight,
+            "K >= 1: \"Clustered Light Cull\" leaves light K-1 out of every cluster (tests of per-pass goldens)",
+            Content, "0"),
       // NAME:PERCENT, checked against the frame's passes once the graph is declared (slowPassOf).
       // Slower, not different: pinned off in the sweep's reference.
       text("debug.slow_pass", KnobType::Text, {}, &S::slowPass,

@@ -47,7 +47,10 @@ struct RenderSettings {
   uint32_t bloomMips = 6;             // bloom.mips
   uint32_t particleSeedOffset = 0;    // particles.seed (added to every emitter's seed)
   bool checkFinite = false;           // --check-finite (not a knob: a run option)
+  bool capture = false;               // --capture (a run option): PassCaptureFeature declares copies
   std::string injectNanPass;          // debug.inject_nan: the pass whose shader writes a NaN ("": none)
+  std::string injectBiasPass;         // debug.inject_bias: the pass whose shader adds kInjectedBias ("": none)
+  uint32_t dropLight = 0;             // debug.drop_light: K >= 1 leaves light K-1 out of every cluster (0: none)
   std::string slowPass;               // debug.slow_pass: "NAME:PERCENT" as given ("": none)
 
   // Size the scene passes (meshes, lights, particles) render at: the output size times render.ssaa.

@@ -25,6 +25,7 @@ constexpr graph::ImportState kBoundsState{graph::kStageComputeShader,
 void ClusteredLighting::initialize(FeatureInit& init) {
   configure(init.scene);
   clustered_ = init.settings.lightingMode == LightingMode::Clustered;
+  dropLight_ = init.settings.dropLight;
   device_ = &init.device;
   scene_ = &init.scene;
   if (!enabled()) return;
@@ -76,7 +77,7 @@ void ClusteredLighting::declare(graph::FrameGraph& graph, Blackboard& board) {
   node.read(bounds, Access::StorageRead);
   lists.counts = node.write(lists.counts, Access::StorageWrite);
   lists.indices = node.write(lists.indices, Access::StorageWrite);
-  gpu::LightCullPush push{0, device_->storageBufferIndex(bounds_), 0, 0, 0};
+  gpu::LightCullPush push{0, device_->storageBufferIndex(bounds_), 0, 0, 0, dropLight_};
   const auto& grid = scene_->constants.clusterGrid;
   constexpr uint32_t kBlock = FGB_LIGHT_CULL_BLOCK;
   const std::array<uint32_t, 3> groups{(grid.x + kBlock - 1) / kBlock, (grid.y + kBlock - 1) / kBlock, grid.z};

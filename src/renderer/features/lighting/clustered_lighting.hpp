@@ -43,6 +43,7 @@ class ClusteredLighting final : public IRenderFeature {
   uint32_t lightCount_ = 0;
   bool clustered_ = true;
   uint32_t clusterCount_ = 0;
+  uint32_t dropLight_ = 0;  // debug.drop_light (LightCullPush::dropLight)
   uint32_t capacity_ = 0;
 };
 

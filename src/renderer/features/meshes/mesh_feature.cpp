@@ -117,6 +117,7 @@ void MeshFeature::initialize(FeatureInit& init) {
         init.device.createGraphicsPipeline(forwardPipeline(init.settings, false, DepthTest::Attachment));
   depthPrepass_ = drawsOpaque_ && init.settings.depthPrepass;
   injectNanPass_ = init.settings.injectNanPass;
+  injectBiasPass_ = init.settings.injectBiasPass;
   if (depthPrepass_) pipelines_.depthOnly = init.device.createGraphicsPipeline(depthOnlyPipeline(init.settings));
   if (hasTransparent_)
     pipelines_.transparent =
@@ -203,8 +204,9 @@ void MeshFeature::declareDraw(graph::FrameGraph& graph, Blackboard& board, std::
   push.materials = device_->storageBufferIndex(scene.materials);
   push.clusterCounts = push.clusterIndices = rhi::kInvalidId;
   push.materialSampler = device_->samplerIndex(scene.materialSampler);
-  push.flags =
-      (transparent ? gpu::kForwardTransparent : 0u) | (nodeName == injectNanPass_ ? gpu::kForwardInjectNan : 0u);
+  push.flags = (transparent ? gpu::kForwardTransparent : 0u) |
+               (nodeName == injectNanPass_ ? gpu::kForwardInjectNan : 0u) |
+               (nodeName == injectBiasPass_ ? gpu::kForwardInjectBias : 0u);
   ClusteredLights clusters;
   if (const auto* published = board.find<ClusteredLights>()) {
     clusters = *published;

@@ -70,6 +70,7 @@ class MeshFeature final : public IRenderFeature {
   bool hasTransparent_ = false;
   bool depthPrepass_ = false;
   std::string injectNanPass_;  // debug.inject_nan
+  std::string injectBiasPass_;  // debug.inject_bias
   // "Mesh Render" draws opaque and masked instances (option "opaque"). The visibility-buffer path
   // draws those in compute and leaves this feature only the transparent ones.
   bool drawsOpaque_ = true;

@@ -17,6 +17,7 @@ void TonemapFeature::initialize(FeatureInit& init) {
   samplerIndex_ = init.device.samplerIndex(init.scene.linearClampSampler);
   exposureBuffer_ = init.device.storageBufferIndex(init.scene.exposure);
   bloomIntensity_ = init.scene.scene->post.bloom.intensity;
+  injectBias_ = init.settings.injectBiasPass == "Tone mapping";
 }
 
 void TonemapFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
@@ -32,7 +33,13 @@ void TonemapFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
   }
   if (targets.exposure.valid()) node.read(targets.exposure, graph::Access::StorageRead, stage);
   targets.display = writePostPassOutput(node, form_, targets.display);
-  gpu::TonemapPush push{0, rhi::kInvalidId, samplerIndex_, exposureBuffer_, bloomIntensity_, rhi::kInvalidId};
+  gpu::TonemapPush push{0,
+                        rhi::kInvalidId,
+                        samplerIndex_,
+                        exposureBuffer_,
+                        bloomIntensity_,
+                        rhi::kInvalidId,
+                        injectBias_ ? gpu::kInjectedBias : 0.0f};
   const graph::Extent extent = targets.outputExtent;
   node.setJob([push, pipeline = pipeline_, hdr, bloom, display = targets.display, form = form_, compute,
                extent](graph::JobContext& context) mutable {

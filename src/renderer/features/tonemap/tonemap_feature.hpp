@@ -25,6 +25,7 @@ class TonemapFeature final : public IRenderFeature {
   uint32_t samplerIndex_ = 0;
   uint32_t exposureBuffer_ = 0;
   float bloomIntensity_ = 0.0f;
+  bool injectBias_ = false;  // debug.inject_bias=Tone mapping
 };
 
 }  // namespace fgb::features

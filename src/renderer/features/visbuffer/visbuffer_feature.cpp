@@ -110,6 +110,7 @@ void VisBufferFeature::initialize(FeatureInit& init) {
   // per triangle plus pixels / 16 more (boxes adding up to 64 screens' worth of tiles).
   tileJobCapacity_ = uint32_t(std::min<uint64_t>(uint64_t{largeCapacity_} + pixels / 16, UINT32_MAX));
   reversedZ_ = projectsReversedZ(init.scene.constants);
+  injectBias_ = init.settings.injectBiasPass == "Material Shade";
   if (init.settings.visBacking == VisBacking::Auto)
     throw std::logic_error("render.vis_backing=auto reached the visibility buffer unresolved (resolveDeviceSettings)");
   imageBacking_ = init.settings.visBacking == VisBacking::Image;
@@ -449,8 +450,8 @@ void VisBufferFeature::declareShade(graph::FrameGraph& graph, Blackboard& board,
   }
   // Shading pre-exposes what it writes, like every colour pass (auto exposure: this frame's state).
   if (targets.exposure.valid()) node.read(targets.exposure, Access::StorageRead);
-  node.setJob([push = b.push, pipelines = pipelines_, b, hdr = targets.hdr, clusters, stats,
-               scene = scene_](graph::JobContext& context) mutable {
+  node.setJob([push = b.push, pipelines = pipelines_, b, hdr = targets.hdr, clusters, stats, scene = scene_,
+               injectBias = injectBias_](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
     useFrame(push, *scene, ctx.execution());
@@ -463,6 +464,7 @@ void VisBufferFeature::declareShade(graph::FrameGraph& graph, Blackboard& board,
     push.visible = ctx.storageBufferIndex(b.visible);
     push.depthOut = ctx.storageBufferIndex(b.depth);
     push.hdr = ctx.storageTextureIndex(hdr);
+    if (injectBias) push.flags |= gpu::kFlagInjectBias;
     if (clusters.counts.valid()) {
       push.clusterCounts = ctx.storageBufferIndex(clusters.counts);
       push.clusterIndices = ctx.storageBufferIndex(clusters.indices);

@@ -82,6 +82,7 @@ class VisBufferFeature final : public IRenderFeature {
   uint32_t largeCapacity_ = 0;
   uint32_t tileJobCapacity_ = 0;
   bool reversedZ_ = false;
+  bool injectBias_ = false;         // debug.inject_bias=Material Shade
   bool imageBacking_ = false;       // render.vis_backing resolved to image
   bool occlusion_ = false;          // render.occlusion
   bool occlusionHoldBack_ = false;  // debug.occlusion_hold_back (with render.occlusion)

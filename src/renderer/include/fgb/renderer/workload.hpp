@@ -40,6 +40,11 @@ struct WorkloadConfig {
   // --check-finite: a reduction node after every pass that writes float colour data counts its
   // NaN / Inf / above-half-of-R16F-max pixels (nonFiniteCounts()); off: those nodes do not exist.
   bool checkFinite = false;
+  // --capture: the last frame's outputs of these nodes (capturedPasses()); `capture` off: none are
+  // declared; an empty list: every node with an image output. A name that is no node of the frame
+  // is bad input (InputError listing the nodes).
+  bool capture = false;
+  std::vector<std::string> captureNodes;
   // --time-step: seconds between frames, for the camera along its path (camera.path) and the
   // particles' simulation step. 0: the scene file's render.time_step, else 1/60.
   double timeStep = 0.0;
@@ -87,6 +92,25 @@ struct ImageRGBA32F {
   uint32_t width = 0;
   uint32_t height = 0;
   std::vector<float> pixels;  // width * height * 4
+};
+
+// --capture: one image a node wrote, as the next nodes read it (the last frame).
+enum class CaptureContent {
+  Color,       // linear RGBA (8-bit sRGB images decoded to linear)
+  Depth,       // one float per pixel in r (g = b = r, a = 1)
+  Visibility,  // r: depth (from the key), g: draw index, b: triangle, a: 1 where covered, else all 0
+};
+struct PassCapture {
+  std::string pass;      // the node's name
+  std::string resource;  // the resource's name ("hdr", "depth", "bloom 1", "visibility buffer")
+  CaptureContent content = CaptureContent::Color;
+  ImageRGBA32F image;
+};
+
+// A declared node and the nodes whose outputs it reads (graph::dataInputs), by declaration index.
+struct PassNode {
+  std::string name;
+  std::vector<uint32_t> inputs;
 };
 
 // Host work before the first frame (opening the workload), reported apart from GPU time.
@@ -146,6 +170,10 @@ class Workload {
   // With --check-finite: one entry per checked pass, in execution order (the first bad one is where
   // a bad value was born); empty without the flag or when nothing writes float data.
   virtual std::vector<NonFiniteCounts> nonFiniteCounts() const { return {}; }
+  // With --capture: the last rendered frame's captured images, in declaration order of their nodes.
+  virtual std::vector<PassCapture> capturedPasses() { return {}; }
+  // Every declared node with its data inputs, in declaration order (empty: no graph).
+  virtual std::vector<PassNode> passGraph() const { return {}; }
 };
 
 // Opens the workload for a scene. Throws fgb::InputError (bad scene/option), fgb::DeviceError.

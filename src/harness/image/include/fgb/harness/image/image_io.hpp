@@ -25,6 +25,9 @@ Image readPng(const std::filesystem::path& path);  // encoding Srgb, values in [
 
 // Half-float RGBA, ZIP compression. Expects a linear image.
 void writeExr(const std::filesystem::path& path, const Image& linear);
+// 32-bit float, the first `channels` (1-4) of R, G, B, A, ZIP compression: exact values (depth,
+// ids). readExr fills missing colour channels with 0 and alpha with 1.
+void writeExrFloat(const std::filesystem::path& path, const Image& linear, int channels);
 // 8-bit RGB. Linear images are sRGB-encoded (clamped); sRGB images are stored as they are.
 void writePng(const std::filesystem::path& path, const Image& image);
 // The PNG file writePng would write, in memory (for data: URIs in single-file reports).

@@ -26,6 +26,17 @@ struct ReportImages {
     std::vector<uint8_t> png;
   };
   std::vector<SlowFrame> slowest;
+  // Per-pass goldens compared (the frame golden failed): each pass's image and its heat map against
+  // its golden, in declaration order; the first differences marked.
+  struct PassThumb {
+    std::string pass;
+    std::string file;
+    bool differs = false;
+    bool firstDifference = false;
+    std::vector<uint8_t> png;
+    std::vector<uint8_t> heatMap;
+  };
+  std::vector<PassThumb> passStrip;
 };
 
 std::string markdownReport(const RunResult& run);

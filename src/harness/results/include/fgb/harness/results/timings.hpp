@@ -95,6 +95,10 @@ struct RunResult {
   std::optional<GoldenResult> golden;
   bool checkedFinite = false;                       // --check-finite was on
   std::vector<render::NonFiniteCounts> nonFinite;   // checked passes, in execution order
+  // Per-pass goldens (passes room), when the frame golden failed and the golden has them: the
+  // first-difference verdict in one line, and timings.json "passes_golden" (null: not compared).
+  std::string firstDifference;
+  nlohmann::json passesGolden;
 
   const PassRecord* findPass(const std::string& name) const;
   // The first checked pass (execution order) that wrote a NaN, Inf or value above half of R16F's

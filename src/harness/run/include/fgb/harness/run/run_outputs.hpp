@@ -3,10 +3,11 @@
 #pragma once
 
 #include <fgb/harness/image/image.hpp>
+#include <fgb/harness/passes/pass_golden.hpp>
 #include <fgb/harness/results/golden.hpp>
 #include <fgb/harness/results/timings.hpp>
-
 #include <filesystem>
+#include <optional>
 #include <string>
 
 namespace fgb::harness {
@@ -35,10 +36,13 @@ struct RunArtifacts {
   std::vector<SlowFrame> slowest;  // RenderRequest::slowestFrames, slowest first (report thumbnails)
   std::string graphBrief, graphFull;
   GoldenPictures golden;  // empty (0x0) without --golden
+  std::optional<PassCaptureSet> passes;          // --capture: the last frame's per-pass outputs
+  std::optional<PassLocalisation> localisation;  // compared with per-pass goldens (frame golden failed)
 };
 
 // Creates DIR if needed (InputError when that is impossible) and writes frame.exr, frame.png,
-// timings.json, timings.csv, graph.dot, graph-full.dot, report.md and report.html.
+// timings.json, timings.csv, graph.dot, graph-full.dot, report.md and report.html; with captures,
+// DIR/passes/ (pass_capture.hpp).
 void writeRunOutputs(const std::filesystem::path& dir, const RunArtifacts& artifacts);
 
 // Compares the display image (as frame.png stores it) with the golden PNG and, when the golden has
@@ -48,6 +52,10 @@ void writeRunOutputs(const std::filesystem::path& dir, const RunArtifacts& artif
 // its heat map whether or not the comparison failed.
 GoldenResult checkGolden(const Golden& golden, const RenderedImages& images, const std::filesystem::path& diffDir,
                          GoldenPictures* pictures = nullptr);
+
+// With per-pass goldens next to `golden` (passGoldenDir) and a capture: the first-difference
+// verdict, also recorded in the run (firstDifference, passesGolden). Nothing when either is missing.
+void localiseAgainstPassGoldens(const Golden& golden, RunArtifacts& artifacts);
 
 // Stable content hash of a scene file (FNV-1a 64, hex); built-in scenes hash their name.
 std::string sceneHash(const std::string& scenePath);

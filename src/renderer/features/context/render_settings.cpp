@@ -128,7 +128,8 @@ const std::vector<RendererKnob>& rendererKnobs() {
            "pass that writes a NaN (tests of --check-finite)", Content),
       // Known faults in known passes (tests of per-pass goldens: the harness must name that pass).
       text("debug.inject_bias", KnobType::Word,
-           {"none", "Mesh Render", "Mesh Render Transparent", "Material Shade", "Bloom", "Tone mapping"},
+           {"none", "Mesh Render", "Mesh Render Transparent", "Material Shade", "Meshlet Render", "Bloom",
+            "Tone mapping"},
            &S::injectBiasPass, "pass whose shader adds a small constant to what it writes (tests of per-pass goldens)",
            Content),
       count("debug.drop_light", 0, 1 << 20, &S::dropLight,

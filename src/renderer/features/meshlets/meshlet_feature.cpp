@@ -59,6 +59,7 @@ void MeshletFeature::initialize(FeatureInit& init) {
   const bool smallTriangles = samples == 1 || init.device.standardSampleLocations();
   meshFlags_ = (smallTriangles ? gpu::kMeshletSmallTriangles : 0u) | samples << gpu::kMeshletSamplesShift;
   injectNan_ = init.settings.injectNanPass == "Meshlet Render";
+  injectBias_ = init.settings.injectBiasPass == "Meshlet Render";
   if (projectsReversedZ(init.scene.constants)) meshFlags_ |= gpu::kMeshletReversedZ;
   cull_ = init.device.createComputePipeline({"meshlet instance cull", "renderer/meshlets/meshlet_instance_cull.comp"});
   render_ = init.device.createGraphicsPipeline(meshletPipeline(init.settings));
@@ -120,7 +121,8 @@ gpu::MeshletPush MeshletFeature::scenePush() const {
   push.shading.materials = device_->storageBufferIndex(scene.materials);
   push.shading.clusterCounts = push.shading.clusterIndices = rhi::kInvalidId;
   push.shading.materialSampler = device_->samplerIndex(scene.materialSampler);
-  push.shading.flags = injectNan_ ? gpu::kForwardInjectNan : 0u;
+  push.shading.flags =
+      (injectNan_ ? gpu::kForwardInjectNan : 0u) | (injectBias_ ? gpu::kForwardInjectBias : 0u);
   push.shading.opaqueDepth = {FGB_NONE, 0, 0};  // the depth attachment tests (DepthTest::Attachment)
   push.draws = device_->storageBufferIndex(geometry.draws);
   push.clusters = device_->storageBufferIndex(geometry.clusters);

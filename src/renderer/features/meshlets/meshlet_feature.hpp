@@ -64,6 +64,7 @@ class MeshletFeature final : public IRenderFeature {
   float lodThreshold_ = 0.0f;  // scene pixels; 0: level 0 only
   bool lod_ = true;            // the path's "lod" option
   bool injectNan_ = false;     // debug.inject_nan names "Meshlet Render"
+  bool injectBias_ = false;    // debug.inject_bias names "Meshlet Render"
   bool occlusion_ = false;     // render.occlusion at MSAA 1
 };
 

@@ -27,8 +27,12 @@ uint hizLevels(uvec2 viewport) { return uint(max(1, findMSB(max(viewport.x, view
 // the depths) and writes the FGB_HIZ_PASS_LEVELS levels after it, one workgroup per tile of
 // 2^FGB_HIZ_PASS_LEVELS texels square of the level read, i.e. one per texel of the pass's last
 // level (ceil(ceil(W / 2^a) / 2^b) = ceil(W / 2^(a + b))). Host side: hiz_pyramid.hpp.
-uint hizPasses(uvec2 viewport) { return (hizLevels(viewport) + FGB_HIZ_PASS_LEVELS - 1u) / FGB_HIZ_PASS_LEVELS; }
-uvec2 hizPassGroups(uvec2 viewport, uint pass) { return hizLevelSize(viewport, (pass + 1u) * FGB_HIZ_PASS_LEVELS); }
+uint hizPasses(uvec2 viewport) {
+  return (hizLevels(viewport) + FGB_HIZ_PASS_LEVELS - 1u) / FGB_HIZ_PASS_LEVELS;
+}
+uvec2 hizPassGroups(uvec2 viewport, uint pass) {
+  return hizLevelSize(viewport, (pass + 1u) * FGB_HIZ_PASS_LEVELS);
+}
 
 #ifndef FGB_HIZ_BUILD_ONLY
 // Whether a world-space sphere is certainly hidden behind the depths the pyramid `hiz` holds.

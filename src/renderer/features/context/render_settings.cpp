@@ -124,7 +124,7 @@ const std::vector<RendererKnob>& rendererKnobs() {
       flag("debug.record_every_frame", &S::recordEveryFrame, "record every node every frame (0: reuse unchanged ones)",
            CostOnly, "0"),
       // The passes whose shaders can write a NaN on request (tests of --check-finite).
-      text("debug.inject_nan", KnobType::Word, {"none", "Mesh Render", "Bloom"}, &S::injectNanPass,
+      text("debug.inject_nan", KnobType::Word, {"none", "Mesh Render", "Meshlet Render", "Bloom"}, &S::injectNanPass,
            "pass that writes a NaN (tests of --check-finite)", Content),
       // Known faults in known passes (tests of per-pass goldens: the harness must name that pass).
       text("debug.inject_bias", KnobType::Word,

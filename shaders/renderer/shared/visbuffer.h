@@ -12,7 +12,10 @@
 #define FGB_VIS_RASTER_GROUP_SIZE 64  // visibility_raster.comp: small triangles per workgroup
 #define FGB_VIS_SHADE_GROUP_SIZE 8    // material_shade.comp: 8 x 8 pixels
 #define FGB_VIS_CLEAR_GROUP_SIZE 8    // vis_clear.comp: 8 x 8 pixels
-#define FGB_HIZ_GROUP_SIZE 8          // hiz_build.comp: 8 x 8 texels (hiz_args.comp sizes its dispatches)
+#define FGB_HIZ_GROUP_SIZE 256        // hiz_build.comp: threads of a workgroup, which reduces one tile
+// hiz_build.comp: the levels one dispatch writes; a workgroup reduces a tile of 2^6 x 2^6 texels of
+// the level it reads through shared memory (hizPassGroups in hiz_occlusion.glsl sizes the dispatches).
+#define FGB_HIZ_PASS_LEVELS 6
 
 FGB_GPU_BEGIN
 
@@ -125,7 +128,8 @@ struct HizPush {
   uint hiz;     // the pyramid (read-write)
   uint width;   // the viewport
   uint height;
-  uint level;   // the level written (>= 1)
+  uint sourceLevel;   // the level read (0: the depths; a multiple of FGB_HIZ_PASS_LEVELS): the
+                      // dispatch writes the FGB_HIZ_PASS_LEVELS levels after it (those that exist)
   uint fetchSampler;  // variant "depth": a sampler for the fetch
   uint reversedZ;     // variant "depth": the depth keys' convention
 };
@@ -134,7 +138,7 @@ FGB_CHECK_PUSH(HizPush, 28)
 // The HiZ build's indirect arguments (hiz_args.comp).
 struct HizArgsPush {
   uint rasterArgs;  // "Triangle Filter (late)"'s snapshot (read)
-  uint args;        // written: one VkDispatchIndirectCommand (uvec3) per level from level 1
+  uint args;        // written: one VkDispatchIndirectCommand (uvec3) per pass (hizPasses)
   uint width;       // the viewport
   uint height;
 };

@@ -1,7 +1,7 @@
 #version 460
 // "HiZ Build (late)"'s indirect arguments, one invocation, run at the end of "Triangle Filter
-// (late)" (render.occlusion=1): a group count per pyramid level, or none at all when phase 2
-// rasterises no triangle. Then the visibility buffer is as phase 1 left it, and so is the pyramid
+// (late)" (render.occlusion=1): a group count per pass of the build (hizPasses), or none at all
+// when phase 2 rasterises no triangle. Then the visibility buffer is as phase 1 left it, and so is the pyramid
 // "HiZ Build" made of it, which the next frame can use as it is (with a still camera, phase 2
 // usually has nothing to draw).
 #extension GL_GOOGLE_include_directive : require
@@ -17,12 +17,11 @@ void main() {
   VisCounters c = visCountersRead[pc.rasterArgs].c;
   bool drew = c.smallTriangles + c.tileJobs > 0u;
   uvec2 viewport = uvec2(pc.width, pc.height);
-  uint levels = hizLevels(viewport);
-  for (uint level = 1u; level <= levels; ++level) {
-    uvec2 groups = drew ? (hizLevelSize(viewport, level) + FGB_HIZ_GROUP_SIZE - 1u) / FGB_HIZ_GROUP_SIZE : uvec2(0u);
-    uint at = 3u * (level - 1u);
-    fgbUints[pc.args].values[at] = groups.x;
-    fgbUints[pc.args].values[at + 1u] = groups.y;
-    fgbUints[pc.args].values[at + 2u] = 1u;
+  uint passes = hizPasses(viewport);
+  for (uint pass = 0u; pass < passes; ++pass) {
+    uvec2 groups = drew ? hizPassGroups(viewport, pass) : uvec2(0u);
+    fgbUints[pc.args].values[3u * pass] = groups.x;
+    fgbUints[pc.args].values[3u * pass + 1u] = groups.y;
+    fgbUints[pc.args].values[3u * pass + 2u] = 1u;
   }
 }

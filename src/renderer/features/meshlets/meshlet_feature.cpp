@@ -194,16 +194,16 @@ void MeshletFeature::declareHizBuild(graph::FrameGraph& graph, FrameTargets& tar
   auto node =
       graph.addNode(late ? "HiZ Build (late)" : "HiZ Build", graph::NodeType::Compute, graph::QueueClass::Graphics);
   node.read(targets.depth, Access::Sampled);
-  b.hiz = node.write(b.hiz, Access::StorageReadWrite);  // each level reads the one below
+  b.hiz = node.write(b.hiz, Access::StorageReadWrite);  // each pass reads the level the one before wrote last
   if (!late) {
     node.read(b.candidates, Access::StorageRead);
     b.lateCommands = node.write(b.lateCommands, Access::StorageWrite);
   }
   const graph::Extent extent = targets.extent;
-  const uint32_t levels = hizLevels(extent.width, extent.height);
+  const uint32_t passes = hizPasses(extent.width, extent.height);
   const uint32_t sampler = device_->samplerIndex(scene_->linearClampSampler);
   const uint32_t reversedZ = (meshFlags_ & gpu::kMeshletReversedZ) != 0 ? 1u : 0u;
-  node.setJob([pipeline = hizBuild_, args = lateArgs_, b, depth = targets.depth, extent, levels, sampler, reversedZ,
+  node.setJob([pipeline = hizBuild_, args = lateArgs_, b, depth = targets.depth, extent, passes, sampler, reversedZ,
                late](graph::JobContext& context) {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
@@ -215,12 +215,12 @@ void MeshletFeature::declareHizBuild(graph::FrameGraph& graph, FrameTargets& tar
                       sampler,
                       reversedZ};
     cmd.bindPipeline(pipeline);
-    for (uint32_t level = 1; level <= levels; ++level) {
-      if (level > 1) cmd.computeBarrier();  // a level reads the one before it
-      push.level = level;
+    for (uint32_t pass = 0; pass < passes; ++pass) {
+      if (pass > 0) cmd.computeBarrier();  // a pass reads the level the one before wrote last
+      push.sourceLevel = pass * FGB_HIZ_PASS_LEVELS;
       cmd.push(push);
-      cmd.dispatch((hizLevelSize(extent.width, level) + FGB_HIZ_GROUP_SIZE - 1) / FGB_HIZ_GROUP_SIZE,
-                   (hizLevelSize(extent.height, level) + FGB_HIZ_GROUP_SIZE - 1) / FGB_HIZ_GROUP_SIZE);
+      const HizGroups groups = hizPassGroups(extent.width, extent.height, pass);
+      cmd.dispatch(groups.x, groups.y);
     }
     if (late) return;
     // Under validation every dispatch of the node counts as accessing every buffer it declared.

@@ -1,12 +1,14 @@
 // The HiZ pyramid's layout on the host (render.occlusion; the GLSL side is
 // shaders/renderer/visbuffer/hiz_occlusion.glsl): levels k >= 1 of ceil(W / 2^k) x ceil(H / 2^k)
 // 32-bit depth keys, one after another in one buffer. Used by the visibility-buffer and meshlet
-// paths, which build it from their own depths ("HiZ Build", hiz_build.comp and its variant "depth").
+// paths, which build it from their own depths ("HiZ Build", hiz_build.comp and its variant "depth":
+// FGB_HIZ_PASS_LEVELS levels a dispatch, two dispatches up to 4096 pixels a side).
 #pragma once
 
 #include <cstdint>
 
 #include "renderer/shared/scene.h"
+#include "renderer/shared/visbuffer.h"  // FGB_HIZ_PASS_LEVELS
 
 namespace fgb::features {
 
@@ -19,6 +21,19 @@ inline uint32_t hizLevels(uint32_t width, uint32_t height) {
   uint32_t level = 1;
   while (hizLevelSize(width, level) > 1 || hizLevelSize(height, level) > 1) ++level;
   return level;
+}
+// "HiZ Build"'s dispatches (hizPasses and hizPassGroups in hiz_occlusion.glsl): pass p reads level
+// p * FGB_HIZ_PASS_LEVELS (0: the depths) and writes the levels after it, one workgroup per texel
+// of the pass's last level; a compute barrier between passes.
+inline uint32_t hizPasses(uint32_t width, uint32_t height) {
+  return (hizLevels(width, height) + FGB_HIZ_PASS_LEVELS - 1) / FGB_HIZ_PASS_LEVELS;
+}
+struct HizGroups {
+  uint32_t x, y;
+};
+inline HizGroups hizPassGroups(uint32_t width, uint32_t height, uint32_t pass) {
+  const uint32_t lastLevel = (pass + 1) * FGB_HIZ_PASS_LEVELS;
+  return {hizLevelSize(width, lastLevel), hizLevelSize(height, lastLevel)};
 }
 inline uint64_t hizKeys(uint32_t width, uint32_t height) {
   uint64_t keys = 0;

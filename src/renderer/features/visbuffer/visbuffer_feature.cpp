@@ -34,7 +34,7 @@ constexpr uint64_t kSmallArgsOffset = offsetof(VisCounters, smallGroups);
 constexpr uint64_t kTileArgsOffset = offsetof(VisCounters, tileGroups);
 // ClusterCullPush::occlusion packs two storage-buffer indices in 16 bits each.
 static_assert(FGB_MAX_STORAGE_BUFFERS <= 0x10000);
-constexpr uint64_t kHizLevelArgsBytes = 12;  // one VkDispatchIndirectCommand per level
+constexpr uint64_t kHizPassArgsBytes = 12;  // one VkDispatchIndirectCommand per pass (hizPasses)
 
 // Material Shade's shader: the backing's word accesses, and the debug views' colours only where a
 // debug view needs them (shaders/CMakeLists.txt's "debug" variants).
@@ -162,7 +162,7 @@ VisBufferFeature::Buffers VisBufferFeature::declareBuffers(graph::FrameGraph& gr
     b.late.rasterArgs = graph.createBuffer("triangle filter args (late)", {sizeof(VisCounters), {}});
     b.candidates = graph.createBuffer("occlusion candidates", {uint64_t{4} * geometry.drawCount, {}});
     b.hizLateArgs = graph.createBuffer(
-        "hiz build args (late)", {kHizLevelArgsBytes * hizLevels(targets.extent.width, targets.extent.height), {}});
+        "hiz build args (late)", {kHizPassArgsBytes * hizPasses(targets.extent.width, targets.extent.height), {}});
     // Written by "HiZ Build (late)", read by the next frame's "Cluster Cull": all compute on the
     // graphics queue.
     const graph::ImportState hizState{graph::kStageComputeShader,
@@ -397,25 +397,23 @@ void VisBufferFeature::declareHizBuild(graph::FrameGraph& graph, Buffers& b, boo
   auto node = graph.addNode(late ? "HiZ Build (late)" : "HiZ Build", graph::NodeType::Compute, kQueue);
   if (late) node.read(b.hizLateArgs, Access::Indirect);
   b.readWords(node);
-  b.hiz = node.write(b.hiz, Access::StorageReadWrite);  // each level reads the one below
-  const uint32_t levels = hizLevels(b.extent.width, b.extent.height);
-  node.setJob([pipeline = pipelines_.hizBuild, b, levels, late](graph::JobContext& context) {
+  b.hiz = node.write(b.hiz, Access::StorageReadWrite);  // each pass reads the level the one before wrote last
+  const uint32_t passes = hizPasses(b.extent.width, b.extent.height);
+  node.setJob([pipeline = pipelines_.hizBuild, b, passes, late](graph::JobContext& context) {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
     gpu::HizPush push{b.wordsIndex(ctx), ctx.storageBufferIndex(b.hiz), b.extent.width, b.extent.height, 0, 0, 0};
     cmd.bindPipeline(pipeline);
-    for (uint32_t level = 1; level <= levels; ++level) {
-      if (level > 1) cmd.computeBarrier();  // a level reads the one before it
-      push.level = level;
+    for (uint32_t pass = 0; pass < passes; ++pass) {
+      if (pass > 0) cmd.computeBarrier();
+      push.sourceLevel = pass * FGB_HIZ_PASS_LEVELS;
       cmd.push(push);
       if (late) {
-        cmd.dispatchIndirect(ctx.buffer(b.hizLateArgs), kHizLevelArgsBytes * (level - 1));
+        cmd.dispatchIndirect(ctx.buffer(b.hizLateArgs), kHizPassArgsBytes * pass);
         continue;
       }
-      const uint32_t width = hizLevelSize(b.extent.width, level);
-      const uint32_t height = hizLevelSize(b.extent.height, level);
-      cmd.dispatch((width + FGB_HIZ_GROUP_SIZE - 1) / FGB_HIZ_GROUP_SIZE,
-                   (height + FGB_HIZ_GROUP_SIZE - 1) / FGB_HIZ_GROUP_SIZE);
+      const HizGroups groups = hizPassGroups(b.extent.width, b.extent.height, pass);
+      cmd.dispatch(groups.x, groups.y);
     }
   });
   node.recordingFixed();

@@ -306,15 +306,8 @@ class CityBuilder {
     return appendMesh(scene_, std::move(data));
   }
 
-  int32_t texture(Texture&& t) {
-    scene_.textures.push_back(std::move(t));
-    return static_cast<int32_t>(scene_.textures.size() - 1);
-  }
-
-  uint32_t material(Material m) {
-    scene_.materials.push_back(std::move(m));
-    return static_cast<uint32_t>(scene_.materials.size() - 1);
-  }
+  int32_t texture(Texture&& t) { return addTexture(scene_, std::move(t)); }
+  uint32_t material(Material m) { return addMaterial(scene_, std::move(m)); }
 
   // A material on a pattern's textures, made once per pattern and shared by its tints.
   uint32_t textured(const std::string& name, Pattern pattern, float roughness, float normalStrength, glm::vec4 tint) {

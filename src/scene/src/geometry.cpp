@@ -251,6 +251,16 @@ void repairMesh(MeshData& mesh, RepairCounters& repairs, const std::string& cont
   if (mesh.uv0.empty()) mesh.uv0.assign(mesh.positions.size(), glm::vec2(0.0f));
 }
 
+int32_t addTexture(Scene& scene, Texture&& texture) {
+  scene.textures.push_back(std::move(texture));
+  return static_cast<int32_t>(scene.textures.size() - 1);
+}
+
+uint32_t addMaterial(Scene& scene, Material material) {
+  scene.materials.push_back(std::move(material));
+  return static_cast<uint32_t>(scene.materials.size() - 1);
+}
+
 uint32_t appendMesh(Scene& scene, MeshData&& data) {
   Mesh mesh;
   mesh.name = std::move(data.name);

@@ -40,6 +40,9 @@ void computeTangents(MeshData& mesh, const std::vector<bool>& recompute = {});
 // Appends a (repaired) mesh to the scene's shared arrays; returns its index. Empty meshes are
 // appended too (callers usually skip them and count RepairCounters::emptyMeshes).
 uint32_t appendMesh(Scene& scene, MeshData&& mesh);
+// Appends a texture or a material, returning its index (what materials and instances refer to).
+int32_t addTexture(Scene& scene, Texture&& texture);
+uint32_t addMaterial(Scene& scene, Material material);
 // Adds an instance, computing its world bounds from the mesh's local bounds.
 uint32_t addInstance(Scene& scene, uint32_t mesh, uint32_t material, const glm::dmat4& transform);
 // Recomputes every mesh's local bounds and every instance's world bounds.

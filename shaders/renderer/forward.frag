@@ -14,6 +14,11 @@ layout(location = 1) in vec3 inNormal;
 layout(location = 2) in vec4 inTangent;
 layout(location = 3) in vec2 inUv;
 layout(location = 4) flat in uint inMaterial;
+#ifdef FGB_DEBUG_VIEWS
+// "Meshlet Render" with debug.view=lod|clusters (the mesh shader's debug variant writes it).
+#include "include/debug_views.glsl"
+layout(location = 5) flat in uvec3 inDebugCluster;
+#endif
 
 layout(location = 0) out vec4 outColor;
 
@@ -34,6 +39,12 @@ void main() {
   SurfacePoint p = SurfacePoint(inWorldPosition, inNormal, inTangent, uv, gl_FrontFacing, gl_FragCoord.xy,
                                 geometricNormal);
   outColor = shadeSurface(frame, m, base, p, LightLists(pc.lights, pc.clusterCounts, pc.clusterIndices));
+#ifdef FGB_DEBUG_VIEWS
+  if (frame.counts.w >= kDebugViewLod) {
+    outColor.rgb = debugViewColor(frame.counts.w, inDebugCluster.x, inDebugCluster.y, inDebugCluster.z, inNormal,
+                                  frame.cameraPosition.xyz - inWorldPosition, preExposure(frame));
+  }
+#endif
   if ((pc.flags & kForwardInjectBias) != 0u) outColor.rgb += kInjectedBias;  // debug.inject_bias
   if ((pc.flags & kForwardInjectNan) != 0u && ivec2(gl_FragCoord.xy) == ivec2(frame.viewport.xy) / 2) {
     outColor.rgb = vec3(uintBitsToFloat(0x7fc00000u));  // debug.inject_nan: a NaN at the centre pixel

@@ -40,6 +40,7 @@ struct RunVerbOptions {
   std::string capture;     // --capture passes | NODE,NODE,...
   bool comparePasses = false;  // --compare-passes: judge the per-pass goldens even when the frame passes
   int asyncFrames = -1;    // -1: defaultAsyncFrames(frames)
+  bool noDebugViews = false;
 };
 
 // --detect 2% | 0.02: a relative change in (0, 1).
@@ -95,6 +96,7 @@ harness::RunArtifacts render(const RunVerbOptions& o, const std::map<std::string
   request.asyncFrames =
       o.asyncFrames >= 0 ? static_cast<uint32_t>(o.asyncFrames) : harness::defaultAsyncFrames(request.frames);
   request.slowestFrames = 3;  // along a camera path: the report's thumbnails
+  request.debugViews = !o.noDebugViews;
   request.progress = [&](uint32_t done, uint32_t total) { bar.update(done, total); };
   harness::RunArtifacts a = harness::renderConfiguration(render::openWorkload, request);
   bar.finish();
@@ -231,6 +233,9 @@ static VerbRegistrar reg(20, [](CLI::App& app) {
                   "async compute saved; only where the frame ran on two or more queues (default: a quarter of "
                   "--frames, 8 to 32; 0 skips)")
       ->check(CLI::Range(0, 1024));
+  sub->add_flag("--no-debug-views", options->noDebugViews,
+                "Skip the pictures of the clusters (debug-lod.png, debug-clusters.png: the frame again with "
+                "debug.view=lod and =clusters) that paths drawing clusters (visbuffer, meshlet) add to the report");
   sub->add_option("--detect", options->detect,
                   "Measure until a change this small in the frame time is detectable (e.g. 2% or 0.02; alpha 0.05, "
                   "power 0.8, against the frames' own noise: compare-runs adds the run-to-run noise); --frames is "

@@ -6,11 +6,24 @@
 # single-sided materials, which forward draws. At MSAA 4 on the atrium at 320x180, most triangles
 # cover samples but no pixel centre: a small-triangle test against pixel centres there drops them
 # (HDR-FLIP mean 0.49 against forward, walls see-through; against the sample pattern 0.0006).
+# Optional: -DREFERENCE=visbuffer (the path compared with; default forward), -DKNOBS=--set|k=v|...
+# (both render with them; default render.lod_error=0) and -DLIMIT=F (both FLIP means; default 0.01),
+# e.g. debug.view=lod, whose colours the meshlet path must give its clusters as the visibility buffer does.
 #   cmake -DFGBENCH=... -DSCENE=atrium.json -DOUT=dir -DWIDTH=640 -DHEIGHT=360 -DMSAA=1 -P meshlet-flip.cmake
 file(REMOVE_RECURSE "${OUT}")
+if(NOT DEFINED REFERENCE)
+  set(REFERENCE forward)
+endif()
+if(NOT DEFINED KNOBS)
+  set(KNOBS --set render.lod_error=0)
+endif()
+string(REPLACE "|" ";" KNOBS "${KNOBS}")
+if(NOT DEFINED LIMIT)
+  set(LIMIT 0.01)
+endif()
 set(common ${SCENE} --device lavapipe --width ${WIDTH} --height ${HEIGHT} --msaa ${MSAA} --warmup 0 --frames 1
-           --no-isolate --quiet --set render.lod_error=0)
-foreach(path forward meshlet)
+           --no-isolate --quiet ${KNOBS})
+foreach(path ${REFERENCE} meshlet)
   set(more "")
   if(path STREQUAL "meshlet")
     set(more --validation)
@@ -22,10 +35,10 @@ foreach(path forward meshlet)
   endif()
 endforeach()
 foreach(image frame.png frame.exr)
-  execute_process(COMMAND ${FGBENCH} compare ${OUT}/forward/${image} ${OUT}/meshlet/${image} --max-flip-mean 0.01
+  execute_process(COMMAND ${FGBENCH} compare ${OUT}/${REFERENCE}/${image} ${OUT}/meshlet/${image} --max-flip-mean ${LIMIT}
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  message(STATUS "${image}, forward against meshlet:\n${out}")
+  message(STATUS "${image}, ${REFERENCE} against meshlet:\n${out}")
   if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "meshlet differs from forward in ${image} (exit ${rc}):\n${out}${err}")
+    message(FATAL_ERROR "meshlet differs from ${REFERENCE} in ${image} (exit ${rc}):\n${out}${err}")
   endif()
 endforeach()

@@ -92,12 +92,12 @@ std::size_t count(const std::string& text, const std::string& what) {
 std::vector<uint8_t> bytes(std::string_view text) { return {text.begin(), text.end()}; }
 
 TEST(Report, HtmlShowsTheFrameInlineAndWithAGoldenThreeImagesAndAFlipView) {
-  const ReportImages frameOnly{bytes("frame-bytes"), {}, {}, 8, 4, {}, {}};
+  const ReportImages frameOnly{bytes("frame-bytes"), {}, {}, 8, 4, {}, {}, {}};
   const std::string plain = htmlReport(fakeRun(), frameOnly);
   EXPECT_THAT(plain, HasSubstr(R"(id="frame" src="data:image/png;base64,)" + base64(bytes("frame-bytes")) + "\""));
   EXPECT_EQ(count(plain, "<img"), 1u);
 
-  const ReportImages withGolden{bytes("frame-bytes"), bytes("reference-bytes"), bytes("heat-bytes"), 8, 4, {}, {}};
+  const ReportImages withGolden{bytes("frame-bytes"), bytes("reference-bytes"), bytes("heat-bytes"), 8, 4, {}, {}, {}};
   const std::string html = htmlReport(fakeRun(), withGolden);
   EXPECT_EQ(count(html, "<img"), 4u);  // reference, test, heat map, flip view
   EXPECT_EQ(count(html, "src=\"data:image/png;base64,"), 3u);  // each picture once: the flip view borrows them

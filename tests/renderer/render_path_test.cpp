@@ -10,6 +10,7 @@
 namespace fgb::render {
 namespace {
 
+using features::DebugView;
 using features::DepthTest;
 using features::PostPassForm;
 
@@ -90,11 +91,24 @@ TEST(RenderPath, DefaultsAreTheForwardPathsAndMaxMsaaTheFeaturesLimit) {
   EXPECT_EQ(renderPathOf({}).name, "forward");
 }
 
+TEST(RenderPath, ClusterDebugViewsNeedAPathThatDrawsClusters) {
+  EXPECT_NO_THROW(checkRenderPathSettings(loadRenderPath("visbuffer"), 1, DebugView::Lod));
+  EXPECT_NO_THROW(checkRenderPathSettings(loadRenderPath("meshlet"), 1, DebugView::Clusters));
+  EXPECT_NO_THROW(checkRenderPathSettings(loadRenderPath("forward"), 1, DebugView::LightComplexity));
+  try {
+    checkRenderPathSettings(loadRenderPath("forward"), 1, DebugView::Clusters);
+    FAIL() << "expected InputError";
+  } catch (const InputError& error) {
+    EXPECT_STREQ(error.what(), "--set debug.view=clusters: render.path=forward draws no clusters (they colour the "
+                               "clusters that render.path=visbuffer and meshlet draw)");
+  }
+}
+
 TEST(RenderPath, MsaaAboveTheMaxIsRefusedNamingSupersampling) {
   const auto vis = loadRenderPath("visbuffer");
-  EXPECT_NO_THROW(checkRenderPathSettings(vis, 1));
+  EXPECT_NO_THROW(checkRenderPathSettings(vis, 1, DebugView::None));
   try {
-    checkRenderPathSettings(vis, 4);
+    checkRenderPathSettings(vis, 4, DebugView::None);
     FAIL() << "expected InputError";
   } catch (const InputError& error) {
     EXPECT_STREQ(error.what(),

@@ -13,6 +13,7 @@
 
 #include "common.glsl"
 #include "pbr.glsl"
+#include "renderer/shared/debug.h"
 
 vec4 sampleSurfaceTexture(int textureIndex, vec2 uv);
 
@@ -117,7 +118,7 @@ vec4 shadeSurface(FrameConstants frame, Material m, vec4 base, SurfacePoint p, L
   if (m.emissiveTexture >= 0) emissive *= sampleSurfaceTexture(m.emissiveTexture, p.uv).rgb;
   color += emissive;
 
-  if (frame.counts.w == 1u) {
+  if (frame.counts.w == kDebugViewLightComplexity) {
     // Light-complexity heat map: lights evaluated per pixel, 0 .. 16+.
     color = heatRamp(float(considered) / 16.0) * 4.0;
   }

@@ -17,28 +17,13 @@ layout(set = 0, binding = FGB_BINDING_STORAGE_TEXTURES, rgba16f) uniform writeon
 vec3 interpolate3(vec3 a, vec3 b, vec3 c, vec3 w) { return a * w.x + b * w.y + c * w.z; }
 
 #ifdef FGB_DEBUG_VIEWS
-// debug.view (FrameConstants::counts.w, render_settings.hpp's DebugView order). Only the "debug"
-// variants carry these views (shaders/CMakeLists.txt), so the measured shader has no such branch.
-const uint kDebugViewLod = 2u;
-const uint kDebugViewClusters = 3u;
+#include "../include/debug_views.glsl"
 
-// debug.view=lod: the pixel's cluster's LOD level (0 blue, then cyan, green, yellow, orange, red,
-// magenta, white from level 7 on); debug.view=clusters: a colour per cluster of each instance.
-// Lit by the angle to the eye so the shapes stay readable; pre-exposed like shading.
 vec3 debugViewColor(FrameConstants frame, uint drawIndex, SurfacePoint p) {
   ClusterDraw draw = visDraws[pc.draws].draws[drawIndex];
-  vec3 color;
-  if (frame.counts.w == kDebugViewLod) {
-    const vec3 levels[8] = vec3[8](vec3(0.1, 0.2, 1.0), vec3(0.0, 0.9, 1.0), vec3(0.1, 1.0, 0.1), vec3(1.0, 1.0, 0.0),
-                                   vec3(1.0, 0.5, 0.0), vec3(1.0, 0.05, 0.05), vec3(1.0, 0.1, 1.0), vec3(1.0));
-    color = levels[min(visClusters[pc.clusters].clusters[draw.cluster].lodLevel, 7u)];
-  } else {
-    uint h = (draw.cluster * 0x9e3779b1u) ^ (draw.instance * 0x85ebca6bu);
-    h = (h ^ (h >> 15)) * 0x2c1b3c6du;
-    color = vec3(uvec3(h, h >> 8, h >> 16) & 0xffu) / 255.0 * 0.8 + 0.2;
-  }
-  float facing = abs(dot(normalize(p.normal), normalize(p.worldPosition - frame.cameraPosition.xyz)));
-  return color * (0.35 + 0.65 * facing) * 2.0 * preExposure(frame);
+  uint lodLevel = visClusters[pc.clusters].clusters[draw.cluster].lodLevel;
+  return debugViewColor(frame.counts.w, lodLevel, draw.cluster, draw.instance, p.normal,
+                        frame.cameraPosition.xyz - p.worldPosition, preExposure(frame));
 }
 #endif
 

@@ -156,6 +156,27 @@ std::string slowestFramesHtml(const RunResult& run, const ReportImages& images) 
   return html + "</div>\n";
 }
 
+// On a path that draws clusters: what the LOD cut chose, beside the clusters themselves.
+std::string debugViewsHtml(const RunResult& run, const ReportImages& images) {
+  if (images.debugViews.empty()) return "";
+  const auto threshold = run.stats.find("vis_lod_threshold_px");
+  const auto meshletThreshold = run.stats.find("meshlet_lod_threshold_px");
+  const double px = threshold != run.stats.end()          ? threshold->second
+                    : meshletThreshold != run.stats.end() ? meshletThreshold->second
+                                                          : 0.0;
+  std::string html = fmt::format(
+      "<h2>Clusters and their LOD levels</h2>\n<p>The frame again with <code>debug.view=lod</code> (level 0, full "
+      "detail, blue; then cyan, green, yellow, orange, red, magenta) and <code>debug.view=clusters</code>; the cut "
+      "keeps each cluster's error under {:g} scene pixels (<code>render.lod_error</code>).</p>\n<div class=\"trio\">\n",
+      px);
+  for (const auto& view : images.debugViews) {
+    html += fmt::format(R"(<figure><img class="shot" src="{}" width="{}" height="{}" alt="debug.view={}"><figcaption><a href="debug-{}.png"><code>debug.view={}</code></a></figcaption></figure>)"
+                        "\n",
+                        pngDataUri(view.png), images.width / 2, images.height / 2, view.view, view.view, view.view);
+  }
+  return html + "</div>\n";
+}
+
 }  // namespace
 
 std::string htmlReport(const RunResult& run, const ReportImages& images) {
@@ -172,6 +193,7 @@ std::string htmlReport(const RunResult& run, const ReportImages& images) {
   html += "<h2>Passes against budget</h2>\n" + passBarsSvg(run);
   html += "<h2>Frame time series</h2>\n" + frameSeriesSvg(run);
   html += slowestFramesHtml(run, images);
+  html += debugViewsHtml(run, images);
   html += "<h2>Queue timeline</h2>\n" + queueTimelineSvg(run);
   html += "<h2>Timings (ms)</h2>\n<table><tr><th>pass</th><th>queue</th><th>median</th><th>p5</th><th>p95</th><th>mean</th>"
           "<th>min</th><th>max</th><th>n</th><th>spread</th></tr>\n" + passRows(run) + "</table>\n";

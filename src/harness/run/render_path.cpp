@@ -140,6 +140,22 @@ std::vector<SlowFrame> renderSlowestFrames(const WorkloadOpener& open, const Ren
   return frames;
 }
 
+// The last measured frame's view (at its path time along a camera path) with each debug view of the
+// clusters the path drew: their LOD levels and the clusters themselves.
+std::vector<DebugViewImage> renderDebugViews(const WorkloadOpener& open, const RenderRequest& request,
+                                             const RunResult& run) {
+  std::vector<DebugViewImage> views;
+  for (const char* view : {"lod", "clusters"}) {
+    render::WorkloadConfig config = request.workload;
+    config.knobs["debug.view"] = view;
+    if (!run.framePathTimeS.empty()) config.knobs["camera.time"] = fmt::format("{}", run.framePathTimeS.back());
+    ConfigurationRenderer still(open, config);
+    still.warmUp(1);
+    views.push_back({view, still.readImages().display});
+  }
+  return views;
+}
+
 }  // namespace
 
 RunArtifacts renderConfiguration(const WorkloadOpener& open, const RenderRequest& request) {
@@ -194,6 +210,7 @@ RunArtifacts renderConfiguration(const WorkloadOpener& open, const RenderRequest
                   request.warmup,
                   request.workload.knobs};
   if (request.slowestFrames > 0) a.slowest = renderSlowestFrames(open, request, a.run);
+  if (request.debugViews && renderer.workload().drawsClusters()) a.debugViews = renderDebugViews(open, request, a.run);
   return a;
 }
 

@@ -84,6 +84,10 @@ void writeRunOutputs(const std::filesystem::path& dir, const RunArtifacts& a) {
   if (a.golden.reference.width > 0) pictures.reference = encodePng(a.golden.reference);
   if (a.golden.heatMap.width > 0) pictures.heatMap = encodePng(a.golden.heatMap);
   for (const SlowFrame& slow : a.slowest) pictures.slowest.push_back({slow.frame, slow.pathTimeS, encodePng(slow.display)});
+  for (const DebugViewImage& view : a.debugViews) {
+    pictures.debugViews.push_back({view.view, encodePng(view.display)});
+    writeFileAtomic(dir / ("debug-" + view.view + ".png"), std::as_bytes(std::span(pictures.debugViews.back().png)));
+  }
   if (a.passes) writeCaptureSet(dir / "passes", *a.passes);
   if (a.localisation) pictures.passStrip = passStripOf(*a.localisation);
   writeFileAtomic(dir / "timings.json", dumpJson(toJson(run)));

@@ -235,7 +235,13 @@ RenderPathPlan planRenderPath(const RenderPath& path) {
   return plan;
 }
 
-void checkRenderPathSettings(const RenderPath& path, uint32_t requestedMsaa) {
+void checkRenderPathSettings(const RenderPath& path, uint32_t requestedMsaa, features::DebugView debugView) {
+  using features::DebugView;
+  if ((debugView == DebugView::Lod || debugView == DebugView::Clusters) && !path.uploadClusters) {
+    throw InputError(std::string("--set debug.view=") + (debugView == DebugView::Lod ? "lod" : "clusters") +
+                     ": render.path=" + path.source + " draws no clusters (they colour the clusters that "
+                     "render.path=visbuffer and meshlet draw)");
+  }
   if (requestedMsaa > path.maxMsaa) {
     throw InputError("--msaa " + std::to_string(requestedMsaa) + ": render.path=" + path.source + " draws at most " +
                      std::to_string(path.maxMsaa) + " sample(s) per pixel (its max_msaa); use --set render.ssaa=N "

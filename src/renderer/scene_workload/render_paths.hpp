@@ -45,9 +45,9 @@ struct RenderPathPlan {
 // The path's features, created by the registry from its entries, and what the frame's images need.
 RenderPathPlan planRenderPath(const features::RenderPath& path);
 
-// The path's constraints on the run's settings (--msaa above its max_msaa); throws InputError
-// naming the option.
-void checkRenderPathSettings(const features::RenderPath& path, uint32_t requestedMsaa);
+// The path's constraints on the run's settings (--msaa above its max_msaa; debug.view=lod or clusters
+// on a path that draws no clusters); throws InputError naming the option.
+void checkRenderPathSettings(const features::RenderPath& path, uint32_t requestedMsaa, features::DebugView debugView);
 
 // Settings that depend on the device, once it is open: render.vis_backing=auto becomes image where
 // the device has 64-bit atomics on R64 storage images, else buffer. On a path with the visbuffer

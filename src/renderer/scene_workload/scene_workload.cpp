@@ -113,7 +113,7 @@ features::RenderSettings makeSettings(const WorkloadConfig& config, const scene:
   settings.checkFinite = config.checkFinite;
   settings.capture = config.capture;
   if (config.clampMsaaToPath) settings.msaa = std::min(settings.msaa, path.maxMsaa);
-  checkRenderPathSettings(path, config.clampMsaaToPath ? settings.msaa : requestedMsaa);
+  checkRenderPathSettings(path, config.clampMsaaToPath ? settings.msaa : requestedMsaa, settings.debugView);
   return settings;
 }
 
@@ -189,6 +189,7 @@ class SceneWorkload final : public Workload {
     return graph::criticalPath(graph::schedulePredecessors(graph_->compiled()), costMs).shareOfPath;
   }
 
+  bool drawsClusters() const override { return path_.uploadClusters; }
   uint32_t queuesUsed() const override {
     std::set<uint32_t> queues;
     for (const auto& submit : graph_->compiled().submits) queues.insert(submit.queue);

@@ -1,6 +1,7 @@
 #include "render_settings.hpp"
 
 #include "render_path.hpp"
+#include "renderer/shared/debug.h"
 
 #include <fgb/core/error.hpp>
 
@@ -9,6 +10,12 @@
 #include <utility>
 
 namespace fgb::features {
+
+// The shaders read debug.view from FrameConstants::counts.w as these numbers.
+static_assert(uint32_t(DebugView::LightComplexity) == gpu::kDebugViewLightComplexity);
+static_assert(uint32_t(DebugView::Lod) == gpu::kDebugViewLod);
+static_assert(uint32_t(DebugView::Clusters) == gpu::kDebugViewClusters);
+
 namespace {
 
 // One renderer knob, in one line of the table below: its registry entry (type, range, reference

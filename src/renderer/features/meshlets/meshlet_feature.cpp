@@ -32,6 +32,11 @@ rhi::GraphicsPipelineDesc meshletPipeline(const RenderSettings& settings) {
   desc.taskShader = "renderer/meshlets/meshlet.task";
   desc.meshShader = "renderer/meshlets/meshlet.mesh";
   desc.fragmentShader = "renderer/forward.frag";
+  if (settings.debugView == DebugView::Lod || settings.debugView == DebugView::Clusters) {
+    // The views' colours live in debug variants only (shaders/CMakeLists.txt).
+    desc.meshShader = shaders::variantPath(desc.meshShader, "debug");
+    desc.fragmentShader = shaders::variantPath(desc.fragmentShader, "debug");
+  }
   // As forward's "Mesh Render": the mesh shader culls back faces of single-sided materials itself.
   desc.cullMode = rhi::CullMode::None;
   desc.colorFormats = {kHdrFormat};

@@ -153,6 +153,8 @@ class Workload {
   // keeping the features, their resources and the per-frame state (particles, HiZ). Call after
   // finish(). A workload that cannot switch returns false.
   virtual uint32_t queuesUsed() const { return 1; }
+  // Whether the render path draws the cooked clusters (debug.view=lod|clusters can show them).
+  virtual bool drawsClusters() const { return false; }
   virtual bool setAsyncCompute(bool on) {
     (void)on;
     return false;

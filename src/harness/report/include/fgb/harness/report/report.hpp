@@ -26,6 +26,12 @@ struct ReportImages {
     std::vector<uint8_t> png;
   };
   std::vector<SlowFrame> slowest;
+  // On a path that draws clusters: the frame with debug.view=lod and =clusters (debug-VIEW.png).
+  struct DebugView {
+    std::string view;
+    std::vector<uint8_t> png;
+  };
+  std::vector<DebugView> debugViews;
   // Per-pass goldens compared (the frame golden failed): each pass's image and its heat map against
   // its golden, in declaration order; the first differences marked.
   struct PassThumb {

@@ -55,6 +55,9 @@ struct RenderRequest {
   // Along a camera path: render this many of the slowest measured frames again, each alone at its
   // path time (camera.time=T, its particles simulated to T), for the report's thumbnails.
   uint32_t slowestFrames = 0;
+  // On a path that draws clusters: the last frame's view again with debug.view=lod and =clusters
+  // (the report's pictures of the LOD cut).
+  bool debugViews = false;
   ProgressCallback progress;                 // after every frame: (rendered, planned); may be empty
 };
 

@@ -30,10 +30,17 @@ struct SlowFrame {
   Image display;  // tone-mapped, as RenderedImages::display
 };
 
+// The measured view rendered again with a debug view of the clusters (RenderRequest::debugViews).
+struct DebugViewImage {
+  std::string view;  // debug.view's value: lod | clusters
+  Image display;
+};
+
 struct RunArtifacts {
   RunResult run;
   RenderedImages images;
   std::vector<SlowFrame> slowest;  // RenderRequest::slowestFrames, slowest first (report thumbnails)
+  std::vector<DebugViewImage> debugViews;  // RenderRequest::debugViews: debug-lod.png, debug-clusters.png
   std::string graphBrief, graphFull;
   GoldenPictures golden;  // empty (0x0) without --golden
   std::optional<PassCaptureSet> passes;          // --capture: the last frame's per-pass outputs

@@ -99,8 +99,9 @@ TEST(RenderPath, ClusterDebugViewsNeedAPathThatDrawsClusters) {
     checkRenderPathSettings(loadRenderPath("forward"), 1, DebugView::Clusters);
     FAIL() << "expected InputError";
   } catch (const InputError& error) {
-    EXPECT_STREQ(error.what(), "--set debug.view=clusters: render.path=forward draws no clusters (they colour the "
-                               "clusters that render.path=visbuffer and meshlet draw)");
+    EXPECT_STREQ(error.what(),
+                 "--set debug.view=clusters: render.path=forward draws no clusters (they colour the "
+                 "clusters that render.path=visbuffer and meshlet draw)");
   }
 }
 

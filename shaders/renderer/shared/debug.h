@@ -18,8 +18,8 @@ const uint kInjectBias = 2u;
 
 // debug.view, FrameConstants::counts.w: render_settings.hpp's DebugView (static_asserts there).
 const uint kDebugViewLightComplexity = 1u;  // every path: lights evaluated per pixel
-const uint kDebugViewLod = 2u;               // paths that draw clusters: each cluster's LOD level
-const uint kDebugViewClusters = 3u;          // paths that draw clusters: a colour per cluster
+const uint kDebugViewLod = 2u;              // paths that draw clusters: each cluster's LOD level
+const uint kDebugViewClusters = 3u;         // paths that draw clusters: a colour per cluster
 
 FGB_GPU_END
 

@@ -170,9 +170,10 @@ std::string debugViewsHtml(const RunResult& run, const ReportImages& images) {
       "keeps each cluster's error under {:g} scene pixels (<code>render.lod_error</code>).</p>\n<div class=\"trio\">\n",
       px);
   for (const auto& view : images.debugViews) {
-    html += fmt::format(R"(<figure><img class="shot" src="{}" width="{}" height="{}" alt="debug.view={}"><figcaption><a href="debug-{}.png"><code>debug.view={}</code></a></figcaption></figure>)"
-                        "\n",
-                        pngDataUri(view.png), images.width / 2, images.height / 2, view.view, view.view, view.view);
+    html += fmt::format(
+        R"(<figure><img class="shot" src="{}" width="{}" height="{}" alt="debug.view={}"><figcaption><a href="debug-{}.png"><code>debug.view={}</code></a></figcaption></figure>)"
+        "\n",
+        pngDataUri(view.png), images.width / 2, images.height / 2, view.view, view.view, view.view);
   }
   return html + "</div>\n";
 }

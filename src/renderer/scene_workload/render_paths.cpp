@@ -239,7 +239,8 @@ void checkRenderPathSettings(const RenderPath& path, uint32_t requestedMsaa, fea
   using features::DebugView;
   if ((debugView == DebugView::Lod || debugView == DebugView::Clusters) && !path.uploadClusters) {
     throw InputError(std::string("--set debug.view=") + (debugView == DebugView::Lod ? "lod" : "clusters") +
-                     ": render.path=" + path.source + " draws no clusters (they colour the clusters that "
+                     ": render.path=" + path.source +
+                     " draws no clusters (they colour the clusters that "
                      "render.path=visbuffer and meshlet draw)");
   }
   if (requestedMsaa > path.maxMsaa) {

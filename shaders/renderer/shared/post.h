@@ -9,9 +9,6 @@
 
 #define FGB_POST_GROUP_SIZE 8             // ssaa_resolve.comp, tonemap.comp: 8 x 8 pixels
 #define FGB_BLOOM_GROUP_SIZE 8            // bloom_down.comp, bloom_up.comp: 8 x 8 texels
-#define FGB_BLOOM_TAIL_GROUP_SIZE 512     // bloom_tail.comp: one workgroup for the smallest levels
-#define FGB_BLOOM_TAIL_MAX_TEXELS 8192    // the largest level (texels) bloom_tail.comp takes on
-#define FGB_BLOOM_MAX_LEVELS 12           // BloomTailPush::images: levels 0 .. 11 (bloom.mips <= 10)
 #define FGB_LUMINANCE_GROUP_SIZE 16       // luminance_reduce.comp: 16 x 16 invocations, 2 x 2 pixels each
 #define FGB_EXPOSURE_UPDATE_GROUP_SIZE 256  // exposure_update.comp: one workgroup
 #define FGB_FINITE_CHECK_GROUP_SIZE 8     // finite_check.comp, finite_check_ms.comp: 8 x 8 pixels
@@ -69,17 +66,6 @@ struct BloomUpPush {
   uint inject;      // the first level: kInjectNan, its centre texel a NaN; kInjectBias, + kInjectedBias
 };
 FGB_CHECK_PUSH(BloomUpPush, 32)
-
-// "Bloom": bloom_tail.comp, the levels firstLevel .. lastLevel down and back up to firstLevel.
-struct BloomTailPush {
-  uint images[FGB_BLOOM_MAX_LEVELS];  // storage image index of level k (k >= 1)
-  ivec2 fullSize;                     // level 0's (the HDR image's) size; level k is max(1, size >> k)
-  uint firstLevel;                    // >= 2: its source, level firstLevel - 1, was written before
-  uint lastLevel;
-  float radius;                       // BloomUpPush::radius
-  uint unused;                        // the struct's size is a multiple of fullSize's alignment
-};
-FGB_CHECK_PUSH(BloomTailPush, 72)
 
 // "Tone mapping" (include/tonemap.glsl: tonemap.frag, tonemap.comp).
 struct TonemapPush {

@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <array>
 #include <vector>
-#include <stdexcept>
 #include <string>
 
 namespace fgb::features {
@@ -22,15 +21,6 @@ graph::Extent levelExtent(const graph::Extent& full, uint32_t level) {
 void dispatchOver(rhi::CommandBuffer& cmd, const graph::Extent& size) {
   cmd.dispatch((size.width + FGB_BLOOM_GROUP_SIZE - 1) / FGB_BLOOM_GROUP_SIZE,
                (size.height + FGB_BLOOM_GROUP_SIZE - 1) / FGB_BLOOM_GROUP_SIZE);
-}
-
-// The first level bloom_tail.comp takes on: from level 2 (level 1 is read from the HDR image), the
-// first whose texels fit FGB_BLOOM_TAIL_MAX_TEXELS, if at least two levels from it on do (one level
-// alone is cheaper as an ordinary dispatch); otherwise mips + 1, no tail.
-uint32_t tailStart(const std::vector<graph::Extent>& sizes, uint32_t mips) {
-  for (uint32_t level = 2; level < mips; ++level)
-    if (uint64_t{sizes[level].width} * sizes[level].height <= FGB_BLOOM_TAIL_MAX_TEXELS) return level;
-  return mips + 1;
 }
 
 }  // namespace
@@ -48,10 +38,8 @@ void BloomFeature::initialize(FeatureInit& init) {
   mips_ = 0;
   while (mips_ < init.settings.bloomMips && (smallest >> (mips_ + 1)) >= 2) ++mips_;
   enabled_ = mips_ > 0;
-  if (mips_ >= FGB_BLOOM_MAX_LEVELS) throw std::logic_error("bloom.mips above what BloomTailPush holds");
   downPipeline_ = init.device.createComputePipeline({"bloom downsample", "renderer/bloom_down.comp"});
   upPipeline_ = init.device.createComputePipeline({"bloom upsample", "renderer/bloom_up.comp"});
-  tailPipeline_ = init.device.createComputePipeline({"bloom tail", "renderer/bloom_tail.comp"});
   samplerIndex_ = init.device.samplerIndex(init.scene.linearClampSampler);
   exposureIndex_ = init.device.storageBufferIndex(init.scene.exposure);
 }
@@ -70,16 +58,15 @@ void BloomFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
   }
   std::vector<graph::Extent> sizes(size_t{mips_} + 1);
   for (uint32_t level = 0; level <= mips_; ++level) sizes[level] = levelExtent(targets.extent, level);
-  const uint32_t tail = tailStart(sizes, mips_);
 
-  node.setJob([down = downPipeline_, up = upPipeline_, tailPipeline = tailPipeline_, tail, sampler = samplerIndex_, bloom = bloom_, mips = mips_, hdr,
+  node.setJob([down = downPipeline_, up = upPipeline_, sampler = samplerIndex_, bloom = bloom_, mips = mips_, hdr,
                levels, sizes, exposure = exposureIndex_, injectNan = injectNan_,
                injectBias = injectBias_](graph::JobContext& context) {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
     const auto xy = [](const graph::Extent& e) { return glm::ivec2(int32_t(e.width), int32_t(e.height)); };
     cmd.bindPipeline(down);
-    for (uint32_t level = 1; level < tail; ++level) {
+    for (uint32_t level = 1; level <= mips; ++level) {
       if (level > 1) cmd.computeBarrier();  // reads the level the previous dispatch wrote
       const bool first = level == 1;
       const gpu::BloomDownPush push{first ? ctx.sampledTextureIndex(hdr) : ctx.storageTextureIndex(levels[level - 1]),
@@ -96,21 +83,8 @@ void BloomFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
       cmd.push(push);
       dispatchOver(cmd, sizes[level]);
     }
-    if (tail <= mips) {
-      cmd.computeBarrier();
-      cmd.bindPipeline(tailPipeline);
-      gpu::BloomTailPush push{};
-      for (uint32_t level = 0; level <= mips; ++level)
-        push.images[level] = level > 0 ? ctx.storageTextureIndex(levels[level]) : 0u;
-      push.fullSize = xy(sizes[0]);
-      push.firstLevel = tail;
-      push.lastLevel = mips;
-      push.radius = bloom.radius;
-      cmd.push(push);
-      cmd.dispatch(1);
-    }
     cmd.bindPipeline(up);
-    for (uint32_t level = std::min(mips, tail); level >= 2; --level) {
+    for (uint32_t level = mips; level >= 2; --level) {
       cmd.computeBarrier();
       // debug.inject_nan / inject_bias=Bloom: the last write of level 1 (the level tone mapping reads)
       // holds the NaN or the bias.

@@ -1,8 +1,7 @@
 // Bloom (Jimenez 2014) as one compute node, "Bloom" (the thesis' single budget row): it builds a
 // chain of half-size HDR textures with the 13-tap filter (Karis-weighted and soft-thresholded on
 // the first level), then adds each 3x3-tent-filtered smaller level onto the next larger one; one
-// dispatch per level, with a barrier inside the node between them, except that the smallest levels
-// (FGB_BLOOM_TAIL_MAX_TEXELS) go down and back up in one single-workgroup dispatch (bloom_tail.comp). Tone mapping composes level 1
+// dispatch per level, with a barrier inside the node between them. Tone mapping composes level 1
 // into the image (BloomOutput). The node runs on the graphics queue: the HDR image and level 1
 // stay with the passes around it (no ownership transfers of full-size images).
 // Parameters: post.bloom, post.bloom_threshold, post.bloom_knee, post.bloom_intensity,
@@ -23,7 +22,6 @@ class BloomFeature final : public IRenderFeature {
  private:
   rhi::PipelineId downPipeline_;
   rhi::PipelineId upPipeline_;
-  rhi::PipelineId tailPipeline_;
   uint32_t samplerIndex_ = 0;
   uint32_t exposureIndex_ = 0;  // the exposure state (the threshold is applied pre-exposed)
   uint32_t mips_ = 0;

@@ -24,7 +24,7 @@ TEST(RenderSpace, AnchorIsTheNearestGridPointAndItsOffsetIsExactFarFromTheOrigin
     const glm::dvec3 camera = glm::dvec3(offset) + glm::dvec3(3.3, -7.9, 8.1);
     const RenderSpace space = RenderSpace::around(camera);
     for (int axis = 0; axis < 3; ++axis) {
-      EXPECT_EQ(std::fmod(space.anchor[axis], kAnchorCell), 0.0) << offset;
+      EXPECT_EQ(std::fmod(space.anchor[axis] - features::kAnchorGridOffset, kAnchorCell), 0.0) << offset;
       EXPECT_LE(std::abs(camera[axis] - space.anchor[axis]), kAnchorCell / 2) << offset;
       // The subtraction is exact, so the float offset is the camera's own, rounded once.
       EXPECT_EQ(space.anchor[axis] + (camera[axis] - space.anchor[axis]), camera[axis]) << offset;
@@ -33,24 +33,27 @@ TEST(RenderSpace, AnchorIsTheNearestGridPointAndItsOffsetIsExactFarFromTheOrigin
 }
 
 TEST(RenderSpace, MovingWithinACellKeepsTheAnchorAndCrossingItsEdgeMovesIt) {
+  // 1e7 is a multiple of the cell: the borders there lie at 1e7 + 12.8125 and 1e7 - 3.1875.
   const RenderSpace space = RenderSpace::around({1e7 + 1.0, 1.7, -2.0});
-  EXPECT_EQ(RenderSpace::around({1e7 + 7.9, 1.7, -7.9}), space);
-  EXPECT_NE(RenderSpace::around({1e7 + 8.1, 1.7, -2.0}), space);
-  EXPECT_NE(RenderSpace::around({1e7 + 1.0, 1.7, -8.1}), space);
+  EXPECT_EQ(space.anchor, glm::dvec3(1e7, 0.0, 0.0) + glm::dvec3(features::kAnchorGridOffset));
+  EXPECT_EQ(RenderSpace::around({1e7 + 12.8, 8.0, -3.18}), space);
+  EXPECT_NE(RenderSpace::around({1e7 + 12.82, 1.7, -2.0}), space);
+  EXPECT_NE(RenderSpace::around({1e7 + 1.0, 1.7, -3.2}), space);
 }
 
 TEST(RenderSpace, ModelAndBoundsAreTheWorldsMinusTheAnchor) {
   const RenderSpace space = RenderSpace::around({1e8 + 5.0, 0.0, 0.0});
+  ASSERT_EQ(space.anchor, glm::dvec3(1e8, 0.0, 0.0) + glm::dvec3(features::kAnchorGridOffset));
   const glm::dmat4 transform = glm::translate(glm::dmat4(1.0), glm::dvec3(1e8 + 20.0, 3.0, -4.0));
   const glm::mat4 model = space.model(transform);
-  EXPECT_EQ(model[3], glm::vec4(20.0f, 3.0f, -4.0f, 1.0f));
+  EXPECT_EQ(model[3], glm::vec4(15.1875f, -1.8125f, -8.8125f, 1.0f));
   EXPECT_EQ(model[0], glm::vec4(1.0f, 0.0f, 0.0f, 0.0f));
   const auto [lo, hi] = space.bounds({{1e8 + 1.0, -1.0, -1.0}, {1e8 + 3.0, 1.0, 1.0}});
-  // Rounded outwards: the float box holds the double one.
-  EXPECT_LT(lo.x, 1.0f);
-  EXPECT_GT(lo.x, 0.999f);
-  EXPECT_GT(hi.x, 3.0f);
-  EXPECT_LT(hi.x, 3.001f);
+  // Rounded outwards: the float box holds the double one (-3.8125 .. -1.8125 in x).
+  EXPECT_LT(lo.x, -3.8125f);
+  EXPECT_GT(lo.x, -3.8126f);
+  EXPECT_GT(hi.x, -1.8125f);
+  EXPECT_LT(hi.x, -1.8124f);
 }
 
 TEST(FrameConstants, TheEyeIsAtCameraPositionInAnchoredRenderSpace) {
@@ -113,11 +116,11 @@ TEST(InstanceWriter, WritesEveryInstanceInItsRenderSpaceAndTheTransparentOnesAlo
   std::vector<gpu::DrawCommand> commands(3);  // one opaque group, two transparent
   writer.sortTransparent({0.0, 0.0, 10.0});
   const RenderSpace space = RenderSpace::around({0.0, 0.0, 10.0});
-  ASSERT_EQ(space.anchor, glm::dvec3(0.0, 0.0, 16.0));
+  ASSERT_EQ(space.anchor, glm::dvec3(4.8125));
   writer.writeAll(space, instances, commands);
   // Opaque first, then the transparent ones back to front: the farther (z = -30) first.
-  EXPECT_EQ(instances[2].model[3], glm::vec4(0.0f, 0.0f, -46.0f, 1.0f));
-  EXPECT_EQ(instances[3].model[3], glm::vec4(0.0f, 0.0f, -21.0f, 1.0f));
+  EXPECT_EQ(instances[2].model[3], glm::vec4(-4.8125f, -4.8125f, -34.8125f, 1.0f));
+  EXPECT_EQ(instances[3].model[3], glm::vec4(-4.8125f, -4.8125f, -9.8125f, 1.0f));
   EXPECT_EQ(instances[3].drawGroup, 2u);
   EXPECT_EQ(commands[2].firstInstance, 3u);
   EXPECT_EQ(commands[2].firstIndex, 30u);
@@ -131,8 +134,8 @@ TEST(InstanceWriter, WritesEveryInstanceInItsRenderSpaceAndTheTransparentOnesAlo
   writer.writeTransparent(space, instances, commands);
   EXPECT_EQ(instances[0].model[3].z, 99.0f);
   EXPECT_NE(opaqueMark, 99.0f);
-  EXPECT_EQ(instances[2].model[3], glm::vec4(0.0f, 0.0f, -21.0f, 1.0f));
-  EXPECT_EQ(instances[3].model[3], glm::vec4(0.0f, 0.0f, -46.0f, 1.0f));
+  EXPECT_EQ(instances[2].model[3], glm::vec4(-4.8125f, -4.8125f, -9.8125f, 1.0f));
+  EXPECT_EQ(instances[3].model[3], glm::vec4(-4.8125f, -4.8125f, -34.8125f, 1.0f));
   EXPECT_EQ(instances[2].drawGroup, 1u);
 }
 

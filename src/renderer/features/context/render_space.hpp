@@ -22,10 +22,15 @@ namespace fgb::features {
 
 // 16 m: a point near the camera is at most 8 * sqrt(3) ~ 14 m from the anchor, where float's
 // spacing is ~1e-6 m. That error is below 1% of a 1080p pixel (60 degrees) from 0.1 m on (the
-// default near plane), and below a depth key's resolution for surfaces 1 mm apart at 10 m. A power of
-// two: the snapped anchor and camera - anchor are exact in double. A walk (~2 m/s) re-anchors
-// every ~8 s.
+// default near plane), and below a depth key's resolution for surfaces 1 mm apart at 10 m. A walk
+// (~2 m/s) re-anchors every ~8 s (atrium-walk: 4 times in 136 frames at 0.25 s; city-walk: 11).
 inline constexpr double kAnchorCell = 16.0;
+// The grid's points on each axis: kAnchorGridOffset + multiples of kAnchorCell. Its cell borders,
+// half a cell from them, lie at odd sixteenths of a metre (..., -3.1875, 12.8125, ...), where
+// hand-made paths do not run: a camera moving along a border would re-anchor at every wobble (a
+// grid through the origin has its borders at +-8 m: the atrium's gallery height and walkway).
+// Few bits: grid points and their differences are exact in double, and in float up to 2^24 cells.
+inline constexpr double kAnchorGridOffset = 4.8125;
 
 struct RenderSpace {
   glm::dvec3 anchor{0.0};  // world position of render space's origin
@@ -33,7 +38,8 @@ struct RenderSpace {
   // The render space of a camera at `camera`: its anchor is the nearest grid point.
   static RenderSpace around(const glm::dvec3& camera) {
     glm::dvec3 anchor;
-    for (int axis = 0; axis < 3; ++axis) anchor[axis] = std::round(camera[axis] / kAnchorCell) * kAnchorCell;
+    for (int axis = 0; axis < 3; ++axis)
+      anchor[axis] = std::round((camera[axis] - kAnchorGridOffset) / kAnchorCell) * kAnchorCell + kAnchorGridOffset;
     return {anchor};
   }
   // Where the particles' state lives (particle_feature.cpp): the render space of the scene's own

@@ -22,8 +22,9 @@ namespace fgb::features {
 
 // 16 m: a point near the camera is at most 8 * sqrt(3) ~ 14 m from the anchor, where float's
 // spacing is ~1e-6 m. That error is below 1% of a 1080p pixel (60 degrees) from 0.1 m on (the
-// default near plane), and below a depth key's resolution for surfaces 1 mm apart at 10 m. A walk
-// (~2 m/s) re-anchors every ~8 s (atrium-walk: 4 times in 136 frames at 0.25 s; city-walk: 11).
+// default near plane), and a thousandth of a 1 mm gap between two surfaces, so their depth order
+// holds. A walk (~2 m/s) re-anchors every ~8 s (atrium-walk: 4 times in 136 frames at 0.25 s;
+// city-walk: 11).
 inline constexpr double kAnchorCell = 16.0;
 // The grid's points on each axis: kAnchorGridOffset + multiples of kAnchorCell. Its cell borders,
 // half a cell from them, lie at odd sixteenths of a metre (..., -3.1875, 12.8125, ...), where

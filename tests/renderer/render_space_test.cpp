@@ -56,6 +56,16 @@ TEST(RenderSpace, ModelAndBoundsAreTheWorldsMinusTheAnchor) {
   EXPECT_LT(hi.x, -1.8124f);
 }
 
+TEST(RenderSpace, AStillSceneIsAnchoredAtItsCameraAndAPathsFramesOnTheGrid) {
+  scene::Scene s;
+  s.camera.position = {1e8 + 5.5, 1.7, -3.25};
+  EXPECT_EQ(RenderSpace::of(s, s.camera.position).anchor, s.camera.position);
+  EXPECT_EQ(RenderSpace::ofParticles(s).anchor, s.camera.position);
+  s.cameraPath = scene::CameraPath({{0.0, s.camera.position, {}, {}}, {1.0, s.camera.position + 1.0, {}, {}}});
+  EXPECT_EQ(RenderSpace::of(s, s.camera.position), RenderSpace::around(s.camera.position));
+  EXPECT_EQ(RenderSpace::ofParticles(s), RenderSpace::around(s.camera.position));
+}
+
 TEST(FrameConstants, TheEyeIsAtCameraPositionInAnchoredRenderSpace) {
   scene::Scene s;
   s.camera.position = {1e8 + 5.5, 1.7, -3.25};
@@ -63,9 +73,11 @@ TEST(FrameConstants, TheEyeIsAtCameraPositionInAnchoredRenderSpace) {
   scene::Camera moved = s.camera;
   moved.position += glm::dvec3(2.0, 0.0, -1.0);
   moved.target += glm::dvec3(2.0, 0.0, -1.0);
+  s.cameraPath = scene::CameraPath({{0.0, s.camera.position, s.camera.target, {}}, {1.0, moved.position, moved.target, {}}});
   features::RenderSettings settings;
   const auto c = makeFrameConstants(s, moved, settings);
   const RenderSpace space = RenderSpace::around(moved.position);
+  ASSERT_NE(space.anchor, moved.position);
   EXPECT_EQ(glm::vec3(c.cameraPosition), glm::vec3(moved.position - space.anchor));
   EXPECT_EQ(c.cameraPosition.w, 1.0f);
   // The view takes the eye to view space's origin and the target straight ahead (-Z).

@@ -47,7 +47,7 @@ gpu::FrameConstants makeFrameConstants(const scene::Scene& scene, const scene::C
                                        const features::RenderSettings& settings) {
   const float aspect = float(settings.width) / float(settings.height);
   gpu::FrameConstants c{};
-  const features::RenderSpace space = features::RenderSpace::around(camera.position);
+  const features::RenderSpace space = features::RenderSpace::of(scene, camera.position);
   c.view = space.view(camera);
   c.proj = scene::projectionMatrix(camera, aspect);
   c.proj[1][1] = -c.proj[1][1];  // Vulkan's framebuffer Y points down; keep images upright

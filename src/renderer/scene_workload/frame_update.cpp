@@ -190,7 +190,7 @@ void FrameUpdate::write(uint64_t execution) {
   // Render space, and so the instances, bounds and lights, changes only when the camera crosses
   // into another anchor cell; the transparent order changes with any move (it is sorted per
   // position, and written only when the order, not just the distances, changed).
-  const auto space = features::RenderSpace::around(camera.position);
+  const auto space = features::RenderSpace::of(scene_, camera.position);
   instances_.sortTransparent(camera.position);
   const auto instances = mappedAs<gpu::Instance>(device_, frame.instances);
   const auto commands = mappedAs<gpu::DrawCommand>(device_, frame.commandTemplate);

@@ -3,11 +3,14 @@
 // the floats the GPU sees stay small however far from the world origin the scene lies (issue 17:
 // scene.offset up to 1e8 m); the world-to-render subtraction is done in double on the host.
 //
-// The anchor is the camera position rounded to the nearest point of a grid of kAnchorCell metres,
-// a pure function of the camera position. So a moving camera re-anchors only when it crosses into
-// another cell, and only then are the instances, their bounds and the lights rewritten; between
-// re-anchorings a frame writes only its constants (the view matrix carries camera - anchor). And a
-// still view at camera.time=T has the same anchor, and so the same floats, as the path's frame at T.
+// In a scene with a camera path the anchor is the camera position rounded to the nearest point of a
+// grid of kAnchorCell metres, a pure function of the camera position. So a moving camera
+// re-anchors only when it crosses into another cell, and only then are the instances, their bounds
+// and the lights rewritten; between re-anchorings a frame writes only its constants (the view
+// matrix carries camera - anchor). And a still view at camera.time=T has the same anchor, and so
+// the same floats, as the path's frame at T. A scene without a path has a camera that never moves,
+// which is its own anchor: render space is exactly camera-relative there (the most precise choice,
+// and the floats every still-scene golden was blessed with).
 #pragma once
 
 #include <fgb/scene/scene.hpp>
@@ -36,7 +39,12 @@ inline constexpr double kAnchorGridOffset = 4.8125;
 struct RenderSpace {
   glm::dvec3 anchor{0.0};  // world position of render space's origin
 
-  // The render space of a camera at `camera`: its anchor is the nearest grid point.
+  // The render space of `scene`'s camera at `camera` (along its path, if it has one): the one
+  // place that decides the anchor.
+  static RenderSpace of(const scene::Scene& scene, const glm::dvec3& camera) {
+    return scene.cameraPath.empty() ? RenderSpace{camera} : around(camera);
+  }
+  // The anchor grid's point nearest `camera`.
   static RenderSpace around(const glm::dvec3& camera) {
     glm::dvec3 anchor;
     for (int axis = 0; axis < 3; ++axis)
@@ -45,9 +53,9 @@ struct RenderSpace {
   }
   // Where the particles' state lives (particle_feature.cpp): the render space of the scene's own
   // camera, fixed for the run, since the simulation keeps its positions from frame to frame. A
-  // frame draws them moved by particles.anchor - anchor (FrameConstants::anchorOffset), a multiple
-  // of kAnchorCell: exact in float.
-  static RenderSpace ofParticles(const scene::Scene& scene) { return around(scene.camera.position); }
+  // frame draws them moved by particles.anchor - anchor (FrameConstants::anchorOffset): 0 without a
+  // path, else a multiple of kAnchorCell, exact in float.
+  static RenderSpace ofParticles(const scene::Scene& scene) { return of(scene, scene.camera.position); }
   bool operator==(const RenderSpace&) const = default;
 
   // A world point (or a displacement from the anchor) in render space, rounded once to float.

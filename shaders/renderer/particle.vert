@@ -19,7 +19,7 @@ void main() {
   vec2 corner = vec2(gl_VertexIndex & 1, (gl_VertexIndex >> 1) & 1) * 2.0 - 1.0;
   vec3 right = vec3(frame.view[0][0], frame.view[1][0], frame.view[2][0]);
   vec3 up = vec3(frame.view[0][1], frame.view[1][1], frame.view[2][1]);
-  // Particles live in the first frame's render space: anchorOffset moves them into this frame's.
+  // Particles live in the scene camera's render space: anchorOffset moves them into this frame's.
   vec3 world = p.positionAge.xyz + frame.anchorOffset.xyz + (right * corner.x + up * corner.y) * size;
   outColor = mix(e.colorStart, e.colorEnd, t);
   // Emitted radiance, pre-exposed like all lighting and kept within R16F's range.

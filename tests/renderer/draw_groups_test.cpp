@@ -84,7 +84,7 @@ TEST(FrameConstants, ClusterGridCoversTheImageAndSlicesSpanNearToFar) {
   EXPECT_NEAR(std::log(0.1f) * c.depthRange.z + c.depthRange.w, 0.0f, 1e-4f);
   EXPECT_NEAR(std::log(100.0f) * c.depthRange.z + c.depthRange.w, 24.0f, 1e-3f);
   // Y is flipped so that +Y world maps to the top of the image (negative clip Y).
-  // Render space is camera-relative: the camera sits at the origin.
+  // A scene without a camera path anchors render space at its camera (render_space.hpp).
   EXPECT_EQ(c.cameraPosition, glm::vec4(0, 0, 0, 1));
   const glm::vec4 up = c.viewProj * glm::vec4(glm::vec3(s.camera.target - s.camera.position) + glm::vec3(0, 1, 0), 1.0f);
   EXPECT_LT(up.y, 0.0f);

@@ -80,8 +80,8 @@ bool sphereInside(uint frame, vec3 center, float radius) {
 // reach the visibility buffer (without this the no-particles floor, whose coarse groups hold the
 // camera's feet, vanished; level 0's small triangles rarely have such a corner where it shows).
 // A sphere holding another is no farther and reaches no less near, so a larger error there never
-// projects smaller: the DAG's monotonic errors stay monotonic on screen. Render space is
-// camera-relative, so this holds at any scene offset (scene.offset=1e7).
+// projects smaller: the DAG's monotonic errors stay monotonic on screen. Render space is anchored
+// within a cell of the camera (render_space.hpp), so this holds at any scene offset (scene.offset=1e7).
 float projectedError(vec4 sphere, float error, mat4 model, float scale, uint frame) {
   if (error <= 0.0) return 0.0;
   vec3 center = (model * vec4(sphere.xyz, 1.0)).xyz;

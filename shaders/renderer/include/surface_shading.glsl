@@ -19,7 +19,7 @@ vec4 sampleSurfaceTexture(int textureIndex, vec2 uv);
 
 // The interpolated attributes of one surface point (world space).
 struct SurfacePoint {
-  vec3 worldPosition;    // render space (camera-relative)
+  vec3 worldPosition;    // render space (world axes, anchored near the camera)
   vec3 normal;           // not normalised
   vec4 tangent;          // xyz not normalised, w: bitangent sign
   vec2 uv;
@@ -106,7 +106,8 @@ vec4 shadeSurface(FrameConstants frame, Material m, vec4 base, SurfacePoint p, L
     s.metallic *= mr.b;
   }
   s.roughness = clamp(s.roughness, kMinRoughness, 1.0);
-  // Render space is camera-relative (the camera at the origin); a point at the camera sees +Z.
+  // The eye is at cameraPosition (render space is anchored near it, not at it); a point at the eye
+  // sees +Z.
   s.view = safeNormalize(frame.cameraPosition.xyz - p.worldPosition, vec3(0.0, 0.0, 1.0));
   s.normal = shadingNormal(m, p, s.view);
 

@@ -12,12 +12,13 @@ FGB_GPU_BEGIN
 // of its frame in flight (src/renderer/scene_workload/frame_update.cpp): nothing that changes from
 // frame to frame is baked into recorded commands.
 struct FrameConstants {
-  mat4 view;             // camera-relative: a rotation only (render space -> view space)
+  mat4 view;             // render space -> view space: the camera's rotation and its offset from
+                         // the anchor (render space's origin, near the camera: render_space.hpp)
   mat4 proj;             // Vulkan clip space, Y flipped for a top-left origin; reversed-Z
                          // (near -> 1, far -> 0), the far plane possibly infinite
   mat4 viewProj;
   mat4 invProj;
-  vec4 cameraPosition;   // always (0, 0, 0, 1): render space is camera-relative
+  vec4 cameraPosition;   // xyz: the eye in render space (camera - anchor, small); w: 1
   vec4 sunDirection;     // xyz: direction light travels; w: 1 when enabled
   vec4 sunColor;         // rgb * intensity
   vec4 viewport;         // width, height, 1/width, 1/height
@@ -27,8 +28,8 @@ struct FrameConstants {
   vec4 ambient;          // rgb: constant ambient term (radiance, times the light scale)
   uvec4 buffers;         // x: storage-buffer index of the Exposure state
   vec4 frustumPlanes[6]; // render space, inside: dot(n, p) + d >= 0 (mesh and cluster culling)
-  vec4 anchorOffset;     // xyz: the first frame's camera minus this frame's (particles live in the
-                         // first frame's render space, the anchor: add this to render them)
+  vec4 anchorOffset;     // xyz: the particles' anchor minus this frame's (particles live in the
+                         // scene camera's render space: add this to render them)
   vec4 simulation;       // x: this frame's particle step, s (0: the particles hold still); y: path time, s
   uvec4 step;            // x: particle simulation step index; y: kFrame* flags
 };
@@ -54,7 +55,7 @@ struct Exposure {
 FGB_CHECK_SIZE(Exposure, 16)
 
 struct Instance {
-  mat4 model;         // mesh -> render space (world minus the camera position)
+  mat4 model;         // mesh -> render space (world minus the anchor)
   mat4 normalMatrix;  // inverse transpose of the model's 3x3, in a mat4
   vec4 boundsMin;     // render-space AABB
   vec4 boundsMax;

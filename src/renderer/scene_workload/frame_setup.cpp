@@ -1,6 +1,8 @@
 // Frame constants and draw groups: the CPU-side preparation of each frame's values.
 #include "gpu_upload.hpp"
 
+#include "../features/context/render_space.hpp"
+
 #include <fgb/scene/frustum.hpp>
 
 #include <glm/geometric.hpp>
@@ -45,17 +47,18 @@ gpu::FrameConstants makeFrameConstants(const scene::Scene& scene, const scene::C
                                        const features::RenderSettings& settings) {
   const float aspect = float(settings.width) / float(settings.height);
   gpu::FrameConstants c{};
-  c.view = scene::viewMatrix(camera);
+  const features::RenderSpace space = features::RenderSpace::of(scene, camera.position);
+  c.view = space.view(camera);
   c.proj = scene::projectionMatrix(camera, aspect);
   c.proj[1][1] = -c.proj[1][1];  // Vulkan's framebuffer Y points down; keep images upright
   c.viewProj = c.proj * c.view;
   c.invProj = glm::inverse(c.proj);
   const auto frustum = scene::Frustum::fromMatrix(c.viewProj);
   for (size_t i = 0; i < frustum.planes.size(); ++i) c.frustumPlanes[i] = frustum.planes[i];
-  // The particles' state lives in the still camera's render space (particle_feature.cpp).
-  c.anchorOffset = glm::vec4(glm::vec3(scene.camera.position - camera.position), 0.0f);
-  // Camera-relative render space: world axes, origin at the camera (the view matrix is a rotation).
-  c.cameraPosition = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+  // Render space is anchored near the camera (render_space.hpp): the view matrix holds the
+  // camera's offset from the anchor, and shaders take the eye from cameraPosition.
+  c.anchorOffset = glm::vec4(space.point(features::RenderSpace::ofParticles(scene).anchor), 0.0f);
+  c.cameraPosition = glm::vec4(space.point(camera.position), 1.0f);
   if (scene.sun.enabled) {
     c.sunDirection = glm::vec4(glm::normalize(scene.sun.direction), 1.0f);
     c.sunColor = glm::vec4(scene.sun.color * scene.sun.intensity, 0.0f);

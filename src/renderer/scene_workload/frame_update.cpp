@@ -2,7 +2,6 @@
 
 #include "gpu_upload.hpp"
 
-#include <glm/ext/matrix_transform.hpp>
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 
@@ -15,25 +14,13 @@
 namespace fgb::render {
 namespace {
 
-// A double-precision box moved into render space (camera at the origin), rounded outwards to float
-// so the GPU's frustum test stays conservative.
-std::pair<glm::vec4, glm::vec4> renderSpaceBounds(const scene::Aabb& box, const glm::dvec3& origin) {
-  if (box.isEmpty()) return {glm::vec4(1.0f, 1.0f, 1.0f, 0.0f), glm::vec4(-1.0f, -1.0f, -1.0f, 0.0f)};
-  glm::vec4 lo(0.0f), hi(0.0f);
-  for (int axis = 0; axis < 3; ++axis) {
-    lo[axis] = std::nextafter(static_cast<float>(box.min[axis] - origin[axis]), -HUGE_VALF);
-    hi[axis] = std::nextafter(static_cast<float>(box.max[axis] - origin[axis]), HUGE_VALF);
-  }
-  return {lo, hi};
-}
-
-void writeLights(std::span<gpu::PointLight> out, const scene::Scene& scene, const glm::dvec3& origin) {
+void writeLights(std::span<gpu::PointLight> out, const scene::Scene& scene, const features::RenderSpace& space) {
   for (size_t i = 0; i < scene.lights.size(); ++i) {
     const auto& light = scene.lights[i];
     // Shading divides by neither the radius nor the distance: 1/R travels in color.w. A radius that
     // is not a positive finite number (scene files refuse it) uploads a light that adds nothing.
     const bool reaches = light.radius > 0.0f && std::isfinite(light.radius);
-    const glm::vec3 renderSpace(light.position - origin);
+    const glm::vec3 renderSpace = space.point(light.position);
     const glm::vec3 radiance = reaches ? light.color * light.intensity : glm::vec3(0.0f);
     out[i] = {glm::vec4(renderSpace, light.radius), glm::vec4(radiance, reaches ? 1.0f / light.radius : 0.0f)};
   }
@@ -43,13 +30,6 @@ template <class T>
 std::span<T> mappedAs(rhi::Device& device, rhi::BufferId buffer) {
   const std::span<std::byte> bytes = device.mapped(buffer);
   return {reinterpret_cast<T*>(bytes.data()), bytes.size() / sizeof(T)};
-}
-
-// M moved into render space: translate(-origin) * M, one column at a time (exactly the product:
-// the translation's other terms add zeros).
-glm::mat4 renderSpaceModel(glm::dmat4 model, const glm::dvec3& origin) {
-  for (int column = 0; column < 4; ++column) model[column] -= glm::dvec4(origin * model[column].w, 0.0);
-  return glm::mat4(model);
 }
 
 }  // namespace
@@ -62,6 +42,7 @@ InstanceWriter::InstanceWriter(const scene::Scene& scene) : scene_(scene) {
     instance.triangles = scene.meshes[source.mesh].triangleCount();
     templates_.push_back(instance);
   }
+  placed_.resize(templates_.size());
   // drawOrder puts the camera-independent groups first; its transparent tail is redone per frame.
   DrawOrder order = drawOrder(scene, scene.camera.position);
   for (const auto& group : order.groups) {
@@ -76,13 +57,14 @@ InstanceWriter::InstanceWriter(const scene::Scene& scene) : scene_(scene) {
   staging_.resize(order_.size());
 }
 
-void InstanceWriter::write(const glm::dvec3& origin, std::span<gpu::Instance> instances,
-                           std::span<gpu::DrawCommand> commands) {
+void InstanceWriter::sortTransparent(const glm::dvec3& camera) {
+  if (sortedFor_ == camera) return;
+  sortedFor_ = camera;
   // Back to front (as drawOrder sorts): the multi-draw executes commands in order, the blend order.
   transparent_.clear();
   for (const uint32_t index : transparentInstances_) {
     const auto& bounds = scene_.instances[index].worldBounds;
-    transparent_.emplace_back(glm::distance(0.5 * (bounds.min + bounds.max), origin), index);
+    transparent_.emplace_back(glm::distance(0.5 * (bounds.min + bounds.max), camera), index);
   }
   std::stable_sort(transparent_.begin(), transparent_.end(), [](auto a, auto b) { return a.first > b.first; });
   for (size_t i = 0; i < transparent_.size(); ++i) {
@@ -91,21 +73,62 @@ void InstanceWriter::write(const glm::dvec3& origin, std::span<gpu::Instance> in
     groups_[sharedGroups_ + i] = {scene_.instances[index].mesh, features::DrawClass::Transparent,
                                   uint32_t(sharedInstances_ + i), 1};
   }
-  for (uint32_t group = 0; group < groups_.size(); ++group) {
+}
+
+std::span<const uint32_t> InstanceWriter::transparentOrder() const {
+  return std::span(order_).subspan(sharedInstances_);
+}
+
+void InstanceWriter::place(const features::RenderSpace& space) {
+  if (placedSpace_ == space) return;
+  placedSpace_ = space;
+  for (size_t index = 0; index < placed_.size(); ++index) {
+    const auto& source = scene_.instances[index];
+    gpu::Instance& instance = placed_[index];
+    instance = templates_[index];
+    // Composed in double, then rounded: the float matrix holds only the offset from the anchor.
+    instance.model = space.model(source.transform);
+    std::tie(instance.boundsMin, instance.boundsMax) = space.bounds(source.worldBounds);
+  }
+}
+
+void InstanceWriter::writeGroups(size_t firstGroup, std::span<gpu::Instance> instances,
+                                 std::span<gpu::DrawCommand> commands) {
+  if (firstGroup >= groups_.size()) return;
+  const size_t firstSlot = groups_[firstGroup].firstSlot;
+  for (size_t group = firstGroup; group < groups_.size(); ++group) {
     const auto& g = groups_[group];
     for (uint32_t slot = g.firstSlot; slot < g.firstSlot + g.capacity; ++slot) {
-      const auto& source = scene_.instances[order_[slot]];
-      gpu::Instance& instance = staging_[slot];
-      instance = templates_[order_[slot]];
-      // Composed in double, then rounded: the float matrix holds only the camera-relative offset.
-      instance.model = renderSpaceModel(source.transform, origin);
-      std::tie(instance.boundsMin, instance.boundsMax) = renderSpaceBounds(source.worldBounds, origin);
-      instance.drawGroup = group;
+      staging_[slot] = placed_[order_[slot]];
+      staging_[slot].drawGroup = uint32_t(group);
     }
     const auto& mesh = scene_.meshes[g.mesh];
     commands[group] = {mesh.indexCount, 0, mesh.firstIndex, int32_t(mesh.firstVertex), g.firstSlot};
   }
-  std::copy(staging_.begin(), staging_.end(), instances.begin());
+  std::copy(staging_.begin() + std::ptrdiff_t(firstSlot), staging_.end(),
+            instances.begin() + std::ptrdiff_t(firstSlot));
+}
+
+void InstanceWriter::writeAll(const features::RenderSpace& space, std::span<gpu::Instance> instances,
+                              std::span<gpu::DrawCommand> commands) {
+  place(space);
+  writeGroups(0, instances, commands);
+}
+
+void InstanceWriter::writeTransparent(const features::RenderSpace& space, std::span<gpu::Instance> instances,
+                                      std::span<gpu::DrawCommand> commands) {
+  place(space);
+  writeGroups(sharedGroups_, instances, commands);
+}
+
+CopyContents::Write CopyContents::update(const features::RenderSpace& space, std::span<const uint32_t> transparent) {
+  if (space_ == space && std::equal(transparent.begin(), transparent.end(), transparent_.begin(), transparent_.end()))
+    return Write::Nothing;
+  // A copy never written holds no opaque instances either: the first write is everything.
+  const Write write = space_ == space ? Write::Transparent : Write::Everything;
+  space_ = space;
+  transparent_.assign(transparent.begin(), transparent.end());
+  return write;
 }
 
 void createFrameBuffers(rhi::Device& device, features::GpuScene& gpu) {
@@ -164,12 +187,24 @@ void FrameUpdate::write(uint64_t execution) {
   std::memcpy(device_.mapped(frame.constants).data(), &constants, sizeof(constants));
   gpu_.current = constants;
 
-  auto& written = writtenFor_[execution % features::kFramesInFlight];
-  if (written && *written == camera.position) return;  // this copy already holds this camera's values
-  instances_.write(camera.position, mappedAs<gpu::Instance>(device_, frame.instances),
-                   mappedAs<gpu::DrawCommand>(device_, frame.commandTemplate));
-  writeLights(mappedAs<gpu::PointLight>(device_, frame.lights), scene_, camera.position);
-  written = camera.position;
+  // Render space, and so the instances, bounds and lights, changes only when the camera crosses
+  // into another anchor cell; the transparent order changes with any move (it is sorted per
+  // position, and written only when the order, not just the distances, changed).
+  const auto space = features::RenderSpace::of(scene_, camera.position);
+  instances_.sortTransparent(camera.position);
+  const auto instances = mappedAs<gpu::Instance>(device_, frame.instances);
+  const auto commands = mappedAs<gpu::DrawCommand>(device_, frame.commandTemplate);
+  switch (copies_[execution % features::kFramesInFlight].update(space, instances_.transparentOrder())) {
+    case CopyContents::Write::Nothing:
+      break;  // this copy already holds this camera's values
+    case CopyContents::Write::Transparent:
+      instances_.writeTransparent(space, instances, commands);
+      break;
+    case CopyContents::Write::Everything:
+      instances_.writeAll(space, instances, commands);
+      writeLights(mappedAs<gpu::PointLight>(device_, frame.lights), scene_, space);
+      break;
+  }
 }
 
 }  // namespace fgb::render

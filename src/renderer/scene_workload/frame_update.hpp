@@ -6,6 +6,7 @@
 #pragma once
 
 #include "../features/context/gpu_scene.hpp"
+#include "../features/context/render_space.hpp"
 
 #include <fgb/rhi/device.hpp>
 #include <fgb/scene/scene.hpp>
@@ -37,27 +38,61 @@ struct FrameClock {
   [[nodiscard]] bool simulates(uint64_t execution) const { return !stillSteps || execution < *stillSteps; }
 };
 
-// The render-space instances of a camera position, in draw order: what does not depend on the
-// camera (normal matrices, materials, the opaque and masked groups) is composed once, so a moving
-// camera only offsets each model matrix and bounds and sorts the transparent instances.
+// The render-space instances and draw commands, in draw order, composed at three rates: what
+// depends on neither the camera nor the anchor (normal matrices, materials, the opaque and masked
+// groups) once; the model matrices and bounds once per render space (anchor); the transparent
+// order once per camera position. A frame in flight's copy is rewritten only where it differs.
 class InstanceWriter {
  public:
   explicit InstanceWriter(const scene::Scene& scene);
-  // The instances (GPU order) and draw commands for a camera at `origin`, into mapped memory.
-  void write(const glm::dvec3& origin, std::span<gpu::Instance> instances, std::span<gpu::DrawCommand> commands);
+  // Sorts the transparent instances back to front from `camera` (drawOrder's order); nothing to do
+  // when the camera has not moved since the last sort.
+  void sortTransparent(const glm::dvec3& camera);
+  // The last sort's transparent instances (scene indices), back to front: the order the commands
+  // a copy holds must match.
+  [[nodiscard]] std::span<const uint32_t> transparentOrder() const;
+  // Every instance (GPU order) and draw command in `space`, into mapped memory.
+  void writeAll(const features::RenderSpace& space, std::span<gpu::Instance> instances,
+                std::span<gpu::DrawCommand> commands);
+  // Only the transparent instances and commands, for a copy that already holds `space`'s others.
+  void writeTransparent(const features::RenderSpace& space, std::span<gpu::Instance> instances,
+                        std::span<gpu::DrawCommand> commands);
 
  private:
+  // Composes placed_ for `space` (nothing when it already holds it).
+  void place(const features::RenderSpace& space);
+  // Groups [firstGroup, end) and their instances, from placed_ in order_.
+  void writeGroups(size_t firstGroup, std::span<gpu::Instance> instances, std::span<gpu::DrawCommand> commands);
+
   const scene::Scene& scene_;
   // Per scene instance: all but the model matrix, the bounds and the group.
   std::vector<gpu::Instance> templates_;
-  // The opaque and masked groups, then this frame's transparent ones; GPU instance i is scene
+  // Per scene instance, in placedSpace_: the templates with their model matrix and bounds.
+  std::vector<gpu::Instance> placed_;
+  std::optional<features::RenderSpace> placedSpace_;
+  // The opaque and masked groups, then the last sort's transparent ones; GPU instance i is scene
   // instance order_[i]. The first sharedGroups_ / sharedInstances_ do not depend on the camera.
   std::vector<features::DrawGroup> groups_;
   std::vector<uint32_t> order_;
   size_t sharedGroups_ = 0, sharedInstances_ = 0;
+  std::optional<glm::dvec3> sortedFor_;                   // the camera position of the last sort
   std::vector<uint32_t> transparentInstances_;            // scene indices, ascending (drawOrder's tie order)
-  std::vector<std::pair<double, uint32_t>> transparent_;  // this frame's distances, back to front
-  std::vector<gpu::Instance> staging_;                    // the frame's instances, copied to mapped memory in one go
+  std::vector<std::pair<double, uint32_t>> transparent_;  // the last sort's distances, back to front
+  std::vector<gpu::Instance> staging_;                    // a write's instances, copied to mapped memory in one go
+};
+
+// What one frame in flight's copy of the instances, lights and draw commands holds (its render
+// space and transparent order), and so what a frame must rewrite in it.
+class CopyContents {
+ public:
+  enum class Write { Nothing, Transparent, Everything };
+  // What to write so that the copy holds `space` and the `transparent` order (scene indices, back
+  // to front); records that it then does.
+  Write update(const features::RenderSpace& space, std::span<const uint32_t> transparent);
+
+ private:
+  std::optional<features::RenderSpace> space_;  // none before the first write
+  std::vector<uint32_t> transparent_;
 };
 
 class FrameUpdate {
@@ -66,8 +101,10 @@ class FrameUpdate {
               const features::RenderSettings& settings, FrameClock clock);
 
   // Writes execution `execution`'s copy. The caller has waited for the execution that last read
-  // it (kFramesInFlight earlier). Rewrites the instances, lights and command template only when
-  // the camera moved since that copy was written (a still camera writes them once per copy).
+  // it (kFramesInFlight earlier). Writes the constants; rewrites the instances, lights and command
+  // template only when the render space (anchor) changed since that copy was written, and else the
+  // transparent instances and commands only when their order changed. So a camera moving within
+  // its anchor's cell writes only the constants (and a still camera writes the rest once per copy).
   void write(uint64_t execution);
 
   [[nodiscard]] const FrameClock& clock() const { return clock_; }
@@ -78,7 +115,7 @@ class FrameUpdate {
   const scene::Scene& scene_;
   const features::RenderSettings& settings_;
   FrameClock clock_;
-  std::array<std::optional<glm::dvec3>, features::kFramesInFlight> writtenFor_;  // camera position
+  std::array<CopyContents, features::kFramesInFlight> copies_;
   // The last camera's constants (without the per-frame step): a still camera computes them once.
   struct CameraKey {
     glm::dvec3 position{0.0}, target{0.0};

@@ -78,7 +78,7 @@ struct GpuScene {
   rhi::BufferId indices;           // uint32, mesh-local
   rhi::BufferId materials;         // gpu::Material[]
   rhi::BufferId exposure;          // gpu::Exposure (written by the "Exposure" node with auto exposure)
-  // The per-frame values (camera, camera-relative instances and lights, transparent order), one
+  // The per-frame values (camera, render-space instances and lights, transparent order), one
   // copy per frame in flight, written by the host before the frame's submit (frame_update.cpp).
   std::array<FrameBuffers, kFramesInFlight> frames;
   rhi::SamplerId materialSampler;

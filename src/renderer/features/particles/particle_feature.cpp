@@ -1,5 +1,7 @@
 #include "particle_feature.hpp"
 
+#include "../context/render_space.hpp"
+
 #include <fgb/rhi/job_context.hpp>
 #include <fgb/rhi/upload.hpp>
 
@@ -31,10 +33,11 @@ constexpr graph::ImportState kPoolFinal{graph::kStageComputeShader,
                                         graph::kAccessShaderStorageRead | graph::kAccessShaderStorageWrite,
                                         graph::Layout::Undefined, graph::QueueClass::Compute};
 
-// Emitters (and so the particles they spawn) live in camera-relative render space.
-gpu::Emitter toGpu(const scene::Emitter& e, const glm::dvec3& cameraPosition, uint32_t seedOffset) {
+// Emitters (and so the particles they spawn) live in the particles' render space
+// (RenderSpace::ofParticles); each frame draws them moved into its own.
+gpu::Emitter toGpu(const scene::Emitter& e, const RenderSpace& space, uint32_t seedOffset) {
   gpu::Emitter out{};
-  out.positionRate = glm::vec4(glm::vec3(e.position - cameraPosition), e.rate);
+  out.positionRate = glm::vec4(space.point(e.position), e.rate);
   out.directionCone = glm::vec4(glm::normalize(e.direction), std::cos(glm::radians(e.coneAngleDeg)));
   out.colorStart = e.colorStart;
   out.colorEnd = e.colorEnd;
@@ -71,7 +74,8 @@ void ParticleFeature::createState(rhi::Device& device, const scene::Scene& scene
   freeList.resize(size_t{poolSize_} + 1);
   std::iota(freeList.begin() + 1, freeList.end(), 0u);
   std::vector<gpu::Emitter> emitters;
-  for (const auto& emitter : scene.emitters) emitters.push_back(toGpu(emitter, scene.camera.position, seedOffset));
+  const RenderSpace space = RenderSpace::ofParticles(scene);
+  for (const auto& emitter : scene.emitters) emitters.push_back(toGpu(emitter, space, seedOffset));
   rhi::uploadBuffer(device, pool_, bytesOf(std::vector<gpu::Particle>(poolSize_)));
   rhi::uploadBuffer(device, freeList_, bytesOf(freeList));
   rhi::uploadBuffer(device, emitters_, bytesOf(emitters));

@@ -11,8 +11,8 @@
 //     the transformed localBounds.
 //   * World-space placement (instance transforms, bounds, light, emitter and camera positions) is
 //     double precision: a scene may sit 1e7 m from the origin, where float steps by 1 m. Vertex
-//     data stays float (mesh-local). The renderer subtracts the camera position in double and
-//     sends everything to the GPU camera-relative (see src/renderer/scene_workload/frame_setup.cpp).
+//     data stays float (mesh-local). The renderer subtracts an anchor near the camera in double and
+//     sends everything to the GPU relative to it (src/renderer/features/context/render_space.hpp).
 //   * Materials are glTF metallic-roughness; a texture index of -1 means "no texture".
 //   * Textures are RGBA8 with a full mip chain down to 1x1, level 0 first, tightly packed.
 // Cooked scenes come from loadScene() (load.hpp); stats() (stats.hpp) summarises one.

@@ -1,12 +1,13 @@
 #include "mesh_feature.hpp"
 
-#include <algorithm>
-#include <cstring>
-#include <fgb/rhi/job_context.hpp>
-#include <stdexcept>
-
 #include "../context/handles.hpp"
 #include "renderer/shared/meshes.h"
+
+#include <fgb/rhi/job_context.hpp>
+
+#include <algorithm>
+#include <cstring>
+#include <stdexcept>
 
 namespace fgb::features {
 namespace {
@@ -153,10 +154,12 @@ void MeshFeature::initialize(FeatureInit& init) {
   transparentLod_ = lod_ && hasTransparent_ && clusters.maxEntries > 0 && init.settings.lodError > 0.0f;
   if (transparentLod_) {
     lodThreshold_ = init.settings.lodError * float(init.settings.ssaa);
+    // One invocation per (transparent instance, cluster of the largest transparent mesh).
     const uint64_t invocations = uint64_t{clusters.maxEntries} * scene_->groupRange(DrawClass::Transparent).second;
-    transparentChunks_ = uint32_t((invocations + kChunk - 1) / kChunk);
-    if (uint64_t{transparentChunks_} > uint64_t{kMaxGroupsX} * kMaxGroupsX)
-      throw std::logic_error("transparent cluster draws exceed two dimensions of workgroups");
+    const uint64_t chunks = (invocations + kChunk - 1) / kChunk;
+    if (chunks > uint64_t{kMaxGroupsX} * kMaxGroupsX || chunks * kChunk > UINT32_MAX)
+      throw std::logic_error("transparent cluster draws exceed what one draw count and two dispatch dimensions hold");
+    transparentChunks_ = uint32_t(chunks);
     pipelines_.transparentCull =
         init.device.createComputePipeline({"transparent cluster cull", "renderer/transparent_cluster_cull.comp"});
     pipelines_.transparentPack =

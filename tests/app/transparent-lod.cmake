@@ -15,7 +15,7 @@ foreach(error 0 8)
   file(READ ${OUT}/e${error}/timings.json json)
   string(JSON triangles_${error} GET "${json}" stats transparent_triangles_drawn)
   string(JSON clusters_${error} ERROR_VARIABLE no_clusters GET "${json}" stats transparent_clusters_drawn)
-  if(NOT no_clusters STREQUAL "")
+  if(NOT no_clusters STREQUAL "NOTFOUND")  # string(JSON) sets its ERROR_VARIABLE to NOTFOUND on success
     set(clusters_${error} "no")
   endif()
   message(STATUS "render.lod_error=${error}: exit ${rc}, ${triangles_${error}} transparent triangles, "

@@ -1,6 +1,8 @@
 #version 460
 // "Mesh Render" vertex stage: instance data is fetched through the visible-instance list the cull
-// pass wrote; gl_InstanceIndex includes the command's firstInstance (the group's list offset).
+// pass wrote; gl_InstanceIndex includes the command's firstInstance (the group's list offset). The
+// transparent instances' cluster draws ("Transparent Cluster Cull") name the instance itself
+// (kForwardInstanceIsSlot).
 #extension GL_GOOGLE_include_directive : require
 #include "include/common.glsl"
 #include "include/forward_push.glsl"
@@ -19,7 +21,8 @@ layout(location = 4) flat out uint outMaterial;
 invariant gl_Position;
 
 void main() {
-  uint instanceId = fgbUintsRead[pc.visible].values[gl_InstanceIndex];
+  uint instanceId = (pc.flags & kForwardInstanceIsSlot) != 0u ? uint(gl_InstanceIndex)
+                                                              : fgbUintsRead[pc.visible].values[gl_InstanceIndex];
   Instance inst = fgbInstances[pc.instances].instances[instanceId];
   vec4 world = inst.model * vec4(inPosition, 1.0);
   outWorldPosition = world.xyz;

@@ -31,4 +31,5 @@ void main() {
   fgbUints[pc.visible].values[fgbCommands[pc.commands].commands[group].firstInstance + slot] = id;
   atomicAdd(fgbUints[pc.stats].values[0], 1u);
   atomicAdd(fgbUints[pc.stats].values[1], inst.triangles);
+  if (group >= pc.firstTransparentGroup) atomicAdd(fgbUints[pc.stats].values[3], inst.triangles);
 }

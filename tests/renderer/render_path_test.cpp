@@ -132,7 +132,7 @@ TEST(RenderPath, BadFilesSayWhatIsWrongOnOneLine) {
       {replaced(R"("feature": "bloom")", R"("feature": "blom")"),
        R"(--set render.path=my.json: features[5]: unknown feature "blom" (known: bloom, clustered_lighting, exposure, meshes, meshlets, msaa_resolve, particles, ssaa_resolve, tonemap, visbuffer))"},
       {replaced(R"({"feature": "meshes"})", R"({"feature": "meshes", "options": {"opaq": true}})"),
-       R"(--set render.path=my.json: features[1] "meshes": unknown option "opaq" (known: opaque))"},
+       R"(--set render.path=my.json: features[1] "meshes": unknown option "opaq" (known: opaque, lod))"},
       {replaced(R"({"feature": "bloom"})", R"({"feature": "bloom", "options": {"mips": 3}})"),
        R"(--set render.path=my.json: features[5] "bloom": unknown option "mips" (the feature has no options))"},
       {replaced(R"({"feature": "meshes"})", R"({"feature": "meshes", "options": {"opaque": 0}})"),

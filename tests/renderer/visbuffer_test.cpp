@@ -134,10 +134,11 @@ graph::NodeType nodeType(const Workload& workload, const std::string& name) {
 // fragment passes' GLSL maths. transparency-only has no opaque mesh, so both paths draw the same
 // HDR image: the compute SSAA resolve must give it bit for bit, and the compute tone mapping the
 // same display image up to the sRGB encode's rounding: at most one code (lavapipe's sRGB
-// attachment encode is approximate, e.g. 28.47 becomes 29; tonemap.comp rounds to nearest).
+// attachment encode is approximate, e.g. 28.47 becomes 29; tonemap.comp rounds to nearest). At
+// full detail: with render.lod_error > 0 the visibility-buffer path draws transparent meshes' LOD cut.
 TEST(VisBuffer, PostPassesAreComputeAndMatchTheFragmentPasses) {
   const std::string scene = kRepositoryScenes + "/transparency-only.json";
-  const std::map<std::string, std::string> supersampled = {{"render.ssaa", "2"}};
+  const std::map<std::string, std::string> supersampled = {{"render.ssaa", "2"}, {"render.lod_error", "0"}};
   auto visKnobs = supersampled;
   visKnobs["render.path"] = "visbuffer";
   struct PostPasses {

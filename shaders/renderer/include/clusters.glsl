@@ -73,6 +73,12 @@ bool sphereInside(uint frame, vec3 center, float radius) {
   return true;
 }
 
+// proj[1][1] is cot(fov / 2) (negated: Y flips), so a length l at distance d spans
+// l / d * |proj[1][1]| * height / 2 pixels of the scene passes (viewport: their size).
+float pixelsPerUnit(uint frame) {
+  return abs(fgbFrames[frame].frame.proj[1][1]) * 0.5 * fgbFrames[frame].frame.viewport.y;
+}
+
 // A mesh-local error at a mesh-local sphere, in scene pixels: the error scaled like the instance,
 // over the distance from the eye to the sphere's nearest point. A sphere reaching in front of the
 // near plane (in view depth) projects an unbounded error (level 0, whose error is 0, excepted), so
@@ -89,10 +95,7 @@ float projectedError(vec4 sphere, float error, mat4 model, float scale, uint fra
   float nearestDepth = -(fgbFrames[frame].frame.view * vec4(center, 1.0)).z - radius;  // the view looks down -z
   if (nearestDepth <= fgbFrames[frame].frame.depthRange.x) return 3.0e38;
   float distance = length(center - fgbFrames[frame].frame.cameraPosition.xyz) - radius;
-  // proj[1][1] is cot(fov / 2) (negated: Y flips), so a length l at distance d spans
-  // l / d * |proj[1][1]| * height / 2 pixels of the scene passes (viewport: their size).
-  float pixelsPerUnit = abs(fgbFrames[frame].frame.proj[1][1]) * 0.5 * fgbFrames[frame].frame.viewport.y;
-  return error * scale * pixelsPerUnit / distance;
+  return error * scale * pixelsPerUnit(frame) / distance;
 }
 
 // Whether the cluster belongs to this view's LOD cut at `threshold` scene pixels

@@ -62,7 +62,7 @@ struct Instance {
   uint material;
   uint drawGroup;     // index of the indirect command drawing this instance
   uint triangles;
-  uint pad;
+  uint mesh;  // scene mesh ("Transparent Cluster Cull" finds a slot's clusters by it)
 };
 FGB_CHECK_SIZE(Instance, 176)
 

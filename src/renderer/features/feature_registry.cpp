@@ -35,16 +35,22 @@ FeatureKind meshes() {
   kind.name = "meshes";
   kind.phase = FeaturePhase::SceneColour;
   kind.help = "\"Mesh Frustum Cull\", \"Mesh Render\" (opaque, alpha-masked) and \"Mesh Render Transparent\"";
-  kind.options = {{"opaque", true, "draws the opaque and alpha-masked scene (\"Mesh Render\"), writing the depth attachment"}};
+  kind.options = {
+      {"opaque", true, "draws the opaque and alpha-masked scene (\"Mesh Render\"), writing the depth attachment"},
+      {"lod", false,
+       "draws transparent instances as each mesh's LOD cut at render.lod_error (\"Transparent Cluster Cull\"; "
+       "false: full detail)"}};
   kind.contract = [](const Options& options, const RenderPath& path) {
     FeatureContract contract;
-    // "Mesh Render Transparent" tests the opaque depth the way the path says.
+    // "Mesh Render Transparent" tests the opaque depth the way the path says; its LOD cut is
+    // drawn from the uploaded clusters.
     contract.needs = {depthProductOf(path.depthTest)};
+    if (options.at("lod").get<bool>()) contract.needs.push_back("clusters");
     if (options.at("opaque").get<bool>()) contract.provides = {"opaque_scene", "depth_attachment"};
     return contract;
   };
   kind.create = [](const Options& options) -> std::unique_ptr<IRenderFeature> {
-    return std::make_unique<MeshFeature>(options.at("opaque").get<bool>());
+    return std::make_unique<MeshFeature>(options.at("opaque").get<bool>(), options.at("lod").get<bool>());
   };
   return kind;
 }

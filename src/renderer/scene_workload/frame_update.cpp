@@ -40,6 +40,7 @@ InstanceWriter::InstanceWriter(const scene::Scene& scene) : scene_(scene) {
     instance.normalMatrix = glm::mat4(glm::mat3(glm::transpose(glm::inverse(glm::dmat3(source.transform)))));
     instance.material = source.material;
     instance.triangles = scene.meshes[source.mesh].triangleCount();
+    instance.mesh = source.mesh;
     templates_.push_back(instance);
   }
   placed_.resize(templates_.size());

@@ -37,11 +37,24 @@ struct DrawGroup {
 
 // The cooked clusters, uploaded where the render path says so ("upload": {"clusters": true}: the
 // visibility-buffer path), and one gpu::ClusterDraw per cluster of every opaque or alpha-masked
-// instance ("Cluster Cull" tests each). Transparent instances stay with the forward "Mesh Render
-// Transparent".
+// instance ("Cluster Cull" tests each). Transparent instances stay with the hardware "Mesh Render
+// Transparent", which with the meshes feature's "lod" option draws their LOD cut from the
+// transparent meshes' clusters (TransparentClusters).
 // Cluster vertices are numbered across the scene (cluster.firstVertex + local index): a vertex
 // shared by several clusters has a copy in each, so a triangle's corners are found from its one
 // packed word without the mesh's index buffer.
+// The clusters of every mesh a transparent instance uses, every LOD level, as indexed draws
+// ("Transparent Cluster Cull" keeps each transparent instance's LOD cut of them for "Mesh Render
+// Transparent"): an index buffer holding each cluster's triangles as mesh-local indices (drawn
+// with the mesh's first vertex as vertex offset, like the scene's index buffer), and which of them
+// belong to which mesh.
+struct TransparentClusters {
+  rhi::BufferId indices;    // uint32, index usage: 3 per cluster triangle
+  rhi::BufferId meshes;     // gpu::TransparentMeshClusters per scene mesh (no entries: no transparent instance)
+  rhi::BufferId entries;    // gpu::TransparentClusterEntry per cluster of those meshes, mesh by mesh
+  uint32_t maxEntries = 0;  // the most entries of one mesh (0: no transparent instance)
+};
+
 struct ClusterGeometry {
   rhi::BufferId clusters;         // scene::Cluster[] (mesh-local bounds, cones, triangle and vertex ranges)
   rhi::BufferId packedTriangles;  // uint32 per triangle: scene::packClusterTriangle (cluster-local)
@@ -52,6 +65,7 @@ struct ClusterGeometry {
   rhi::BufferId instanceDraws;
   uint32_t drawCount = 0;
   uint64_t triangles = 0;  // triangles of all draws: the most "Triangle Filter" can keep
+  TransparentClusters transparent;
 };
 
 // Executions of the frame graph that may be pending on the GPU at once (rhi::DeviceOptions), and

@@ -5,7 +5,9 @@
 
 #include <fgb/rhi/job_context.hpp>
 
+#include <algorithm>
 #include <cstring>
+#include <stdexcept>
 
 namespace fgb::features {
 namespace {
@@ -15,8 +17,15 @@ using graph::kStageFragmentShader;
 using graph::kStageVertexShader;
 
 constexpr uint32_t kBatchCount = FGB_MESH_BATCH_COUNT;  // one per DrawClass
-constexpr uint32_t kStatsBytes = 16;
+constexpr uint32_t kStatsBytes = sizeof(MeshCullStats);
 constexpr uint32_t kCommandStride = sizeof(gpu::DrawCommand);
+constexpr uint32_t kChunk = FGB_TRANSPARENT_CHUNK_SIZE;
+// "Transparent Cluster Cull" dispatches its chunks as (min(n, W), ceil(n / W)) workgroups.
+constexpr uint32_t kMaxGroupsX = 65535;
+// Storage buffers are visible per descriptor binding, not per stage: both forward shaders read
+// through the read-only binding, so every buffer a forward pass reads is declared for both stages
+// (synchronization validation checks each read against the stages the barriers cover).
+constexpr graph::StageMask kForwardStages = kStageVertexShader | kStageFragmentShader;
 
 // Opaque and masked instances write depth; transparent ones only test it (forward: against the
 // depth attachment; visibility buffer: against the opaque depth buffer, in forward.frag).
@@ -64,17 +73,22 @@ std::vector<Batch> batchesOf(const GpuScene& scene, const std::vector<DrawClass>
   return batches;
 }
 
+// The scene's vertex streams (forwardPipeline's bindings) and an index buffer.
+void bindGeometry(rhi::CommandBuffer& cmd, const GpuScene& scene, rhi::BufferId indices) {
+  cmd.bindVertexBuffer(0, scene.vertices, scene.streams.positions);
+  cmd.bindVertexBuffer(1, scene.vertices, scene.streams.normals);
+  cmd.bindVertexBuffer(2, scene.vertices, scene.streams.tangents);
+  cmd.bindVertexBuffer(3, scene.vertices, scene.streams.uvs);
+  cmd.bindIndexBuffer(indices, 0, rhi::IndexType::Uint32);
+}
+
 // Binds the scene's geometry and issues one multi-draw per batch: with a count buffer, the packed
 // commands of groups with visible instances; otherwise every group's command (culled groups have
 // instance count 0).
 void drawBatches(rhi::JobContext& ctx, const GpuScene& scene, const MeshCullOutputs& cull,
                  const std::vector<Batch>& batches, bool drawCount) {
   auto& cmd = ctx.cmd();
-  cmd.bindVertexBuffer(0, scene.vertices, scene.streams.positions);
-  cmd.bindVertexBuffer(1, scene.vertices, scene.streams.normals);
-  cmd.bindVertexBuffer(2, scene.vertices, scene.streams.tangents);
-  cmd.bindVertexBuffer(3, scene.vertices, scene.streams.uvs);
-  cmd.bindIndexBuffer(scene.indices, 0, rhi::IndexType::Uint32);
+  bindGeometry(cmd, scene, scene.indices);
   for (const Batch& batch : batches) {
     const uint64_t offset = uint64_t{batch.firstGroup} * kCommandStride;
     if (drawCount) {
@@ -83,6 +97,31 @@ void drawBatches(rhi::JobContext& ctx, const GpuScene& scene, const MeshCullOutp
     } else {
       cmd.drawIndexedIndirect(ctx.buffer(cull.commands), offset, batch.groupCount, kCommandStride);
     }
+  }
+}
+
+// The light lists of clustered lighting, where the path has them, read by a forward pass's shaders.
+ClusteredLights readLightLists(graph::NodeBuilder& node, Blackboard& board) {
+  ClusteredLights clusters;
+  if (const auto* published = board.find<ClusteredLights>()) {
+    clusters = *published;
+    node.read(clusters.counts, Access::StorageRead, kForwardStages);
+    node.read(clusters.indices, Access::StorageRead, kForwardStages);
+  }
+  return clusters;
+}
+
+// A forward pass's per-execution push values: the frame's copies, the light lists, the opaque depth.
+void setFramePush(gpu::ForwardPush& push, rhi::JobContext& ctx, const GpuScene& scene, const ClusteredLights& clusters,
+                  const OpaqueDepthSource& opaqueDepth) {
+  const FrameBuffers& frame = scene.frame(ctx.execution());
+  push.frame = frame.constantsIndex;
+  push.instances = frame.instancesIndex;
+  push.lights = frame.lightsIndex;
+  push.opaqueDepth = opaqueDepth.push(ctx);
+  if (clusters.counts.valid()) {
+    push.clusterCounts = ctx.storageBufferIndex(clusters.counts);
+    push.clusterIndices = ctx.storageBufferIndex(clusters.indices);
   }
 }
 
@@ -109,6 +148,23 @@ void MeshFeature::initialize(FeatureInit& init) {
   device_ = &init.device;
   transparentDepthTest_ = init.path.depthTest;
   if (!enabled()) return;
+  // render.lod_error is in output pixels; the scene passes have render.ssaa times as many. At 0
+  // the index range is full detail in the index buffer's triangle order: the image without LOD.
+  const TransparentClusters& clusters = init.scene.clusterGeometry.transparent;
+  transparentLod_ = lod_ && hasTransparent_ && clusters.maxEntries > 0 && init.settings.lodError > 0.0f;
+  if (transparentLod_) {
+    lodThreshold_ = init.settings.lodError * float(init.settings.ssaa);
+    // One invocation per (transparent instance, cluster of the largest transparent mesh).
+    const uint64_t invocations = uint64_t{clusters.maxEntries} * scene_->groupRange(DrawClass::Transparent).second;
+    const uint64_t chunks = (invocations + kChunk - 1) / kChunk;
+    if (chunks > uint64_t{kMaxGroupsX} * kMaxGroupsX || chunks * kChunk > UINT32_MAX)
+      throw std::logic_error("transparent cluster draws exceed what one draw count and two dispatch dimensions hold");
+    transparentChunks_ = uint32_t(chunks);
+    pipelines_.transparentCull =
+        init.device.createComputePipeline({"transparent cluster cull", "renderer/transparent_cluster_cull.comp"});
+    pipelines_.transparentPack =
+        init.device.createComputePipeline({"transparent cluster pack", "renderer/transparent_cluster_pack.comp"});
+  }
   pipelines_.cull = init.device.createComputePipeline({"mesh frustum cull", "renderer/mesh_cull.comp"});
   drawCount_ = init.device.drawIndirectCount();
   if (drawCount_) pipelines_.compact = init.device.createComputePipeline({"mesh draw compaction", "renderer/mesh_compact.comp"});
@@ -151,6 +207,7 @@ MeshCullOutputs MeshFeature::declareCull(graph::FrameGraph& graph) {
   out.stats = cull.write(out.stats, Access::StorageReadWrite);
   gpu::MeshCullPush push{};
   push.instanceCount = scene.instanceCount;
+  push.firstTransparentGroup = scene.groupRange(DrawClass::Transparent).first;
   gpu::MeshCompactPush compact{};
   if (drawCount_) {
     out.drawList = cull.write(graph.createBuffer("mesh draw list", {commandBytes, {}}), Access::StorageWrite);
@@ -195,42 +252,120 @@ void MeshFeature::declareDraw(graph::FrameGraph& graph, Blackboard& board, std::
   auto& targets = board.get<FrameTargets>();
   auto node = addForwardPass(graph, targets, nodeName, !transparent, depthTest);
   readDrawCommands(node, cull, drawCount_);
-  // Storage buffers are visible per descriptor binding, not per stage: both forward shaders read
-  // through the read-only binding, so every buffer this node reads is declared for both stages
-  // (synchronization validation checks each read against the stages the barriers cover).
-  constexpr graph::StageMask kForwardStages = kStageVertexShader | kStageFragmentShader;
   node.read(cull.visible, Access::StorageRead, kForwardStages);
+  const ClusteredLights clusters = readLightLists(node, board);
+  const rhi::PipelineId pipeline = transparent ? pipelines_.transparent : pipelines_.opaque;
+  node.setJob([push = forwardPush(nodeName, transparent), pipeline, clusters, cull, batches = batchesOf(scene, classes),
+               drawCount = drawCount_, opaqueDepth = opaqueDepthSource(targets, depthTest),
+               &scene](graph::JobContext& context) mutable {
+    auto& ctx = rhi::rhiContext(context);
+    auto& cmd = ctx.cmd();
+    setFramePush(push, ctx, scene, clusters, opaqueDepth);
+    push.visible = ctx.storageBufferIndex(cull.visible);
+    cmd.bindPipeline(pipeline);
+    cmd.push(push);
+    drawBatches(ctx, scene, cull, batches, drawCount);
+  });
+  node.recordingFixed();
+}
+
+gpu::ForwardPush MeshFeature::forwardPush(std::string_view nodeName, bool transparent) const {
   gpu::ForwardPush push{};
-  push.materials = device_->storageBufferIndex(scene.materials);
+  push.materials = device_->storageBufferIndex(scene_->materials);
   push.clusterCounts = push.clusterIndices = rhi::kInvalidId;
-  push.materialSampler = device_->samplerIndex(scene.materialSampler);
+  push.materialSampler = device_->samplerIndex(scene_->materialSampler);
   push.flags = (transparent ? gpu::kForwardTransparent : 0u) |
                (nodeName == injectNanPass_ ? gpu::kForwardInjectNan : 0u) |
                (nodeName == injectBiasPass_ ? gpu::kForwardInjectBias : 0u);
-  ClusteredLights clusters;
-  if (const auto* published = board.find<ClusteredLights>()) {
-    clusters = *published;
-    node.read(clusters.counts, Access::StorageRead, kForwardStages);
-    node.read(clusters.indices, Access::StorageRead, kForwardStages);
-  }
-  const rhi::PipelineId pipeline = transparent ? pipelines_.transparent : pipelines_.opaque;
-  node.setJob([push, pipeline, clusters, cull, batches = batchesOf(scene, classes), drawCount = drawCount_,
-               opaqueDepth = opaqueDepthSource(targets, depthTest), &scene](graph::JobContext& context) mutable {
+  return push;
+}
+
+// The transparent instances' LOD cut, per instance in the frame's back-to-front order (the command
+// template's transparent groups: one instance each, GPU instances firstSlot...). Two dispatches:
+// the cut and frustum tests write each chunk's kept draws in order (transparent_cluster_cull.comp),
+// then every chunk's draws are packed after the chunks before it (transparent_cluster_pack.comp).
+TransparentClusterDraws MeshFeature::declareTransparentCull(graph::FrameGraph& graph, MeshCullOutputs& cull) const {
+  const GpuScene& scene = *scene_;
+  const auto [firstGroup, slotCount] = scene.groupRange(DrawClass::Transparent);
+  const uint64_t draws = uint64_t{transparentChunks_} * kChunk;
+  TransparentClusterDraws out;
+  auto node = graph.addNode("Transparent Cluster Cull", graph::NodeType::Compute);
+  // Written whole by the first dispatch; the packing reads them after a barrier in the node.
+  out.chunkCommands =
+      node.write(graph.createBuffer("transparent chunk draws", {draws * kCommandStride, {}}), Access::StorageWrite);
+  out.chunkTotals = node.write(graph.createBuffer("transparent chunk totals", {uint64_t{16} * transparentChunks_, {}}),
+                               Access::StorageWrite);
+  out.packed =
+      node.write(graph.createBuffer("transparent cluster draws", {draws * kCommandStride, {}}), Access::StorageWrite);
+  out.drawCount = node.write(graph.createBuffer("transparent cluster draw count", {4, {}}), Access::StorageWrite);
+  cull.stats = node.write(cull.stats, Access::StorageReadWrite);  // its transparent cluster words
+  const TransparentClusters& clusters = scene.clusterGeometry.transparent;
+  gpu::TransparentCullPush push{};
+  push.clusters = device_->storageBufferIndex(scene.clusterGeometry.clusters);
+  push.meshes = device_->storageBufferIndex(clusters.meshes);
+  push.entries = device_->storageBufferIndex(clusters.entries);
+  push.firstSlot = scene.groups[firstGroup].firstSlot;
+  push.slotCount = slotCount;
+  push.entryStride = clusters.maxEntries;
+  push.chunkCount = transparentChunks_;
+  push.lodThreshold = lodThreshold_;
+  node.setJob([push, pipelines = pipelines_, out, stats = cull.stats, &scene](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
     const FrameBuffers& frame = scene.frame(ctx.execution());
     push.frame = frame.constantsIndex;
     push.instances = frame.instancesIndex;
-    push.lights = frame.lightsIndex;
-    push.visible = ctx.storageBufferIndex(cull.visible);
-    push.opaqueDepth = opaqueDepth.push(ctx);
-    if (clusters.counts.valid()) {
-      push.clusterCounts = ctx.storageBufferIndex(clusters.counts);
-      push.clusterIndices = ctx.storageBufferIndex(clusters.indices);
-    }
+    push.chunkCommands = ctx.storageBufferIndex(out.chunkCommands);
+    push.chunkTotals = ctx.storageBufferIndex(out.chunkTotals);
+    push.packed = ctx.storageBufferIndex(out.packed);
+    push.drawCount = ctx.storageBufferIndex(out.drawCount);
+    push.stats = ctx.storageBufferIndex(stats);
+    const uint32_t groupsX = std::min(push.chunkCount, kMaxGroupsX);
+    const uint32_t groupsY = (push.chunkCount + groupsX - 1) / groupsX;
+    cmd.bindPipeline(pipelines.transparentCull);
+    cmd.push(push);
+    cmd.dispatch(groupsX, groupsY);
+    cmd.computeBarrier();  // the packing reads every chunk's draws and totals
+    cmd.bindPipeline(pipelines.transparentPack);
+    cmd.push(push);
+    cmd.dispatch(groupsX, groupsY);
+  });
+  node.recordingFixed();
+  return out;
+}
+
+// "Mesh Render Transparent" from the LOD cut's cluster draws: with a count buffer the packed
+// draws, otherwise every chunk's draws (the tail of each chunk zero draws).
+void MeshFeature::declareTransparentClusterDraw(graph::FrameGraph& graph, Blackboard& board,
+                                                const TransparentClusterDraws& draws) {
+  const GpuScene& scene = *scene_;
+  auto& targets = board.get<FrameTargets>();
+  const std::string_view nodeName = "Mesh Render Transparent";
+  auto node = addForwardPass(graph, targets, nodeName, false, transparentDepthTest_);
+  if (drawCount_) {
+    node.read(draws.packed, Access::Indirect);
+    node.read(draws.drawCount, Access::Indirect);
+  } else {
+    node.read(draws.chunkCommands, Access::Indirect);
+  }
+  const ClusteredLights clusters = readLightLists(node, board);
+  gpu::ForwardPush push = forwardPush(nodeName, true);
+  push.flags |= gpu::kForwardInstanceIsSlot;
+  push.visible = rhi::kInvalidId;
+  node.setJob([push, pipeline = pipelines_.transparent, clusters, draws, drawCount = drawCount_,
+               maxDraws = transparentChunks_ * kChunk, opaqueDepth = opaqueDepthSource(targets, transparentDepthTest_),
+               &scene](graph::JobContext& context) mutable {
+    auto& ctx = rhi::rhiContext(context);
+    auto& cmd = ctx.cmd();
+    setFramePush(push, ctx, scene, clusters, opaqueDepth);
     cmd.bindPipeline(pipeline);
     cmd.push(push);
-    drawBatches(ctx, scene, cull, batches, drawCount);
+    bindGeometry(cmd, scene, scene.clusterGeometry.transparent.indices);
+    if (drawCount)
+      cmd.drawIndexedIndirectCount(ctx.buffer(draws.packed), 0, ctx.buffer(draws.drawCount), 0, maxDraws,
+                                   kCommandStride);
+    else
+      cmd.drawIndexedIndirect(ctx.buffer(draws.chunkCommands), 0, maxDraws, kCommandStride);
   });
   node.recordingFixed();
 }
@@ -260,11 +395,16 @@ void MeshFeature::declareDepthPrepass(graph::FrameGraph& graph, Blackboard& boar
 
 void MeshFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
   if (!enabled()) return;
-  const MeshCullOutputs cull = declareCull(graph);
+  MeshCullOutputs cull = declareCull(graph);
+  TransparentClusterDraws clusterDraws;
+  if (transparentLod_) clusterDraws = declareTransparentCull(graph, cull);
   declareReadback(graph, "Mesh Stats Readback", cull.stats, statsReadback_, "mesh cull stats readback", kStatsBytes);
   if (depthPrepass_) declareDepthPrepass(graph, board, cull);
   if (drawsOpaque_) declareDraw(graph, board, {DrawClass::Opaque, DrawClass::Masked}, "Mesh Render", cull);
-  if (hasTransparent_) declareDraw(graph, board, {DrawClass::Transparent}, "Mesh Render Transparent", cull);
+  if (transparentLod_)
+    declareTransparentClusterDraw(graph, board, clusterDraws);
+  else if (hasTransparent_)
+    declareDraw(graph, board, {DrawClass::Transparent}, "Mesh Render Transparent", cull);
 }
 
 void MeshFeature::addStats(std::map<std::string, double>& stats) const {
@@ -273,6 +413,11 @@ void MeshFeature::addStats(std::map<std::string, double>& stats) const {
   stats["instances_visible"] = read.instancesVisible;
   stats["triangles_visible"] = read.trianglesVisible;
   if (drawCount_) stats["draws_issued"] = read.drawsIssued;
+  // What "Mesh Render Transparent" drew: full detail, or (option "lod") the LOD cut's clusters.
+  stats["transparent_triangles_drawn"] = transparentLod_ ? read.transparentClusterTriangles : read.transparentTriangles;
+  if (!transparentLod_) return;
+  stats["transparent_clusters_drawn"] = read.transparentClusters;
+  stats["transparent_whole_meshes_drawn"] = read.transparentWholeMeshes;
 }
 
 }  // namespace fgb::features

@@ -11,20 +11,38 @@
 // Transparent" is declared (with the cull it needs), which depth-tests as the path says: there in
 // its fragment shader against the opaque depth buffer "Material Shade" wrote (no depth attachment:
 // DepthTest::OpaqueDepthBuffer); the opaque scene is the visbuffer feature's.
+// With the option "lod" (the visibility-buffer path, which uploads the clusters) and
+// render.lod_error > 0, transparent instances draw their LOD cut instead of their index range:
+// "Transparent Cluster Cull" (compute) keeps, per transparent instance in the frame's
+// back-to-front order, the clusters of its mesh's DAG in the cut (the opaque clusters' rule:
+// include/clusters.glsl) and inside the frustum, as one indexed draw each, packed in that order;
+// "Mesh Render Transparent" issues them with one vkCmdDrawIndexedIndirectCount, so the blend
+// order across instances is the sorted one. At render.lod_error=0 it draws the index range as
+// without the option (full detail, the same image).
 #pragma once
-
-#include "../context/render_feature.hpp"
 
 #include <vector>
 
+#include "../context/render_feature.hpp"
+#include "renderer/shared/meshes.h"
+
 namespace fgb::features {
 
-// Visible-instance counts read back from the GPU (the last finished frame).
+// Visible-instance counts read back from the GPU (the last finished frame); the shaders index
+// the words (mesh_cull.comp, mesh_compact.comp, transparent_cluster_pack.comp).
 struct MeshCullStats {
   uint32_t instancesVisible = 0;
   uint32_t trianglesVisible = 0;
-  uint32_t drawsIssued = 0;  // packed commands (groups with visible instances)
+  uint32_t drawsIssued = 0;           // packed commands (groups with visible instances)
+  uint32_t transparentTriangles = 0;  // of the visible transparent instances, full detail
+  // The LOD cut of the transparent instances ("lod"): what "Mesh Render Transparent" drew, as
+  // cluster draws and whole meshes (instances whose cut is level 0 throughout), and the triangles.
+  uint32_t transparentClusters = 0;
+  uint32_t transparentClusterTriangles = 0;
+  uint32_t transparentWholeMeshes = 0;
+  uint32_t reserved = 0;
 };
+static_assert(sizeof(MeshCullStats) == 32);
 
 // What "Mesh Frustum Cull" writes and the draw nodes read.
 struct MeshCullOutputs {
@@ -35,10 +53,18 @@ struct MeshCullOutputs {
   graph::BufferHandle stats;       // MeshCullStats
 };
 
+// What "Transparent Cluster Cull" writes and "Mesh Render Transparent" draws (option "lod").
+struct TransparentClusterDraws {
+  graph::BufferHandle chunkCommands;  // per chunk: its kept draws, then zero draws (no draw count)
+  graph::BufferHandle chunkTotals;    // uvec4 per chunk: kept draws, of which whole meshes, triangles
+  graph::BufferHandle packed;         // every kept draw in blend order
+  graph::BufferHandle drawCount;      // uint: draws in `packed`
+};
+
 class MeshFeature final : public IRenderFeature {
  public:
-  // drawsOpaque: the path's "opaque" option (feature_registry.cpp).
-  explicit MeshFeature(bool drawsOpaque = true) : drawsOpaque_(drawsOpaque) {}
+  // drawsOpaque, lod: the path's "opaque" and "lod" options (feature_registry.cpp).
+  explicit MeshFeature(bool drawsOpaque = true, bool lod = false) : drawsOpaque_(drawsOpaque), lod_(lod) {}
   [[nodiscard]] std::string_view name() const override { return "meshes"; }
   [[nodiscard]] bool enabled() const override { return instanceCount_ > 0 && (drawsOpaque_ || hasTransparent_); }
   void initialize(FeatureInit& init) override;
@@ -55,12 +81,17 @@ class MeshFeature final : public IRenderFeature {
     rhi::PipelineId opaque;
     rhi::PipelineId transparent;
     rhi::PipelineId depthOnly;
+    rhi::PipelineId transparentCull;  // option "lod"
+    rhi::PipelineId transparentPack;
   };
 
   MeshCullOutputs declareCull(graph::FrameGraph& graph);
+  TransparentClusterDraws declareTransparentCull(graph::FrameGraph& graph, MeshCullOutputs& cull) const;
   void declareDepthPrepass(graph::FrameGraph& graph, Blackboard& board, const MeshCullOutputs& cull);
   void declareDraw(graph::FrameGraph& graph, Blackboard& board, std::vector<DrawClass> batches,
                    std::string_view nodeName, const MeshCullOutputs& cull);
+  void declareTransparentClusterDraw(graph::FrameGraph& graph, Blackboard& board, const TransparentClusterDraws& draws);
+  [[nodiscard]] gpu::ForwardPush forwardPush(std::string_view nodeName, bool transparent) const;
 
   rhi::Device* device_ = nullptr;
   const GpuScene* scene_ = nullptr;
@@ -78,6 +109,11 @@ class MeshFeature final : public IRenderFeature {
   // buffer: in forward.frag).
   DepthTest transparentDepthTest_ = DepthTest::Attachment;
   bool drawCount_ = false;  // the device has vkCmdDrawIndexedIndirectCount
+  // The option "lod"; transparentLod_: it applies (clusters uploaded, render.lod_error > 0).
+  bool lod_ = false;
+  bool transparentLod_ = false;
+  float lodThreshold_ = 0.0f;       // scene pixels (render.lod_error x render.ssaa)
+  uint32_t transparentChunks_ = 0;  // "Transparent Cluster Cull"'s workgroups (chunks of draws)
 };
 
 }  // namespace fgb::features

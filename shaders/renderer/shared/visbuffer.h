@@ -135,15 +135,6 @@ struct HizPush {
 };
 FGB_CHECK_PUSH(HizPush, 28)
 
-// The HiZ build's indirect arguments (hiz_args.comp).
-struct HizArgsPush {
-  uint rasterArgs;  // "Triangle Filter (late)"'s snapshot (read)
-  uint args;        // written: one VkDispatchIndirectCommand (uvec3) per pass (hizPasses)
-  uint width;       // the viewport
-  uint height;
-};
-FGB_CHECK_PUSH(HizArgsPush, 16)
-
 // The raster's indirect arguments (vis_args.comp).
 struct ArgsPush {
   uint counters;       // read

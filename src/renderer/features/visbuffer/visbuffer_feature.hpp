@@ -13,8 +13,8 @@
 //   clusters hidden behind last frame's HiZ pyramid (a persistent buffer), then
 //   "HiZ Build"                 the pyramid of the depths phase 1 rasterised;
 //   "Cluster Cull (late)"       the held-back clusters against it: the visible ones go through
-//   "Triangle Filter (late)", "Visibility Raster (late)" (counters of their own), and
-//   "HiZ Build (late)"          the pyramid of the whole frame, for the next frame's phase 1;
+//   "Triangle Filter (late)", "Visibility Raster (late)" (counters of their own); the next
+//                               frame's phase 1 tests against this frame's pyramid (one build);
 //   "Material Shade"            rebuilds each pixel's triangle, shades it like forward.frag (shared
 //                               include) into the HDR target, writes the pixel depths into
 //                               "visibility depth" (FrameTargets::opaqueDepth), against which the
@@ -61,7 +61,6 @@ class VisBufferFeature final : public IRenderFeature {
     rhi::PipelineId clearImage;  // image backing only
     rhi::PipelineId cullLate;    // render.occlusion only
     rhi::PipelineId hizBuild;    // render.occlusion only
-    rhi::PipelineId hizArgs;     // render.occlusion only
   };
   struct Buffers;
 
@@ -71,7 +70,7 @@ class VisBufferFeature final : public IRenderFeature {
   void declareClusterCullLate(graph::FrameGraph& graph, Buffers& buffers) const;
   void declareTriangleFilter(graph::FrameGraph& graph, Buffers& buffers, VisPhase& phase) const;
   void declareRaster(graph::FrameGraph& graph, Buffers& buffers, const VisPhase& phase) const;
-  void declareHizBuild(graph::FrameGraph& graph, Buffers& buffers, bool late) const;
+  void declareHizBuild(graph::FrameGraph& graph, Buffers& buffers) const;
   void declareShade(graph::FrameGraph& graph, Blackboard& board, Buffers& buffers) const;
 
   rhi::Device* device_ = nullptr;

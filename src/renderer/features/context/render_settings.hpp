@@ -56,6 +56,9 @@ struct RenderSettings {
   // Size the scene passes (meshes, lights, particles) render at: the output size times render.ssaa.
   [[nodiscard]] uint32_t sceneWidth() const { return width * ssaa; }
   [[nodiscard]] uint32_t sceneHeight() const { return height * ssaa; }
+  // The LOD cut's error bound in scene pixels: render.lod_error is in output pixels, and the scene
+  // passes have render.ssaa times as many.
+  [[nodiscard]] float lodThresholdScenePixels() const { return lodError * float(ssaa); }
 };
 
 // The renderer's entries of the knob registry (every key below, with its type and range).

@@ -148,12 +148,12 @@ void MeshFeature::initialize(FeatureInit& init) {
   device_ = &init.device;
   transparentDepthTest_ = init.path.depthTest;
   if (!enabled()) return;
-  // render.lod_error is in output pixels; the scene passes have render.ssaa times as many. At 0
-  // the index range is full detail in the index buffer's triangle order: the image without LOD.
+  // At render.lod_error=0 the index range is full detail in the index buffer's triangle order: the
+  // image without LOD.
   const TransparentClusters& clusters = init.scene.clusterGeometry.transparent;
   transparentLod_ = lod_ && hasTransparent_ && clusters.maxEntries > 0 && init.settings.lodError > 0.0f;
   if (transparentLod_) {
-    lodThreshold_ = init.settings.lodError * float(init.settings.ssaa);
+    lodThreshold_ = init.settings.lodThresholdScenePixels();
     // One invocation per (transparent instance, cluster of the largest transparent mesh).
     const uint64_t invocations = uint64_t{clusters.maxEntries} * scene_->groupRange(DrawClass::Transparent).second;
     const uint64_t chunks = (invocations + kChunk - 1) / kChunk;

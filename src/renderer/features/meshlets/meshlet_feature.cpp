@@ -57,8 +57,7 @@ void MeshletFeature::initialize(FeatureInit& init) {
     throw InputError("render.path=" + init.path.source + " needs VK_EXT_mesh_shader (task and mesh shaders), which " +
                      init.device.adapter().name + " lacks");
   if (!enabled()) return;
-  // render.lod_error is in output pixels; the scene passes have render.ssaa times as many.
-  lodThreshold_ = lod_ ? init.settings.lodError * float(init.settings.ssaa) : 0.0f;
+  lodThreshold_ = lod_ ? init.settings.lodThresholdScenePixels() : 0.0f;
   // The small-triangle test knows the sample positions only where they are the standard ones.
   const uint32_t samples = init.settings.msaa;
   const bool smallTriangles = samples == 1 || init.device.standardSampleLocations();

@@ -114,8 +114,7 @@ void VisBufferFeature::initialize(FeatureInit& init) {
   imageBacking_ = init.settings.visBacking == VisBacking::Image;
   occlusion_ = init.settings.occlusion;
   occlusionHoldBack_ = occlusion_ && init.settings.occlusionHoldBack;
-  // render.lod_error is in output pixels; the scene passes have render.ssaa times as many.
-  lodThreshold_ = lod_ ? init.settings.lodError * float(init.settings.ssaa) : 0.0f;
+  lodThreshold_ = lod_ ? init.settings.lodThresholdScenePixels() : 0.0f;
   // The word accesses are compiled per backing: the image variants declare 64-bit image
   // capabilities, which a device without them refuses even where unused.
   const auto backed = [&](const char* shader) {

@@ -5,6 +5,8 @@
 #include <fgb/core/stopwatch.hpp>
 #include <fgb/harness/run/render_path.hpp>
 #include <fgb/harness/run/run_loop.hpp>
+#include <map>
+#include <string>
 
 namespace fgb::harness {
 namespace {
@@ -125,17 +127,24 @@ RenderedImages ConfigurationRenderer::readImages() {
 
 namespace {
 
+// `request`'s configuration with `knobs` set, opened alone and rendered once: its display image.
+Image renderOnce(const WorkloadOpener& open, const RenderRequest& request,
+                 const std::map<std::string, std::string>& knobs) {
+  render::WorkloadConfig config = request.workload;
+  for (const auto& [key, value] : knobs) config.knobs[key] = value;
+  ConfigurationRenderer still(open, config);
+  still.warmUp(1);
+  return still.readImages().display;
+}
+
 // The slowest path frames again, each opened alone as a still view at its path time: the frame it
 // was (camera.time renders the same image the path does at that time).
 std::vector<SlowFrame> renderSlowestFrames(const WorkloadOpener& open, const RenderRequest& request,
                                            const RunResult& run) {
   std::vector<SlowFrame> frames;
   for (const std::size_t f : run.slowestFrames(request.slowestFrames)) {
-    render::WorkloadConfig config = request.workload;
-    config.knobs["camera.time"] = fmt::format("{}", run.framePathTimeS[f]);
-    ConfigurationRenderer still(open, config);
-    still.warmUp(1);
-    frames.push_back({f, run.framePathTimeS[f], still.readImages().display});
+    const double time = run.framePathTimeS[f];
+    frames.push_back({f, time, renderOnce(open, request, {{"camera.time", fmt::format("{}", time)}})});
   }
   return frames;
 }
@@ -146,12 +155,9 @@ std::vector<DebugViewImage> renderDebugViews(const WorkloadOpener& open, const R
                                              const RunResult& run) {
   std::vector<DebugViewImage> views;
   for (const char* view : {"lod", "clusters"}) {
-    render::WorkloadConfig config = request.workload;
-    config.knobs["debug.view"] = view;
-    if (!run.framePathTimeS.empty()) config.knobs["camera.time"] = fmt::format("{}", run.framePathTimeS.back());
-    ConfigurationRenderer still(open, config);
-    still.warmUp(1);
-    views.push_back({view, still.readImages().display});
+    std::map<std::string, std::string> knobs{{"debug.view", view}};
+    if (!run.framePathTimeS.empty()) knobs["camera.time"] = fmt::format("{}", run.framePathTimeS.back());
+    views.push_back({view, renderOnce(open, request, knobs)});
   }
   return views;
 }

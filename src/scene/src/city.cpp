@@ -365,8 +365,8 @@ class CityBuilder {
   }
 
   // The road and the pavements are grids of cells no larger than kGroundCell: the visibility
-  // buffer's raster drops a triangle with a corner behind the eye (docs/ARCHITECTURE.md, the LOD
-  // cut), and at eye height the ground in view starts 3 m ahead, so smaller cells keep every
+  // buffer's raster drops a triangle with a corner behind the eye (docs/architecture/lod.md, "The
+  // cut"), and at eye height the ground in view starts 3 m ahead, so smaller cells keep every
   // visible ground triangle wholly in front. The LOD cut merges them again in the distance.
   static constexpr float kGroundCell = 1.5f;
 

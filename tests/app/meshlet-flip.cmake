@@ -6,11 +6,15 @@
 # single-sided materials, which forward draws. At MSAA 4 on the atrium at 320x180, most triangles
 # cover samples but no pixel centre: a small-triangle test against pixel centres there drops them
 # (HDR-FLIP mean 0.49 against forward, walls see-through; against the sample pattern 0.0006).
-# Optional: -DREFERENCE=visbuffer (the path compared with; default forward), -DKNOBS=--set|k=v|...
+# Optional: -DREFERENCE=visbuffer (the path compared with; default forward), -DTESTED=visbuffer (the
+# path under test, rendered under validation; default meshlet), -DKNOBS=--set|k=v|...
 # (both render with them; default render.lod_error=0) and -DLIMIT=F (both FLIP means; default 0.01),
 # e.g. debug.view=lod, whose colours the meshlet path must give its clusters as the visibility buffer does.
 #   cmake -DFGBENCH=... -DSCENE=atrium.json -DOUT=dir -DWIDTH=640 -DHEIGHT=360 -DMSAA=1 -P meshlet-flip.cmake
 file(REMOVE_RECURSE "${OUT}")
+if(NOT DEFINED TESTED)
+  set(TESTED meshlet)
+endif()
 if(NOT DEFINED REFERENCE)
   set(REFERENCE forward)
 endif()
@@ -23,9 +27,9 @@ if(NOT DEFINED LIMIT)
 endif()
 set(common ${SCENE} --device lavapipe --width ${WIDTH} --height ${HEIGHT} --msaa ${MSAA} --warmup 0 --frames 1
            --no-isolate --quiet ${KNOBS})
-foreach(path ${REFERENCE} meshlet)
+foreach(path ${REFERENCE} ${TESTED})
   set(more "")
-  if(path STREQUAL "meshlet")
+  if(path STREQUAL TESTED)
     set(more --validation)
   endif()
   execute_process(COMMAND ${FGBENCH} run ${common} --set render.path=${path} ${more} --out ${OUT}/${path}
@@ -35,10 +39,10 @@ foreach(path ${REFERENCE} meshlet)
   endif()
 endforeach()
 foreach(image frame.png frame.exr)
-  execute_process(COMMAND ${FGBENCH} compare ${OUT}/${REFERENCE}/${image} ${OUT}/meshlet/${image} --max-flip-mean ${LIMIT}
+  execute_process(COMMAND ${FGBENCH} compare ${OUT}/${REFERENCE}/${image} ${OUT}/${TESTED}/${image} --max-flip-mean ${LIMIT}
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  message(STATUS "${image}, ${REFERENCE} against meshlet:\n${out}")
+  message(STATUS "${image}, ${REFERENCE} against ${TESTED}:\n${out}")
   if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "meshlet differs from ${REFERENCE} in ${image} (exit ${rc}):\n${out}${err}")
+    message(FATAL_ERROR "${TESTED} differs from ${REFERENCE} in ${image} (exit ${rc}):\n${out}${err}")
   endif()
 endforeach()

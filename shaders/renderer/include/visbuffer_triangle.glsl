@@ -112,11 +112,15 @@ ScreenTriangle setupTriangle(mat4 mvp, uvec3 vertices) {
 
 // Vulkan's facing for the default counter-clockwise front face: front when the framebuffer-space
 // area -1/2 sum(x_i y_i+1 - x_i+1 y_i) is positive, i.e. our `area` is negative. The homogeneous
-// form: sign(det(x, y, w)) * sign(w0 w1 w2) is the sign of the projected area.
+// form (Olano and Greer): det(x, y, w) has the sign of the volume of the eye and the triangle,
+// i.e. says which side of the triangle's plane the eye is on, whatever the signs of the w. With
+// every w positive the projected area is det / (w0 w1 w2), so front is det < 0 there too; a
+// triangle with one or three corners behind the eye has w0 w1 w2 < 0, and multiplying by it (as
+// this did) called the visible part of a floor that reaches behind the eye back-facing.
 bool framebufferFront(ScreenTriangle t) {
   if (t.projected) return t.area < 0;
   mat3 m = mat3(t.clip[0].xyw, t.clip[1].xyw, t.clip[2].xyw);
-  return determinant(m) * t.clip[0].w * t.clip[1].w * t.clip[2].w < 0.0;
+  return determinant(m) < 0.0;
 }
 
 // Integer edge functions with the top-left rule (Vulkan/D3D: a sample on an edge belongs to the

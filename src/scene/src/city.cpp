@@ -364,10 +364,12 @@ class CityBuilder {
     globeMaterial_ = material(globe);
   }
 
-  // The road and the pavements are grids of cells no larger than kGroundCell: the visibility
-  // buffer's raster drops a triangle with a corner behind the eye (docs/architecture/lod.md, "The
-  // cut"), and at eye height the ground in view starts 3 m ahead, so smaller cells keep every
-  // visible ground triangle wholly in front. The LOD cut merges them again in the distance.
+  // The road and the pavements are grids of cells no larger than kGroundCell. The cells were
+  // first a workaround: the visibility buffer's raster used to drop a triangle with a corner
+  // behind the eye (docs/architecture/lod.md, "The cut"; fixed since), and at eye height the
+  // ground in view starts 3 m ahead, so smaller cells kept every visible ground triangle wholly in
+  // front. They stay, because the city's goldens and cooked geometry are made of them; the LOD
+  // cut merges them again in the distance.
   static constexpr float kGroundCell = 1.5f;
 
   void placeGround() {

@@ -4,6 +4,7 @@
 
 #include <fgb/core/error.hpp>
 #include <fgb/scene/cache.hpp>
+#include <fgb/scene/code_hash.hpp>
 #include <fgb/scene/cook.hpp>
 #include <fgb/scene/generators.hpp>
 #include <fgb/scene/geometry.hpp>
@@ -100,7 +101,7 @@ Scene loadGenerator(PartLoader& loader, const SceneDescription& d, const Knobs& 
   const GeneratorRef& generator = *d.generator;
   const nlohmann::json params = resolveGeneratorParams(generator, knobs, d.path.string());
   CacheKey key;
-  key.add("generator").add(generator.type).add(params.dump()).add(std::to_string(kCookerVersion));
+  key.add("generator").add(generator.type).add(params.dump()).add(std::to_string(kCookerVersion)).add(kSceneCodeHash);
   return loader.load("generator:" + generator.type, key.finish(), {}, [&] {
     return Produced{generate(generator.type, params), {}};
   });
@@ -121,7 +122,7 @@ Scene loadModel(PartLoader& loader, const SceneDescription& d, const ModelRef& m
     importer = slot.importer;
   }
   CacheKey key;
-  key.add("model").addFile(model.file).add(signature).add(std::to_string(kCookerVersion));
+  key.add("model").addFile(model.file).add(signature).add(std::to_string(kCookerVersion)).add(kSceneCodeHash);
   const std::filesystem::path baseDir = model.file.parent_path();
   return loader.load(model.file.string(), key.finish(), baseDir, [&] {
     if (!importer) {

@@ -1,0 +1,42 @@
+# cmake/CodeHash.cmake, which names the code that cooks in every cooked-cache key: its digest must
+# change when a listed file changes and only then (the same files under another root give the same
+# digest), and an unchanged digest must leave the header untouched (no rebuild).
+#   cmake -DCODE_HASH=cmake/CodeHash.cmake -DWORK=<scratch dir> -P code-hash-check.cmake
+file(REMOVE_RECURSE "${WORK}")
+foreach(root a b)
+  file(WRITE "${WORK}/${root}/src/gen.cpp" "int rows = 8;\n")
+  file(WRITE "${WORK}/${root}/src/shapes.cpp" "int sides = 6;\n")
+  file(WRITE "${WORK}/${root}/list.txt" "${WORK}/${root}/src/shapes.cpp\n${WORK}/${root}/src/gen.cpp\n")
+endforeach()
+function(digest root out)
+  execute_process(COMMAND ${CMAKE_COMMAND} -DLIST=${WORK}/${root}/list.txt -DROOT=${WORK}/${root}
+                          -DOUT=${WORK}/${root}/code_hash.hpp -DNAME=kTestHash -P ${CODE_HASH}
+                  RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "CodeHash.cmake failed for ${root}")
+  endif()
+  file(READ "${WORK}/${root}/code_hash.hpp" header)
+  if(NOT header MATCHES "kTestHash\\[\\] = \"([0-9a-f]+)\"")
+    message(FATAL_ERROR "no digest in ${WORK}/${root}/code_hash.hpp:\n${header}")
+  endif()
+  set(${out} "${CMAKE_MATCH_1}" PARENT_SCOPE)
+endfunction()
+
+digest(a first)
+digest(b other_root)
+if(NOT first STREQUAL other_root)
+  message(FATAL_ERROR "the same files under two roots gave two digests: ${first} ${other_root}")
+endif()
+file(TIMESTAMP "${WORK}/a/code_hash.hpp" before "%s%f")
+execute_process(COMMAND ${CMAKE_COMMAND} -E sleep 1.1)
+digest(a again)
+file(TIMESTAMP "${WORK}/a/code_hash.hpp" after "%s%f")
+if(NOT again STREQUAL first OR NOT before STREQUAL after)
+  message(FATAL_ERROR "nothing changed, yet the digest or the header did (${first} -> ${again}, ${before} -> ${after})")
+endif()
+file(WRITE "${WORK}/a/src/gen.cpp" "int rows = 9;\n")
+digest(a edited)
+if(edited STREQUAL first)
+  message(FATAL_ERROR "editing a listed file left the digest ${first}")
+endif()
+message(STATUS "code-hash-check: digests follow the files (${first} -> ${edited})")

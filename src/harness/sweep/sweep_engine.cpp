@@ -383,16 +383,42 @@ double sweepError(const ConfigurationOutcome& c) {
   return c.pathErrors.empty() ? displayError(c.display) : c.pathErrorMean();
 }
 
-void markFront(SweepResult& result) {
-  std::vector<TradeoffPoint> points;
-  for (const auto& c : result.configurations) {
-    if (c.run.frameGpuMs.empty()) throw DeviceError(c.configuration.label + ": no frames measured");
-    points.push_back({c.run.frameGpuMs, sweepError(c)});
+std::vector<std::string> viewKeys(const SweepResult& result) {
+  std::vector<std::string> keys;
+  for (const SweepAxis& axis : result.axes) {
+    const auto role = result.roles.find(axis.key);
+    if (role != result.roles.end() && role->second == referenceRoleName(ReferenceRole::Content)) keys.push_back(axis.key);
   }
-  const FrontAnalysis front = paretoFront(points, {result.alpha, result.errorFloor});
+  return keys;
+}
+
+std::string viewOf(const SweepResult& result, const ConfigurationOutcome& configuration) {
+  std::string view;
+  for (const std::string& key : viewKeys(result)) {
+    for (const auto& [axis, value] : configuration.configuration.point) {
+      if (axis == key) view += (view.empty() ? "" : " ") + key + "=" + value;
+    }
+  }
+  return view;
+}
+
+void markFront(SweepResult& result) {
+  std::map<std::string, std::vector<std::size_t>> views;  // view -> its configurations
   for (std::size_t i = 0; i < result.configurations.size(); ++i) {
-    result.configurations[i].onFront = front.onFront[i];
-    result.configurations[i].dominatedBy = front.dominatedBy[i];
+    const auto& c = result.configurations[i];
+    if (c.run.frameGpuMs.empty()) throw DeviceError(c.configuration.label + ": no frames measured");
+    views[viewOf(result, c)].push_back(i);
+  }
+  for (const auto& [view, members] : views) {
+    std::vector<TradeoffPoint> points;
+    for (const std::size_t i : members) points.push_back({result.configurations[i].run.frameGpuMs, sweepError(result.configurations[i])});
+    const FrontAnalysis front = paretoFront(points, {result.alpha, result.errorFloor});
+    for (std::size_t k = 0; k < members.size(); ++k) {
+      auto& c = result.configurations[members[k]];
+      c.onFront = front.onFront[k];
+      c.dominatedBy.clear();
+      for (const std::size_t d : front.dominatedBy[k]) c.dominatedBy.push_back(members[d]);
+    }
   }
 }
 

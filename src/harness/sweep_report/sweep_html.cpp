@@ -122,16 +122,18 @@ std::string timeErrorSvg(const SweepResult& result) {
       "\n",
       (top + plotBottom) / 2, escapeXml(errorColumnName(result)));
 
-  // The front as a line, fastest to slowest.
-  std::string line;
+  // Each view's front as a line, fastest to slowest (one view unless a content axis varies).
+  std::map<std::string, std::string> lines;
   for (std::size_t i : frontByTime(result)) {
     const auto& c = result.configurations[i];
-    line += fmt::format("{:.1f},{:.1f} ", px(c.frameGpu.median), py(sweepError(c)));
+    lines[viewOf(result, c)] += fmt::format("{:.1f},{:.1f} ", px(c.frameGpu.median), py(sweepError(c)));
   }
-  svg += fmt::format(
-      R"(<polyline class="front-line" points="{}" fill="none" stroke="#e8710a" stroke-width="2" stroke-dasharray="6 3"/>)"
-      "\n",
-      line);
+  for (const auto& [view, line] : lines) {
+    svg += fmt::format(
+        R"(<polyline class="front-line" points="{}" fill="none" stroke="#e8710a" stroke-width="2" stroke-dasharray="6 3"><title>{}</title></polyline>)"
+        "\n",
+        line, escapeXml(view.empty() ? std::string("the front") : "the front of " + view));
+  }
 
   for (const auto& c : result.configurations) {
     const double e = sweepError(c), cx = px(c.frameGpu.median), cy = py(e);

@@ -302,6 +302,13 @@ std::vector<std::string> referenceLines(const SweepResult& result) {
                                   i + 1, b.label, b.gap()));
     }
   }
+  if (const std::vector<std::string> views = viewKeys(result); !views.empty()) {
+    std::string keys;
+    for (const auto& k : views) keys += (keys.empty() ? "" : ", ") + k;
+    lines.push_back("varied content axis/axes " + keys +
+                    ": each value is a different view with its own reference, so each view has its own front "
+                    "and a configuration is only dominated by one of the same view");
+  }
   if (!result.lookKeys.empty()) {
     std::string keys;
     for (const auto& k : result.lookKeys) keys += (keys.empty() ? "" : ", ") + k;

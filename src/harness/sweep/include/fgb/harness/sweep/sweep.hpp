@@ -330,7 +330,14 @@ void checkReference(const WorkloadOpener& open, ReferenceOutcome& reference, con
 // Compares every configuration with its reference, marks the unresolved ones and the front
 // (runSweep's last step; exposed for the overhead benchmark and tests).
 void compareWithReferences(SweepResult& result);
+// Marks each configuration on or off the front of its view: configurations that differ in a varied
+// content axis (camera.distance, the size, a scene's geometry) render different images, each
+// judged against its own reference, so one never dominates another; each view has its own front.
 void markFront(SweepResult& result);
+// The varied axes whose role is content, in axis order: what tells the views apart.
+std::vector<std::string> viewKeys(const SweepResult& result);
+// The configuration's view: its values of viewKeys ("camera.distance=4"; "" when no content varies).
+std::string viewOf(const SweepResult& result, const ConfigurationOutcome& configuration);
 
 // Renders each configuration and each reference at every path time of `plan` and fills the
 // configurations' pathErrors (runSweep's step before compareWithReferences; nothing without path

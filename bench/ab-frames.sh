@@ -2,17 +2,23 @@
 # A/B frame timing of fgbench binaries on one configuration, the way the notes measure renderer
 # costs (e.g. #17's stability fixes): the binaries run in turn, ROUNDS times, so drift in clocks or
 # load hits all of them alike; each run prints its frame median (p5..p95 over the measured frames)
-# and the median of every pass above 0.01 ms, and the end prints each binary's median over rounds.
+# and the median of every pass above 0.01 ms, and the end prints each binary's median over rounds
+# (the frame, the slowest pass, and with -p PASS that pass too).
 #
-#   bench/ab-frames.sh [-r ROUNDS] BINARY... -- RUN-ARGS...
+#   bench/ab-frames.sh [-r ROUNDS] [-p PASS] BINARY... -- RUN-ARGS...
 #   bench/ab-frames.sh -r 4 old/fgbench build/fgbench -- scenes/atrium.json --device gpu \
 #       --width 1920 --height 1080 --frames 64
 set -euo pipefail
 rounds=3
-if [[ ${1:-} == -r ]]; then rounds=$2; shift 2; fi
+pass=""
+while [[ ${1:-} == -r || ${1:-} == -p ]]; do
+  [[ $# -ge 2 ]] || { echo "$0: $1 needs a value" >&2; exit 2; }
+  if [[ $1 == -r ]]; then rounds=$2; else pass=$2; fi
+  shift 2
+done
 binaries=()
 while [[ $# -gt 0 && $1 != -- ]]; do binaries+=("$1"); shift; done
-[[ $# -gt 0 ]] || { echo "usage: $0 [-r ROUNDS] BINARY... -- RUN-ARGS..." >&2; exit 2; }
+[[ $# -gt 0 ]] || { echo "usage: $0 [-r ROUNDS] [-p PASS] BINARY... -- RUN-ARGS..." >&2; exit 2; }
 shift
 [[ ${#binaries[@]} -gt 0 ]] || { echo "$0: no binary given" >&2; exit 2; }
 for b in "${binaries[@]}"; do [[ -x $b ]] || { echo "$0: $b: not an executable" >&2; exit 2; }; done
@@ -30,16 +36,23 @@ print(f'{sys.argv[2]}: frame {f["median"]:.3f} (p5 {f.get("p5", 0):.3f} p95 {f.g
 PY
   done
 done
-python3 - "$out" "$rounds" "${binaries[@]}" <<'PY'
+python3 - "$out" "$rounds" "$pass" "${binaries[@]}" <<'PY'
 import json, statistics, sys
-out, rounds, binaries = sys.argv[1], int(sys.argv[2]), sys.argv[3:]
+out, rounds, chosen, binaries = sys.argv[1], int(sys.argv[2]), sys.argv[3], sys.argv[4:]
 print("median over rounds (min..max):")
 for i, b in enumerate(binaries):
     runs = [json.load(open(f"{out}/r{r}-b{i}.json")) for r in range(1, rounds + 1)]
     frames = [d["frame_gpu_ms"]["median"] for d in runs]
     names = [p["name"] for p in runs[0]["passes"]]
     top = max(names, key=lambda n: runs[0]["passes"][names.index(n)]["gpu_ms"]["median"])
-    tops = [next(p["gpu_ms"]["median"] for p in d["passes"] if p["name"] == top) for d in runs]
-    print(f"  {b}: frame {statistics.median(frames):.3f} ({min(frames):.3f}..{max(frames):.3f}); "
-          f"{top} {statistics.median(tops):.3f} ({min(tops):.3f}..{max(tops):.3f})")
+    line = f"  {b}: frame {statistics.median(frames):.3f} ({min(frames):.3f}..{max(frames):.3f})"
+    for name in dict.fromkeys([top, chosen]):
+        if not name:
+            continue
+        times = [next((p["gpu_ms"]["median"] for p in d["passes"] if p["name"] == name), None) for d in runs]
+        if None in times:
+            line += f"; {name}: not in every run"
+            continue
+        line += f"; {name} {statistics.median(times):.3f} ({min(times):.3f}..{max(times):.3f})"
+    print(line)
 PY

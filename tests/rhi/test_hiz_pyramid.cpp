@@ -17,8 +17,8 @@ namespace {
 std::vector<uint32_t> referencePyramid(const std::vector<uint32_t>& keys, uint32_t width, uint32_t height) {
   std::vector<uint32_t> pyramid;
   for (uint32_t level = 1; level <= features::hizLevels(width, height); ++level) {
-    for (uint32_t j = 0; j < features::hizLevelSize(height, level); ++j)
-      for (uint32_t i = 0; i < features::hizLevelSize(width, level); ++i) {
+    for (uint32_t j = 0; j < gpu::hizLevelSide(height, level); ++j)
+      for (uint32_t i = 0; i < gpu::hizLevelSide(width, level); ++i) {
         uint32_t farthest = UINT32_MAX;
         for (uint32_t y = j << level; y < std::min(height, (j + 1) << level); ++y)
           for (uint32_t x = i << level; x < std::min(width, (i + 1) << level); ++x)

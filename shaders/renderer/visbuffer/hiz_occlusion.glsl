@@ -8,31 +8,14 @@
 #ifndef FGB_RENDERER_HIZ_OCCLUSION_GLSL
 #define FGB_RENDERER_HIZ_OCCLUSION_GLSL
 
-uvec2 hizLevelSize(uvec2 viewport, uint level) { return (viewport + (1u << level) - 1u) >> level; }
+#include "renderer/shared/hiz.h"
 
-// Offset (in keys) of a level >= 1 in the pyramid buffer.
-uint hizLevelOffset(uvec2 viewport, uint level) {
-  uint offset = 0u;
-  for (uint k = 1u; k < level; ++k) {
-    uvec2 size = hizLevelSize(viewport, k);
-    offset += size.x * size.y;
-  }
-  return offset;
+// The shared layout (renderer/shared/hiz.h) per viewport.
+uvec2 hizLevelSize(uvec2 viewport, uint level) {
+  return uvec2(hizLevelSide(viewport.x, level), hizLevelSide(viewport.y, level));
 }
-
-// Levels until the top one is a single texel (at least 1): ceil(log2(max(W, H))).
-uint hizLevels(uvec2 viewport) { return uint(max(1, findMSB(max(viewport.x, viewport.y) - 1u) + 1)); }
-
-// "HiZ Build"'s dispatches (hiz_build.comp): pass p reads level p * FGB_HIZ_PASS_LEVELS (level 0:
-// the depths) and writes the FGB_HIZ_PASS_LEVELS levels after it, one workgroup per tile of
-// 2^FGB_HIZ_PASS_LEVELS texels square of the level read, i.e. one per texel of the pass's last
-// level (ceil(ceil(W / 2^a) / 2^b) = ceil(W / 2^(a + b))). Host side: hiz_pyramid.hpp.
-uint hizPasses(uvec2 viewport) {
-  return (hizLevels(viewport) + FGB_HIZ_PASS_LEVELS - 1u) / FGB_HIZ_PASS_LEVELS;
-}
-uvec2 hizPassGroups(uvec2 viewport, uint pass) {
-  return hizLevelSize(viewport, (pass + 1u) * FGB_HIZ_PASS_LEVELS);
-}
+uint hizLevelOffset(uvec2 viewport, uint level) { return hizLevelOffset(viewport.x, viewport.y, level); }
+uint hizLevels(uvec2 viewport) { return hizLevels(viewport.x, viewport.y); }
 
 #ifndef FGB_HIZ_BUILD_ONLY
 // Whether a world-space sphere is certainly hidden behind the depths the pyramid `hiz` holds.

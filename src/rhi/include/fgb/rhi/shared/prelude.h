@@ -16,6 +16,9 @@
 //   C++ and std430 layouts differ, and no member initialisers;
 // - spells constants `const uint kName = 1u;`, or #define where GLSL needs a literal (layout
 //   qualifiers such as local_size_x: a constant there becomes LocalSizeId);
+// - may define functions both languages compile (scalar uint/int/float arithmetic, loops), each
+//   marked FGB_INLINE (C++ `constexpr inline`, nothing in GLSL), where the two sides must agree on
+//   a computation (e.g. the HiZ pyramid's layout, renderer/shared/hiz.h);
 // - follows each struct with FGB_CHECK_SIZE(Name, bytes), or FGB_CHECK_PUSH(Name, bytes) for a
 //   push-constant block (a shader declares `layout(push_constant) uniform Push { Name pc; };`).
 //
@@ -39,6 +42,7 @@
 
 #define FGB_GPU_BEGIN namespace fgb::gpu {
 #define FGB_GPU_END }
+#define FGB_INLINE constexpr inline
 #define FGB_CHECK_SIZE(T, bytes) static_assert(sizeof(T) == (bytes), #T ": the C++ size differs from the GPU's");
 #define FGB_CHECK_PUSH(T, bytes) \
   FGB_CHECK_SIZE(T, bytes)       \
@@ -70,6 +74,7 @@ using mat4 = Std430<glm::mat4, 16>;
 
 #define FGB_GPU_BEGIN
 #define FGB_GPU_END
+#define FGB_INLINE
 #ifdef FGB_SHARED_LAYOUT_CHECK
 #define FGB_CHECK_SIZE(T, bytes) \
   layout(std430, binding = 0) buffer FgbSizeOf##T { T value; layout(offset = bytes) uint end; } fgbSizeOf##T;

@@ -5,7 +5,6 @@
 
 #include <fgb/harness/sweep/sweep.hpp>
 #include <fgb/harness/sweep_report/sweep_report.hpp>
-
 #include <string>
 #include <vector>
 
@@ -15,7 +14,8 @@ namespace {
 // A configuration at `point` whose frames all take `ms` and whose LDR-FLIP mean is `error`.
 ConfigurationOutcome measured(std::vector<std::pair<std::string, std::string>> point, double ms, double error) {
   ConfigurationOutcome c;
-  for (const auto& [key, value] : point) c.configuration.label += (c.configuration.label.empty() ? "" : " ") + key + "=" + value;
+  for (const auto& [key, value] : point)
+    c.configuration.label += (c.configuration.label.empty() ? "" : " ") + key + "=" + value;
   c.configuration.point = std::move(point);
   c.run.frameGpuMs.assign(32, ms);
   c.frameGpu.median = ms;

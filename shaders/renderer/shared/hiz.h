@@ -12,7 +12,9 @@
 FGB_GPU_BEGIN
 
 // A viewport side at level `level`: ceil(side / 2^level).
-FGB_INLINE uint hizLevelSide(uint side, uint level) { return (side + (1u << level) - 1u) >> level; }
+FGB_INLINE uint hizLevelSide(uint side, uint level) {
+  return (side + (1u << level) - 1u) >> level;
+}
 
 // Levels until the top one is a single texel (at least 1): ceil(log2(max(W, H))).
 FGB_INLINE uint hizLevels(uint width, uint height) {
@@ -34,7 +36,9 @@ FGB_INLINE uint hizLevelOffset(uint width, uint height, uint level) {
 FGB_INLINE uint hizPasses(uint width, uint height) {
   return (hizLevels(width, height) + FGB_HIZ_PASS_LEVELS - 1u) / FGB_HIZ_PASS_LEVELS;
 }
-FGB_INLINE uint hizPassGroupsAlong(uint side, uint pass) { return hizLevelSide(side, (pass + 1u) * FGB_HIZ_PASS_LEVELS); }
+FGB_INLINE uint hizPassGroupsAlong(uint side, uint pass) {
+  return hizLevelSide(side, (pass + 1u) * FGB_HIZ_PASS_LEVELS);
+}
 
 FGB_GPU_END
 

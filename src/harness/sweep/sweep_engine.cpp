@@ -387,7 +387,8 @@ std::vector<std::string> viewKeys(const SweepResult& result) {
   std::vector<std::string> keys;
   for (const SweepAxis& axis : result.axes) {
     const auto role = result.roles.find(axis.key);
-    if (role != result.roles.end() && role->second == referenceRoleName(ReferenceRole::Content)) keys.push_back(axis.key);
+    if (role != result.roles.end() && role->second == referenceRoleName(ReferenceRole::Content))
+      keys.push_back(axis.key);
   }
   return keys;
 }
@@ -411,7 +412,8 @@ void markFront(SweepResult& result) {
   }
   for (const auto& [view, members] : views) {
     std::vector<TradeoffPoint> points;
-    for (const std::size_t i : members) points.push_back({result.configurations[i].run.frameGpuMs, sweepError(result.configurations[i])});
+    for (const std::size_t i : members)
+      points.push_back({result.configurations[i].run.frameGpuMs, sweepError(result.configurations[i])});
     const FrontAnalysis front = paretoFront(points, {result.alpha, result.errorFloor});
     for (std::size_t k = 0; k < members.size(); ++k) {
       auto& c = result.configurations[members[k]];

@@ -14,6 +14,8 @@
 //   ExecuteRecording/layered_reuse, .../layered_record_every_frame : the same graph, every node
 //             declaring a constant recording key (NodeBuilder::recordingFixed): with reuse its kept
 //             command buffers are submitted again; with debug.record_every_frame every job runs.
+//             layered_reuse keeps one buffer per submit (a block, the default), and
+//             layered_reuse_node_buffers one per node (debug.node_buffers).
 //             Counters record_us and submit_us: the executor's host times per execution.
 // Timestamps on, debug labels off (labels cost one call pair per node; see the "labels" variant).
 // Target (issue): execute with empty jobs in <= 0.5 ms for 10,000 nodes on one core. Empty jobs
@@ -121,7 +123,7 @@ void addCounters(benchmark::State& state, const rhi::ExecutableGraph& graph, uin
       static_cast<double>(count), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
-enum class Keys { None, Reuse, RecordEveryFrame };
+enum class Keys { None, Reuse, ReuseNodeBuffers, RecordEveryFrame };
 
 template <FrameGraph (*Shape)(uint32_t), bool Labels = false, bool Recording = false, Keys keys = Keys::None>
 void executeOnly(benchmark::State& state) {
@@ -135,7 +137,8 @@ void executeOnly(benchmark::State& state) {
                                              .queues = queues,
                                              .separateQueues = separate,
                                              .timestamps = true,
-                                             .recordEveryFrame = keys == Keys::RecordEveryFrame});
+                                             .recordEveryFrame = keys == Keys::RecordEveryFrame,
+                                             .nodeBuffers = keys == Keys::ReuseNodeBuffers});
   gRecordingJobs = gKeyedJobs = false;
   // Warm: first-use allocations out of the way, and every frame-in-flight slot recorded once.
   for (int i = 0; i < 3; ++i) device.wait(device.execute(*graph));
@@ -197,6 +200,9 @@ void reuseShapes(benchmark::internal::Benchmark* bench) {
   bench->Unit(benchmark::kMicrosecond);
 }
 BENCHMARK(executeOnly<layered, false, true, Keys::Reuse>)->Name("ExecuteRecording/layered_reuse")->Apply(reuseShapes);
+BENCHMARK(executeOnly<layered, false, true, Keys::ReuseNodeBuffers>)
+    ->Name("ExecuteRecording/layered_reuse_node_buffers")
+    ->Apply(reuseShapes);
 BENCHMARK(executeOnly<layered, false, true, Keys::RecordEveryFrame>)
     ->Name("ExecuteRecording/layered_record_every_frame")
     ->Apply(reuseShapes);

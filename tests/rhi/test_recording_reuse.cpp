@@ -1,9 +1,11 @@
 // Kept command buffers (graph::NodeBuilder::recordingDependsOn): a node with a key is recorded once
 // per frame in flight and then submitted again while its key is unchanged; a changed key records
-// exactly that node again; a node without a key records every execution; debug.record_every_frame
-// records everything. The results must not depend on which buffers were reused, and
-// synchronization validation must stay silent (kept buffers carry their barriers).
+// exactly that node again (per node, debug.node_buffers) or its block (the nodes of its submit, by
+// default); a node without a key records every execution, and so does its block;
+// debug.record_every_frame records everything. The results must not depend on which buffers were
+// reused, and synchronization validation must stay silent (kept buffers carry their barriers).
 #include <algorithm>
+#include <tuple>
 
 #include "gpu_support.hpp"
 
@@ -23,9 +25,16 @@ class RecordingReuse : public GpuTest {
     readback_ = readbackBuffer("readback", 3 * kBytes);
   }
 
-  // "Fill A" (key: fillA_, the value it fills with), "Fill B" (a constant key), "Fill C" (no key)
-  // each fill a transient; "Copy out" (constant key) copies the three into the readback buffer.
-  std::unique_ptr<rhi::ExecutableGraph> build(bool recordEveryFrame) {
+  struct Layout {
+    bool recordEveryFrame = false;
+    bool nodeBuffers = true;
+    bool keyC = false;
+  };
+
+  // "Fill A" (key: fillA_, the value it fills with), "Fill B" (a constant key), "Fill C" (no key
+  // unless keyC) each fill a transient; "Copy out" (constant key) copies the three into the
+  // readback buffer. One queue: the four nodes are one submit, so one block.
+  std::unique_ptr<rhi::ExecutableGraph> build(Layout layout) {
     graph::FrameGraph g;
     const auto fill = [&](const char* name, graph::BufferHandle buffer, const uint32_t* value) {
       auto node = g.addNode(name, graph::NodeType::Transfer);
@@ -40,7 +49,8 @@ class RecordingReuse : public GpuTest {
     fillA.recordingDependsOn([this] { return uint64_t{fillA_}; });
     auto [fillB, b] = fill("Fill B", g.createBuffer("b", {kBytes}), &kFillB);
     fillB.recordingFixed();
-    auto c = fill("Fill C", g.createBuffer("c", {kBytes}), &kFillC).second;
+    auto [fillC, c] = fill("Fill C", g.createBuffer("c", {kBytes}), &kFillC);
+    if (layout.keyC) fillC.recordingFixed();
 
     auto out = g.importBuffer("readback", {3 * kBytes}, rhi::external(readback_), kHostRead, kHostRead);
     auto copy = g.addNode("Copy out", graph::NodeType::Transfer);
@@ -56,7 +66,9 @@ class RecordingReuse : public GpuTest {
       }
     });
     copy.recordingFixed();
-    return device_->compile(std::move(g), {.name = "reuse", .recordEveryFrame = recordEveryFrame});
+    return device_->compile(
+        std::move(g),
+        {.name = "reuse", .queues = 1, .recordEveryFrame = layout.recordEveryFrame, .nodeBuffers = layout.nodeBuffers});
   }
 
   // Executes once, waits, checks the three regions; returns {recorded, reused}.
@@ -80,7 +92,7 @@ class RecordingReuse : public GpuTest {
 using Counts = std::pair<uint32_t, uint32_t>;
 
 TEST_F(RecordingReuse, KeyedNodesRecordOncePerSlotThenOnlyWhenTheirKeyChanges) {
-  auto graph = build(false);
+  auto graph = build({.nodeBuffers = true});
   // First use of each frame-in-flight slot: everything records.
   for (uint32_t slot = 0; slot < kSlots; ++slot) EXPECT_EQ(frame(*graph), Counts(4, 0)) << "slot " << slot;
   // Then only "Fill C" (no key) records.
@@ -92,16 +104,33 @@ TEST_F(RecordingReuse, KeyedNodesRecordOncePerSlotThenOnlyWhenTheirKeyChanges) {
 }
 
 TEST_F(RecordingReuse, RecordEveryFrameRecordsEveryNode) {
-  auto graph = build(true);
-  for (int i = 0; i < 5; ++i) EXPECT_EQ(frame(*graph), Counts(4, 0)) << "frame " << i;
-  fillA_ = 12;
-  EXPECT_EQ(frame(*graph), Counts(4, 0));
+  for (const bool nodeBuffers : {true, false}) {
+    auto graph = build({.recordEveryFrame = true, .nodeBuffers = nodeBuffers});
+    for (int i = 0; i < 5; ++i) EXPECT_EQ(frame(*graph), Counts(4, 0)) << "frame " << i << ", " << nodeBuffers;
+    fillA_ = 12;
+    EXPECT_EQ(frame(*graph), Counts(4, 0));
+  }
+}
+
+TEST_F(RecordingReuse, BlockIsKeptWhileNoNodeInItChanged) {
+  auto graph = build({.nodeBuffers = false, .keyC = true});
+  for (uint32_t slot = 0; slot < kSlots; ++slot) EXPECT_EQ(frame(*graph), Counts(4, 0)) << "slot " << slot;
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(frame(*graph), Counts(0, 4)) << "steady frame " << i;
+  // A's key changes: the whole block records again, once in each slot, and the data follows.
+  fillA_ = 11;
+  for (uint32_t slot = 0; slot < kSlots; ++slot) EXPECT_EQ(frame(*graph), Counts(4, 0)) << "slot " << slot;
+  EXPECT_EQ(frame(*graph), Counts(0, 4));
+}
+
+TEST_F(RecordingReuse, BlockWithAnUnkeyedNodeRecordsEveryExecution) {
+  auto graph = build({.nodeBuffers = false, .keyC = false});
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(frame(*graph), Counts(4, 0)) << "frame " << i;
 }
 
 // Reused nodes whose neighbours record nothing: the empty nodes' barriers move into the next
 // node that records work (and the submit's last node), which a kept buffer must reproduce, on
-// one queue and on three.
-class RecordingReuseEmptyNodes : public GpuTest, public testing::WithParamInterface<uint32_t> {};
+// one queue and on three, per node and as blocks.
+class RecordingReuseEmptyNodes : public GpuTest, public testing::WithParamInterface<std::tuple<uint32_t, bool>> {};
 
 TEST_P(RecordingReuseEmptyNodes, KeptBuffersCarryTheBarriersOfEmptyNodes) {
   const auto readback = readbackBuffer("readback", kBytes);
@@ -134,7 +163,9 @@ TEST_P(RecordingReuseEmptyNodes, KeptBuffersCarryTheBarriersOfEmptyNodes) {
     ctx.cmd().copyBuffer(ctx.buffer(data), ctx.buffer(out), kBytes);
   });
   copy.recordingFixed();
-  auto graph = device_->compile(std::move(g), {.name = "reuse empty", .queues = GetParam(), .separateQueues = true});
+  const auto [queues, nodeBuffers] = GetParam();
+  auto graph = device_->compile(
+      std::move(g), {.name = "reuse empty", .queues = queues, .separateQueues = true, .nodeBuffers = nodeBuffers});
   for (int frame = 0; frame < 8; ++frame) {
     if (frame == 5) value = 8;  // Fill records again; the others stay kept
     device_->wait(device_->execute(*graph));
@@ -146,9 +177,11 @@ TEST_P(RecordingReuseEmptyNodes, KeptBuffersCarryTheBarriersOfEmptyNodes) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Queues, RecordingReuseEmptyNodes, testing::Values(1u, 3u),
-                         [](const testing::TestParamInfo<uint32_t>& param) {
-                           return std::string("Q").append(std::to_string(param.param));
+INSTANTIATE_TEST_SUITE_P(Queues, RecordingReuseEmptyNodes, testing::Combine(testing::Values(1u, 3u), testing::Bool()),
+                         [](const testing::TestParamInfo<std::tuple<uint32_t, bool>>& param) {
+                           return std::string("Q")
+                               .append(std::to_string(std::get<0>(param.param)))
+                               .append(std::get<1>(param.param) ? "_nodes" : "_blocks");
                          });
 
 }  // namespace

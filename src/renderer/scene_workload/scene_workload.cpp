@@ -390,6 +390,7 @@ class SceneWorkload final : public Workload {
     options.name = "frame";
     if (!settings_.asyncCompute) options.queues = 1;
     options.recordEveryFrame = settings_.recordEveryFrame;
+    options.nodeBuffers = settings_.nodeBuffers;
     if (!settings_.slowPass.empty()) {
       std::vector<std::string> passes;
       for (const auto& node : graph.nodes()) passes.push_back(node.name);

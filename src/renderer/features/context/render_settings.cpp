@@ -130,6 +130,8 @@ const std::vector<RendererKnob>& rendererKnobs() {
            "render.occlusion: phase 1 also holds back every other cluster for phase 2 (tests)", CostOnly, "0"),
       flag("debug.record_every_frame", &S::recordEveryFrame, "record every node every frame (0: reuse unchanged ones)",
            CostOnly, "0"),
+      flag("debug.node_buffers", &S::nodeBuffers,
+           "one command buffer per node (0: one per submit, kept while no node in it changed)", CostOnly, "0"),
       // The passes whose shaders can write a NaN on request (tests of --check-finite).
       text("debug.inject_nan", KnobType::Word, {"none", "Mesh Render", "Meshlet Render", "Bloom"}, &S::injectNanPass,
            "pass that writes a NaN (tests of --check-finite)", Content),

@@ -33,6 +33,7 @@ struct RenderSettings {
   VisBacking visBacking = VisBacking::Auto;     // render.vis_backing = auto | buffer | image
   bool occlusion = false;             // render.occlusion: two-phase HiZ cluster culling (visbuffer)
   bool recordEveryFrame = false;      // debug.record_every_frame: no reuse of kept command buffers
+  bool nodeBuffers = false;           // debug.node_buffers: a command buffer per node, not per submit
   bool occlusionHoldBack = false;     // debug.occlusion_hold_back: phase 1 also holds back odd clusters
   float lodError = 0.25f;             // render.lod_error: output pixels of LOD error (visbuffer; 0: full detail)
   uint32_t ssaa = 1;                  // render.ssaa: scene passes at ssaa*width x ssaa*height

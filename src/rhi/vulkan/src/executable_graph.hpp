@@ -75,9 +75,10 @@ class VulkanGraph final : public rhi::ExecutableGraph {
     bool lastOfSubmit = false;  // the submit's remaining barriers are recorded at its end
     uint64_t staticKey = 0;     // what the graph fixes about the step's recording (hashStaticKeys)
   };
-  // Per frame in flight. Every step has its own primary command buffer, kept from one execution of
-  // the slot to the next: it is recorded again only when the step's key changed (stepKey), else
-  // submitted as it is.
+  // Per frame in flight. Every step has a primary command buffer, kept from one execution of the
+  // slot to the next. Recorded per node, a step's buffer is recorded again only when the step's key
+  // changed (stepKey), else submitted as it is; recorded as blocks, the first step's buffer holds
+  // the whole submit's commands, recorded again when any of its steps' keys changed.
   struct Slot {
     std::vector<Owned<VkCommandPool>> pools;      // per logical queue (buffers reset one by one)
     std::vector<VkCommandBuffer> commandBuffers;  // per step
@@ -90,6 +91,7 @@ class VulkanGraph final : public rhi::ExecutableGraph {
     bool pending = false;
     bool timed = false;  // timings not yet read
     uint32_t spinIterations = 0;  // debug.slow_pass: what this execution's spin ran
+    bool blocks = false;          // the kept buffers hold blocks (one per submit), not nodes
   };
 
   // executable_graph.cpp
@@ -108,7 +110,10 @@ class VulkanGraph final : public rhi::ExecutableGraph {
   void createSpin();
   void hashStaticKeys();
   // executor.cpp
-  void runSubmit(Slot& slot, uint32_t submitIndex, uint64_t execution);
+  void runNodeBuffers(Slot& slot, const graph::Submit& submit, uint64_t execution);
+  void runBlock(Slot& slot, const graph::Submit& submit, uint64_t execution);
+  void beginBuffer(uint32_t bufferStep, VkCommandBufferUsageFlags usage);
+  void endBuffer(Slot& slot);
   [[nodiscard]] bool keyOf(uint32_t stepIndex, uint64_t& key) const;
   [[nodiscard]] uint64_t stepKey(uint32_t stepIndex, uint64_t userKey) const;
   void recordStep(Slot& slot, uint32_t stepIndex, uint64_t execution);
@@ -168,10 +173,11 @@ class VulkanGraph final : public rhi::ExecutableGraph {
   // Recording state of the current execution (executor.cpp).
   struct Recording {
     Slot* slot = nullptr;
-    VkCommandBuffer cmd = VK_NULL_HANDLE;  // the step's buffer, begun lazily: commandBufferForRecording()
+    VkCommandBuffer cmd = VK_NULL_HANDLE;  // the buffer being recorded, begun lazily: commandBufferForRecording()
     VkCommandBufferUsageFlags usage = 0;   // one-time submit unless the buffer may be kept
     VkQueryPool queries = VK_NULL_HANDLE;
     uint32_t step = 0;
+    uint32_t bufferStep = 0;  // whose buffer in Slot::commandBuffers: the step's, or its block's first step's
   } recording_;
   BarrierBatch pendingBarriers_;
   // Hash of the barrier references queued into pendingBarriers_ since it was last emptied: with the
@@ -179,6 +185,7 @@ class VulkanGraph final : public rhi::ExecutableGraph {
   uint64_t pendingSignature_ = 0;
   bool replaying_ = false;            // host state follows a kept buffer: barriers are dropped, not recorded
   std::vector<uint8_t> heapTouched_;  // per heap: a submitted command used it in this execution
+  std::vector<uint8_t> heapTouchedAtBlock_;  // heapTouched_ where the current block began (runBlock)
   uint32_t stepsRecorded_ = 0;        // in the current execution
   uint32_t stepsReused_ = 0;
 

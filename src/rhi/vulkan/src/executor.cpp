@@ -1,8 +1,9 @@
-// Running compiled graphs: record every step in order into its own command buffer (barriers, debug
-// label, timestamps, dynamic rendering, the node's job; all but the job deferred until the job's
-// first command, so nodes that record nothing cost nothing) or submit the step's kept buffer again
-// when its recording key is unchanged, submit per the plan with one timeline semaphore per logical queue,
-// and chain executions — of the same graph (frames in flight) and of sequential graphs.
+// Running compiled graphs: record every step in order (barriers, debug label, timestamps, dynamic
+// rendering, the node's job; all but the job deferred until the job's first command, so nodes that
+// record nothing cost nothing) into one command buffer per submit (a block) or per node, or submit
+// the kept buffer again when the recording keys of its steps are unchanged; submit per the plan
+// with one timeline semaphore per logical queue, and chain executions — of the same graph (frames
+// in flight) and of sequential graphs.
 #include "executable_graph.hpp"
 #include "translate.hpp"
 
@@ -81,7 +82,20 @@ uint64_t VulkanGraph::submit(rhi::RunMode mode) {
 
   std::fill(heapTouched_.begin(), heapTouched_.end(), 0);
   stepsRecorded_ = stepsReused_ = 0;
-  for (uint32_t s = 0; s < compiled_.submits.size(); ++s) runSubmit(slot, s, execution);
+  const bool blocks = !options_.nodeBuffers && mode != rhi::RunMode::Isolated;
+  if (slot.blocks != blocks) {  // the kept buffers hold the other layout: record everything
+    std::fill(slot.reusable.begin(), slot.reusable.end(), 0);
+    std::fill(slot.recorded.begin(), slot.recorded.end(), 0);
+    slot.blocks = blocks;
+  }
+  recording_.slot = &slot;
+  recording_.queries = slot.queries.get();
+  for (const graph::Submit& s : compiled_.submits) {
+    if (blocks)
+      runBlock(slot, s, execution);
+    else
+      runNodeBuffers(slot, s, execution);
+  }
   const auto recorded = Clock::now();
   if (mode == rhi::RunMode::Isolated) {
     submitIsolated(slot, execution);
@@ -102,10 +116,7 @@ uint64_t VulkanGraph::submit(rhi::RunMode mode) {
 // Each step of the submit is recorded into its own buffer, or its kept buffer is reused. Host
 // state (queued barriers, touched heaps) moves on the same way either way, so the next step's key
 // sees what its commands would be.
-void VulkanGraph::runSubmit(Slot& slot, uint32_t submitIndex, uint64_t execution) {
-  const graph::Submit& submit = compiled_.submits[submitIndex];
-  recording_.slot = &slot;
-  recording_.queries = slot.queries.get();
+void VulkanGraph::runNodeBuffers(Slot& slot, const graph::Submit& submit, uint64_t execution) {
   for (uint32_t s = submit.firstStep; s < submit.firstStep + submit.stepCount; ++s) {
     uint64_t key = 0;
     const bool keyed = keyOf(s, key);
@@ -114,11 +125,57 @@ void VulkanGraph::runSubmit(Slot& slot, uint32_t submitIndex, uint64_t execution
       ++stepsReused_;
       continue;
     }
+    beginBuffer(s, keyed ? 0 : VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT);
     recordStep(slot, s, execution);
+    endBuffer(slot);
     slot.keys[s] = key;
     slot.reusable[s] = keyed;
     ++stepsRecorded_;
   }
+}
+
+// The submit's steps share one buffer (a block), reused while every step's key is unchanged. A
+// step's key depends on the host state the steps before it leave, so keys are checked as the steps
+// replay; at the first changed one the host state goes back to where the block began and the
+// whole block records. The previous submit's last step flushed its barriers, so at a block's start
+// nothing is queued: only the touched heaps need putting back.
+void VulkanGraph::runBlock(Slot& slot, const graph::Submit& submit, uint64_t execution) {
+  const uint32_t first = submit.firstStep;
+  const uint32_t end = first + submit.stepCount;
+  if (!pendingBarriers_.empty()) throw DeviceError("internal: barriers queued across a submit boundary");
+  heapTouchedAtBlock_.assign(heapTouched_.begin(), heapTouched_.end());
+  uint32_t s = first;
+  for (uint64_t key = 0; s < end && keyOf(s, key) && slot.reusable[s] && slot.keys[s] == key; ++s) replayStep(slot, s);
+  if (s == end) {
+    stepsReused_ += submit.stepCount;
+    return;
+  }
+  heapTouched_.assign(heapTouchedAtBlock_.begin(), heapTouchedAtBlock_.end());
+  pendingBarriers_.clear();
+  pendingSignature_ = 0;
+  beginBuffer(first, options_.recordEveryFrame ? VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT : 0);
+  for (s = first; s < end; ++s) {
+    slot.reusable[s] = keyOf(s, slot.keys[s]);
+    recordStep(slot, s, execution);
+  }
+  endBuffer(slot);
+  stepsRecorded_ += submit.stepCount;
+}
+
+// Steps recorded from here on go into the buffer of step `bufferStep`, begun at its first command.
+void VulkanGraph::beginBuffer(uint32_t bufferStep, VkCommandBufferUsageFlags usage) {
+  recording_.cmd = VK_NULL_HANDLE;
+  recording_.bufferStep = bufferStep;
+  recording_.usage = usage;
+}
+
+// Ends the buffer begun by beginBuffer; only a buffer that holds commands is submitted.
+void VulkanGraph::endBuffer(Slot& slot) {
+  if (recording_.cmd != VK_NULL_HANDLE) {
+    check(vkEndCommandBuffer(recording_.cmd), "vkEndCommandBuffer");
+    slot.recorded[recording_.bufferStep] = 1;
+  }
+  recording_.cmd = VK_NULL_HANDLE;
 }
 
 // False when the step must be recorded whatever happened before: its node declared no key
@@ -147,15 +204,12 @@ uint64_t VulkanGraph::stepKey(uint32_t stepIndex, uint64_t userKey) const {
   return key;
 }
 
-// A step's buffer is begun only when something is recorded into it: a step that records nothing
-// is not submitted (its barriers move on to the next step that records; the submit's semaphore
-// wait and signal still order the queues).
+// Records the step into the buffer beginBuffer named, which is begun only when something is
+// recorded into it: a buffer of steps that record nothing is not submitted (their barriers move on
+// to the next step that records; the submit's semaphore wait and signal still order the queues).
 void VulkanGraph::recordStep(Slot& slot, uint32_t stepIndex, uint64_t execution) {
   const Step& step = steps_[stepIndex];
   recording_.step = stepIndex;
-  recording_.cmd = VK_NULL_HANDLE;
-  recording_.usage =
-      recordingKeys_[step.node] && !options_.recordEveryFrame ? 0 : VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   queueBarriers(step.before);
   commandBuffer_.beginNode([](void* graph) { static_cast<VulkanGraph*>(graph)->beginStep(); }, this, step.rendering);
   // Attachments are accessed by vkCmdBeginRendering itself (load and store operations): a node
@@ -175,8 +229,7 @@ void VulkanGraph::recordStep(Slot& slot, uint32_t stepIndex, uint64_t execution)
   // Releases to other queues and final import states must be recorded before the submit signals.
   if (step.lastOfSubmit && !pendingBarriers_.empty()) flushBarriers();
   slot.started[stepIndex] = started;
-  slot.recorded[stepIndex] = recording_.cmd != VK_NULL_HANDLE;
-  if (recording_.cmd != VK_NULL_HANDLE) check(vkEndCommandBuffer(recording_.cmd), "vkEndCommandBuffer");
+  slot.recorded[stepIndex] = 0;  // until endBuffer: the buffer that holds its commands is its block's
 }
 
 // The kept buffer of a step is submitted again: move the host state on as recording did (its key
@@ -200,7 +253,7 @@ void VulkanGraph::replayStep(const Slot& slot, uint32_t stepIndex) {
 
 VkCommandBuffer VulkanGraph::commandBufferForRecording() {
   if (recording_.cmd != VK_NULL_HANDLE) return recording_.cmd;
-  const VkCommandBuffer cmd = recording_.slot->commandBuffers[recording_.step];
+  const VkCommandBuffer cmd = recording_.slot->commandBuffers[recording_.bufferStep];
   auto begin = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
   begin.flags = recording_.usage;
   check(vkBeginCommandBuffer(cmd, &begin), "vkBeginCommandBuffer");  // resets what it held

@@ -71,6 +71,11 @@ struct GraphOptions {
   // debug.record_every_frame: run every node's job every execution, ignoring the recording keys
   // (graph::NodeBuilder::recordingDependsOn) that otherwise let a node's kept commands be reused.
   bool recordEveryFrame = false;
+  // debug.node_buffers: one primary command buffer per node. Otherwise the nodes of one submit share
+  // one buffer (a block), kept while every node's key is unchanged and recorded again as a whole
+  // when one changed: fewer buffers to submit, and on NVIDIA less GPU time between nodes. The pass
+  // calibration (RunMode::Isolated) submits nodes one by one, so it always records per node.
+  bool nodeBuffers = false;
   // When set, graph::compile() adds its stages' times to it (CompileOptions::profile).
   graph::CompileProfile* compileProfile = nullptr;
   // Test aid (debug.slow_pass): the alive node named `slowNode` also runs, inside its timestamps and

@@ -47,6 +47,33 @@ TEST(Barriers, SameLayoutWriteAfterWriteOnAStorageImage) {
   expectAllInvariants(g, c, {});
 }
 
+// A node that samples the image it writes as storage (Access::StorageSampledWrite, e.g. a chain
+// of levels): the barrier into it (here the transient's first, from UNDEFINED) is visible to
+// sampled reads too, in GENERAL; the one out of it makes only the storage write available.
+TEST(Barriers, StorageSampledWriteIsGeneralAndVisibleToSampledReads) {
+  FrameGraph g;
+  const TextureHandle out = importOutput(g, "out");
+  const TextureHandle levels = g.createTexture("levels", colorDesc());
+  const TextureHandle levels1 = g.addNode("Chain", NodeType::Compute).write(levels, Access::StorageSampledWrite);
+  NodeBuilder tonemap = g.addNode("Tonemap", NodeType::Compute);
+  tonemap.read(levels1);
+  tonemap.write(out, Access::StorageWrite);
+  const CompiledGraph c = compile(g);
+  const uint32_t index = g.resourceOf(levels);
+  const auto into = barriersAround(c, nodeNamed(g, "Chain"), index, true);
+  ASSERT_EQ(into.size(), 1u);
+  EXPECT_EQ(into[0].oldLayout, Layout::Undefined);
+  EXPECT_EQ(into[0].newLayout, Layout::General);
+  EXPECT_TRUE(hasAll(into[0].dstStages, kStageComputeShader));
+  EXPECT_TRUE(hasAll(into[0].dstAccess, kAccessShaderStorageWrite | kAccessShaderSampledRead));
+  const auto next = barriersAround(c, nodeNamed(g, "Tonemap"), index, true);
+  ASSERT_EQ(next.size(), 1u);
+  EXPECT_EQ(next[0].oldLayout, Layout::General);
+  EXPECT_EQ(next[0].newLayout, Layout::ShaderReadOnly);
+  EXPECT_EQ(next[0].srcAccess, kAccessShaderStorageWrite);
+  expectAllInvariants(g, c, {});
+}
+
 TEST(Barriers, ColorTargetThenSampledChangesLayout) {
   FrameGraph g;
   const TextureHandle out = importOutput(g, "out");

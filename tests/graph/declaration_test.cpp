@@ -216,7 +216,9 @@ INSTANTIATE_TEST_SUITE_P(
         AccessRow{Access::Vertex, true, false, kStageVertexInput, kAccessVertexAttributeRead, Layout::Undefined},
         AccessRow{Access::Index, true, false, kStageVertexInput, kAccessIndexRead, Layout::Undefined},
         AccessRow{Access::Uniform, true, false, kStageComputeShader, kAccessUniformRead, Layout::Undefined},
-        AccessRow{Access::HostRead, true, false, kStageHost, kAccessHostRead, Layout::Undefined}),
+        AccessRow{Access::HostRead, true, false, kStageHost, kAccessHostRead, Layout::Undefined},
+        AccessRow{Access::StorageSampledWrite, false, true, kStageComputeShader,
+                  kAccessShaderStorageWrite | kAccessShaderSampledRead, Layout::General}),
     [](const ::testing::TestParamInfo<AccessRow>& row) {
       std::string name(toString(row.param.access));
       std::erase(name, '-');
@@ -234,7 +236,7 @@ TEST(AccessInfo, ShaderStagesFollowTheNodeTypeUnlessGiven) {
 TEST(Declaration, EachUseRecordsWhatAccessInfoSaysForItsAccessNodeTypeAndStages) {
   constexpr NodeType kTypes[] = {NodeType::Graphics, NodeType::Compute, NodeType::Transfer};
   constexpr StageMask kDeclared[] = {kStageNone, kStageVertexShader, kStageComputeShader | kStageFragmentShader};
-  for (size_t a = 0; a <= static_cast<size_t>(Access::HostRead); ++a) {
+  for (size_t a = 0; a <= static_cast<size_t>(kLastAccess); ++a) {
     const auto access = static_cast<Access>(a);
     for (const NodeType type : kTypes) {
       for (const StageMask stages : kDeclared) {

@@ -135,7 +135,7 @@ const ResourceDecl& FrameGraph::checkUse(uint32_t node, uint32_t version, Resour
   if (node + 1 != nodes_.size()) failUse(decl, ": its NodeBuilder was used after the next node was added");
   if (version >= versions_.size())
     failUse(decl, " uses an unknown " + kindName(kind) + " version " + versionText(version));
-  if (access > Access::HostRead) failUse(decl, ": unknown access " + std::to_string(static_cast<int>(access)));
+  if (access > kLastAccess) failUse(decl, ": unknown access " + std::to_string(static_cast<int>(access)));
   const ResourceDecl& res = resources_[versions_[version].resource];
   if (res.kind != kind) failUse(decl, " uses " + quoted(res.name) + " as a " + kindName(kind));
   return res;

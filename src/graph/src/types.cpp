@@ -44,8 +44,12 @@ constexpr AccessRow kAccessRows[] = {
     {"index", {true, false, kStageVertexInput, kAccessIndexRead, Layout::General}},
     {"uniform", {true, false, kShader, kAccessUniformRead, Layout::General}},
     {"host-read", {true, false, kStageHost, kAccessHostRead, Layout::General}},
+    // The sampled read is the node's own (after its own barrier) but still in its access mask, so
+    // the barrier into the node makes earlier writes (or the layout transition) visible to it too.
+    {"storage-sampled-write",
+     {false, true, kShader, kAccessShaderStorageWrite | kAccessShaderSampledRead, Layout::General}},
 };
-static_assert(std::size(kAccessRows) == static_cast<size_t>(Access::HostRead) + 1);
+static_assert(std::size(kAccessRows) == static_cast<size_t>(kLastAccess) + 1);
 // An unknown access: assume it does everything.
 constexpr AccessRow kUnknownAccess{"?", {true, true, kStageAllCommands, kAccessNone, Layout::General}};
 

@@ -135,9 +135,9 @@ uint32_t Descriptors::addStorageBuffer(VkBuffer buffer) {
   return slot;
 }
 
-uint32_t Descriptors::addSampledTexture(VkImageView view) {
+uint32_t Descriptors::addSampledTexture(VkImageView view, VkImageLayout layout) {
   const uint32_t slot = take(Binding::SampledTextures);
-  const VkDescriptorImageInfo info{VK_NULL_HANDLE, view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+  const VkDescriptorImageInfo info{VK_NULL_HANDLE, view, layout};
   write(Binding::SampledTextures, slot, nullptr, &info);
   added(Binding::SampledTextures, slot, nullptr, &info);
   return slot;

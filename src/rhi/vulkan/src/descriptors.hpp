@@ -77,7 +77,10 @@ class Descriptors {
   [[nodiscard]] VkPipelineLayout pipelineLayout() const { return pipelineLayout_.get(); }
 
   uint32_t addStorageBuffer(VkBuffer buffer);
-  uint32_t addSampledTexture(VkImageView view);
+  // A sampled descriptor in GENERAL is for nodes that hold the image as storage: scoped sets expose
+  // it only to nodes that declared so (graph::Access::StorageSampledWrite), never as a resource
+  // outside the graph.
+  uint32_t addSampledTexture(VkImageView view, VkImageLayout layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
   uint32_t addStorageTexture(VkImageView view, Binding binding);  // StorageTextures or Int64StorageTextures
   uint32_t addSampler(VkSampler sampler);
   void remove(Binding binding, uint32_t index);

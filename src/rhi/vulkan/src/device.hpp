@@ -40,6 +40,9 @@ struct TextureRecord {
   VkImageAspectFlags aspect = 0;
   uint32_t sampledIndex = rhi::kInvalidId;
   uint32_t storageIndex = rhi::kInvalidId;
+  // Sampled and storage usage both: a second sampled descriptor, in the GENERAL layout, for nodes
+  // that hold the image as storage and sample it too (graph::Access::StorageSampledWrite).
+  uint32_t sampledGeneralIndex = rhi::kInvalidId;
 };
 
 struct SamplerRecord {

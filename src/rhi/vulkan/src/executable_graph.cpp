@@ -569,8 +569,9 @@ void VulkanGraph::createScopedSets() {
       if (slot != rhi::kInvalidId) list.push_back(slot);
     };
     for (const graph::ResourceAccess& use : declaration_.accesses(steps_[s].node)) {
+      const bool sampledStorage = use.access == graph::Access::StorageSampledWrite;
       const bool storage = use.access == graph::Access::StorageRead || use.access == graph::Access::StorageWrite ||
-                           use.access == graph::Access::StorageReadWrite;
+                           use.access == graph::Access::StorageReadWrite || sampledStorage;
       if (buffers_[use.resource].valid()) {
         // Only what shaders access: a buffer the node reads as indirect arguments, vertices or a
         // copy source is not in its shaders' tables (the layer would count a shader read of it).
@@ -580,6 +581,7 @@ void VulkanGraph::createScopedSets() {
       } else if (textures_[use.resource].valid()) {
         const TextureRecord& record = device_.texture(textures_[use.resource]);
         if (use.access == graph::Access::Sampled) add(scope.sampled, record.sampledIndex);
+        if (sampledStorage) add(scope.sampled, record.sampledGeneralIndex);
         if (storage)
           add(storageTextureBinding(record.desc.format) == Binding::Int64StorageTextures ? scope.int64StorageTextures
                                                                                          : scope.storageTextures,

@@ -35,6 +35,9 @@ class VulkanJobContext final : public rhi::JobContext {
   uint32_t storageTextureIndex(graph::TextureHandle handle) const override {
     return device_.storageTextureIndex(graph_.textureOf(handle));
   }
+  uint32_t sampledGeneralTextureIndex(graph::TextureHandle handle) const override {
+    return device_.texture(graph_.textureOf(handle)).sampledGeneralIndex;
+  }
   uint64_t execution() const override { return execution_; }
   graph::Extent renderExtent() const override { return extent_; }
 

@@ -115,6 +115,8 @@ rhi::TextureId VulkanDevice::createTextureIn(const rhi::TextureDesc& desc, const
   if (desc.usage & rhi::kTextureSampled) record.sampledIndex = descriptors_->addSampledTexture(record.view.get());
   if (desc.usage & rhi::kTextureStorage)
     record.storageIndex = descriptors_->addStorageTexture(record.view.get(), storageTextureBinding(desc.format));
+  if ((desc.usage & rhi::kTextureSampled) && (desc.usage & rhi::kTextureStorage))
+    record.sampledGeneralIndex = descriptors_->addSampledTexture(record.view.get(), VK_IMAGE_LAYOUT_GENERAL);
 
   const uint32_t slot = takeSlot(freeTextures_, textures_.size());
   if (slot == textures_.size()) textures_.emplace_back();
@@ -152,6 +154,7 @@ void VulkanDevice::destroyBuffer(rhi::BufferId id) {
 void VulkanDevice::destroyTexture(rhi::TextureId id) {
   TextureRecord& record = textures_.at(id.index);
   descriptors_->remove(Binding::SampledTextures, record.sampledIndex);
+  descriptors_->remove(Binding::SampledTextures, record.sampledGeneralIndex);
   descriptors_->remove(storageTextureBinding(record.desc.format), record.storageIndex);
   if (record.ownsMemory) memory_->free(record.allocation);
   record = TextureRecord{};

@@ -18,6 +18,12 @@ bool inGraph(const std::vector<bool>* graphSlots, uint32_t slot) {
   return graphSlots && slot < graphSlots->size() && (*graphSlots)[slot];
 }
 
+// A sampled descriptor in GENERAL stands for storage access (Descriptors::addSampledTexture):
+// hidden like storage textures unless the node declared it.
+bool isSampledGeneral(Binding binding, const VkDescriptorImageInfo& entry) {
+  return binding == Binding::SampledTextures && entry.imageLayout == VK_IMAGE_LAYOUT_GENERAL;
+}
+
 }  // namespace
 
 ScopedSets::ScopedSets(Descriptors& owner, uint32_t count) : owner_(owner) {
@@ -70,13 +76,17 @@ void ScopedSets::fill(uint32_t index, const DescriptorScope& scope) {
       add(Binding::StorageBuffers, slot);
     }
   }
-  // (Storage textures outside the graph stay hidden: a shader writing one would be undeclared work.)
+  // (Storage textures outside the graph stay hidden: a shader writing one would be undeclared work;
+  // so do sampled descriptors in GENERAL, which only a node holding the image as storage may use.)
   for (const Binding binding : {Binding::SampledTextures, Binding::Samplers}) {
     const std::vector<bool>* graphSlots = binding == Binding::SampledTextures ? scope.graphSampled : nullptr;
     const auto& entries = owner_.imageEntries_[at(binding)];
     for (uint32_t slot = 0; slot < owner_.slots_[at(binding)].next; ++slot) {
       const bool live = entries[slot].imageView != VK_NULL_HANDLE || entries[slot].sampler != VK_NULL_HANDLE;
-      if (live && !owner_.private_[at(binding)][slot] && !inGraph(graphSlots, slot)) add(binding, slot);
+      if (live && !owner_.private_[at(binding)][slot] && !inGraph(graphSlots, slot) &&
+          !isSampledGeneral(binding, entries[slot])) {
+        add(binding, slot);
+      }
     }
   }
   // The node's declared resources: written buffers in both storage-buffer bindings.
@@ -94,6 +104,7 @@ void ScopedSets::fill(uint32_t index, const DescriptorScope& scope) {
 void ScopedSets::added(Binding binding, uint32_t slot) {
   // A resource created after the graph: outside it, so visible to every node (read-only).
   if (binding == Binding::StorageTextures || binding == Binding::Int64StorageTextures) return;
+  if (isSampledGeneral(binding, owner_.imageEntries_[at(binding)][slot])) return;
   for (const VkDescriptorSet set : sets_) {
     auto write = vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
     write.dstSet = set;

@@ -169,7 +169,8 @@ rhi::BufferUsage bufferUsageFor(graph::Access access) {
     case Access::Sampled:
     case Access::StorageRead:
     case Access::StorageWrite:
-    case Access::StorageReadWrite: return rhi::kBufferStorage;
+    case Access::StorageReadWrite:
+    case Access::StorageSampledWrite: return rhi::kBufferStorage;
     case Access::TransferSrc: return rhi::kBufferTransferSrc;
     case Access::TransferDst: return rhi::kBufferTransferDst;
     case Access::Indirect: return rhi::kBufferIndirect;
@@ -187,6 +188,7 @@ rhi::TextureUsage textureUsageFor(graph::Access access) {
     case Access::StorageRead:
     case Access::StorageWrite:
     case Access::StorageReadWrite: return rhi::kTextureStorage;
+    case Access::StorageSampledWrite: return rhi::kTextureStorage | rhi::kTextureSampled;
     case Access::ColorAttachmentWrite:
     case Access::ColorAttachmentReadWrite:
     case Access::ResolveDst: return rhi::kTextureColorAttachment;

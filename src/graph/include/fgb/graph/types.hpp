@@ -87,7 +87,12 @@ enum class Access : uint8_t {
   Index,                     // read: index buffer
   Uniform,                   // read: uniform buffer
   HostRead,                  // read: mapped readback after the graph (side effect)
+  // write: storage image, previous contents discarded, that the node also samples (a sampled
+  // descriptor in the GENERAL layout) between its own barriers, e.g. a chain of levels each
+  // dispatch writes and the next one filters. Last so that the values above keep their numbers.
+  StorageSampledWrite,
 };
+inline constexpr Access kLastAccess = Access::StorageSampledWrite;
 
 // Queue/node/resource state a use implies. Stages for shader accesses depend on the node type;
 // StageMask 0 in a use means "derive from the node type".

@@ -38,10 +38,11 @@ class CommandBuffer {
   // one node needs this. Not inside a render pass: compute and transfer nodes only (throws).
   virtual void memoryBarrier(graph::StageMask srcStages, graph::AccessMask srcAccess, graph::StageMask dstStages,
                              graph::AccessMask dstAccess) = 0;
-  // The common case: compute shader writes made visible to compute shader reads and writes.
+  // The common case: compute shader writes made visible to compute shader reads and writes, sampled
+  // reads included (a node that samples what it wrote: graph::Access::StorageSampledWrite).
   void computeBarrier() {
     memoryBarrier(graph::kStageComputeShader, graph::kAccessShaderStorageWrite, graph::kStageComputeShader,
-                  graph::kAccessShaderStorageRead | graph::kAccessShaderStorageWrite);
+                  graph::kAccessShaderStorageRead | graph::kAccessShaderSampledRead | graph::kAccessShaderStorageWrite);
   }
 
   virtual void setViewport(float x, float y, float width, float height) = 0;

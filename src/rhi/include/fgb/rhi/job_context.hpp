@@ -20,6 +20,10 @@ class JobContext : public graph::JobContext {
   [[nodiscard]] virtual uint32_t storageBufferIndex(graph::BufferHandle handle) const = 0;
   [[nodiscard]] virtual uint32_t sampledTextureIndex(graph::TextureHandle handle) const = 0;
   [[nodiscard]] virtual uint32_t storageTextureIndex(graph::TextureHandle handle) const = 0;
+  // A sampled-texture index whose descriptor is in the GENERAL layout, for a texture the node
+  // declared graph::Access::StorageSampledWrite: the node may sample it (after its own barrier)
+  // between dispatches that write it as storage.
+  [[nodiscard]] virtual uint32_t sampledGeneralTextureIndex(graph::TextureHandle handle) const = 0;
   // How many times this graph ran before (0 on the first execution).
   [[nodiscard]] virtual uint64_t execution() const = 0;
   // Extent of the node's attachments (graphics nodes), else 1x1.

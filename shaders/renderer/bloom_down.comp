@@ -1,8 +1,8 @@
 #version 460
 // Bloom downsample (Jimenez, CoD:AW 2014), one level of the "Bloom" node: a 13-tap filter as five
 // overlapping 2x2 boxes. The first downsample (from the HDR image, sampled) weights each box by
-// Karis' 1/(1 + luma) against fireflies, then applies the soft-threshold prefilter; later ones read
-// the previous level (a storage image) with the same bilinear taps.
+// Karis' 1/(1 + luma) against fireflies, then applies the soft-threshold prefilter; later ones
+// sample the previous level (written by the dispatch before, include/bloom.glsl) with the same taps.
 #extension GL_GOOGLE_include_directive : require
 #include "include/bloom.glsl"
 #include "renderer/shared/post.h"
@@ -14,11 +14,7 @@ layout(push_constant) uniform Push { BloomDownPush pc; };
 vec2 gUv;  // centre of this invocation's target texel
 vec2 gSourceTexel;
 
-vec3 tap(vec2 offset) {
-  const vec2 uv = gUv + offset * gSourceTexel;
-  if (pc.sourceIsStorage != 0u) return bilinearLoad(pc.source, uv, pc.sourceSize);
-  return fgbSample(pc.source, pc.linearSampler, uv).rgb;
-}
+vec3 tap(vec2 offset) { return bilinearTap(pc.source, pc.linearSampler, gUv + offset * gSourceTexel); }
 
 float karisWeight(vec3 c) { return 1.0 / (1.0 + luminance(c)); }
 

@@ -12,7 +12,9 @@ layout(push_constant) uniform Push { BloomUpPush pc; };
 
 vec2 gUv;
 
-vec3 tap(float x, float y) { return bilinearLoad(pc.source, gUv + vec2(x, y) * pc.radius / vec2(pc.sourceSize), pc.sourceSize); }
+vec3 tap(float x, float y) {
+  return bilinearTap(pc.source, pc.linearSampler, gUv + vec2(x, y) * pc.radius / vec2(pc.sourceSize));
+}
 
 void main() {
   const ivec2 texel = ivec2(gl_GlobalInvocationID.xy);

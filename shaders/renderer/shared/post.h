@@ -42,30 +42,30 @@ FGB_CHECK_PUSH(ExposureUpdatePush, 16)
 
 // "Bloom": bloom_down.comp.
 struct BloomDownPush {
-  uint source;          // sampled texture index (first level) or storage image index
-  uint sourceIsStorage;
+  uint source;  // sampled texture index: the HDR image, or the previous level's in GENERAL
   uint linearSampler;
   uint target;          // storage image index
+  uint firstMip;
   ivec2 sourceSize;
   ivec2 targetSize;
-  uint firstMip;
   float threshold;      // radiance; applied in the HDR image's pre-exposed units
   float knee;
   uint exposure;        // storage-buffer index of the exposure state
   uint inject;          // kInjectNan (debug.inject_nan=Bloom): the centre texel of the first level is a NaN
 };
-FGB_CHECK_PUSH(BloomDownPush, 56)
+FGB_CHECK_PUSH(BloomDownPush, 48)
 
 // "Bloom": bloom_up.comp.
 struct BloomUpPush {
-  uint source;  // storage image index (smaller level)
+  uint source;  // sampled texture index in GENERAL (smaller level)
   uint target;  // storage image index (larger level)
   ivec2 sourceSize;
   ivec2 targetSize;
-  float radius;     // in source texels
-  uint inject;      // the first level: kInjectNan, its centre texel a NaN; kInjectBias, + kInjectedBias
+  float radius;        // in source texels
+  uint inject;         // the first level: kInjectNan, its centre texel a NaN; kInjectBias, + kInjectedBias
+  uint linearSampler;  // linear, clamp to edge
 };
-FGB_CHECK_PUSH(BloomUpPush, 32)
+FGB_CHECK_PUSH(BloomUpPush, 40)
 
 // "Tone mapping" (include/tonemap.glsl: tonemap.frag, tonemap.comp).
 struct TonemapPush {

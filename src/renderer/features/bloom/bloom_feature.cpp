@@ -53,8 +53,9 @@ void BloomFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
   std::vector<graph::TextureHandle> levels(size_t{mips_} + 1);  // [0] unused: the HDR image
   for (uint32_t level = 1; level <= mips_; ++level) {
     const auto texture = graph.createTexture("bloom " + std::to_string(level), {kHdrFormat, {}, 1, 1, 1, targets.hdr, level});
-    // Written first (the downsample), then read and added to inside the node (barriers in the job).
-    levels[level] = node.write(texture, graph::Access::StorageWrite);
+    // Written first (the downsample), then sampled and added to inside the node (barriers in the
+    // job); sampled in GENERAL, so the texture unit filters the taps.
+    levels[level] = node.write(texture, graph::Access::StorageSampledWrite);
   }
   std::vector<graph::Extent> sizes(size_t{mips_} + 1);
   for (uint32_t level = 0; level <= mips_; ++level) sizes[level] = levelExtent(targets.extent, level);
@@ -69,17 +70,17 @@ void BloomFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
     for (uint32_t level = 1; level <= mips; ++level) {
       if (level > 1) cmd.computeBarrier();  // reads the level the previous dispatch wrote
       const bool first = level == 1;
-      const gpu::BloomDownPush push{first ? ctx.sampledTextureIndex(hdr) : ctx.storageTextureIndex(levels[level - 1]),
-                                    first ? 0u : 1u,
-                                    sampler,
-                                    ctx.storageTextureIndex(levels[level]),
-                                    xy(sizes[level - 1]),
-                                    xy(sizes[level]),
-                                    first ? 1u : 0u,
-                                    bloom.threshold,
-                                    bloom.knee,
-                                    exposure,
-                                    first && injectNan ? gpu::kInjectNan : 0u};
+      const gpu::BloomDownPush push{
+          first ? ctx.sampledTextureIndex(hdr) : ctx.sampledGeneralTextureIndex(levels[level - 1]),
+          sampler,
+          ctx.storageTextureIndex(levels[level]),
+          first ? 1u : 0u,
+          xy(sizes[level - 1]),
+          xy(sizes[level]),
+          bloom.threshold,
+          bloom.knee,
+          exposure,
+          first && injectNan ? gpu::kInjectNan : 0u};
       cmd.push(push);
       dispatchOver(cmd, sizes[level]);
     }
@@ -88,7 +89,7 @@ void BloomFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
       cmd.computeBarrier();
       // debug.inject_nan / inject_bias=Bloom: the last write of level 1 (the level tone mapping reads)
       // holds the NaN or the bias.
-      const gpu::BloomUpPush push{ctx.storageTextureIndex(levels[level]),
+      const gpu::BloomUpPush push{ctx.sampledGeneralTextureIndex(levels[level]),
                                   ctx.storageTextureIndex(levels[level - 1]),
                                   xy(sizes[level]),
                                   xy(sizes[level - 1]),
@@ -96,7 +97,8 @@ void BloomFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
                                   level != 2   ? 0u
                                   : injectNan  ? gpu::kInjectNan
                                   : injectBias ? gpu::kInjectBias
-                                               : 0u};
+                                               : 0u,
+                                  sampler};
       cmd.push(push);
       dispatchOver(cmd, sizes[level - 1]);
     }

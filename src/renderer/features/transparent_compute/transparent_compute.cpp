@@ -1,0 +1,163 @@
+#include "transparent_compute.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <fgb/core/error.hpp>
+#include <fgb/rhi/job_context.hpp>
+#include <stdexcept>
+
+#include "../context/handles.hpp"
+#include "../visbuffer/visbuffer_feature.hpp"
+#include "renderer/shared/transparent.h"
+
+namespace fgb::features {
+namespace {
+
+using graph::Access;
+constexpr graph::QueueClass kQueue = graph::QueueClass::Graphics;
+constexpr uint64_t kCountersBytes = sizeof(gpu::TransparentCounters);
+// Dispatches of one workgroup per draw are (min(n, W), ceil(n / W)) groups (visbuffer.glsl's
+// kDispatchWidth, linearGroup()).
+constexpr uint32_t kDispatchWidth = 32768;
+// A fragment id is (draw << 7) | triangle (kClusterTriangleBits).
+constexpr uint32_t kMaxDraws = 1u << 25;
+
+// Every buffer the three nodes share, and the push fields they have in common.
+struct KBuffers {
+  graph::BufferHandle words;     // the K-buffer
+  graph::BufferHandle counters;  // gpu::TransparentCounters
+  graph::BufferHandle large;     // large triangles' ids
+  graph::BufferHandle draws;
+  graph::BufferHandle drawCount;
+  graph::Extent extent;
+};
+
+}  // namespace
+
+void TransparentComputePasses::initialize(FeatureInit& init, uint32_t maxDraws) {
+  device_ = &init.device;
+  scene_ = &init.scene;
+  if (!init.device.shaderCapabilities().bufferInt64Atomics)
+    throw DeviceError(
+        "render.transparent=compute needs 64-bit storage-buffer atomics (shaderBufferInt64Atomics), which " +
+        init.device.adapter().name + " lacks");
+  if (maxDraws > kMaxDraws) throw std::logic_error("transparent cluster draws exceed the fragment id's 25 draw bits");
+  // Large triangles are few: glass panes near the camera. A list overflow is rasterised by the
+  // small path (slower, same image) and counted.
+  largeCapacity_ = 65536;
+  maxDraws_ = maxDraws;
+  raster_ =
+      init.device.createComputePipeline({"transparent raster", "renderer/transparent_compute/transparent_raster.comp"});
+  shade_ =
+      init.device.createComputePipeline({"transparent shade", "renderer/transparent_compute/transparent_shade.comp"});
+  statsReadback_ = createReadbackBuffer(init.device, "transparent counters readback", kCountersBytes);
+}
+
+void TransparentComputePasses::declare(graph::FrameGraph& graph, Blackboard& board, graph::BufferHandle draws,
+                                       graph::BufferHandle drawCount) const {
+  auto& targets = board.get<FrameTargets>();
+  if (!targets.opaqueDepth.valid())
+    throw std::logic_error("render.transparent=compute before the opaque depth buffer (the visibility buffer's)");
+  const uint64_t pixels = uint64_t{targets.extent.width} * targets.extent.height;
+  const uint64_t wordBytes = uint64_t{8} * FGB_TRANSPARENT_K * pixels;
+  graph::BufferHandle words = graph.createBuffer("transparent k-buffer", {wordBytes, {}});
+  graph::BufferHandle counters = graph.createBuffer("transparent counters", {kCountersBytes, {}});
+  graph::BufferHandle large = graph.createBuffer("transparent large triangles", {uint64_t{4} * largeCapacity_, {}});
+
+  // Every slot empty (all ones: larger than any fragment's word), the counters zero.
+  auto clear = graph.addNode("Transparent Clear", graph::NodeType::Transfer, kQueue);
+  words = clear.write(words, Access::TransferDst);
+  counters = clear.write(counters, Access::TransferDst);
+  clear.setJob([words, counters, wordBytes](graph::JobContext& context) {
+    auto& ctx = rhi::rhiContext(context);
+    ctx.cmd().fillBuffer(ctx.buffer(words), 0, wordBytes, 0xffffffffu);
+    ctx.cmd().fillBuffer(ctx.buffer(counters), 0, kCountersBytes, 0);
+  });
+  clear.recordingFixed();
+
+  gpu::VisPush push = visScenePush(*device_, *scene_);
+  push.largeCapacity = largeCapacity_;
+  const OpaqueDepthSource opaqueDepth = opaqueDepthSource(targets, DepthTest::OpaqueDepthBuffer);
+
+  auto raster = graph.addNode("Transparent Raster", graph::NodeType::Compute, kQueue);
+  raster.read(draws, Access::StorageRead);
+  raster.read(drawCount, Access::StorageRead);
+  raster.read(targets.opaqueDepth, Access::StorageRead);
+  words = raster.write(words, Access::StorageReadWrite);
+  counters = raster.write(counters, Access::StorageReadWrite);
+  large = raster.write(large, Access::StorageWrite);  // appended by the first dispatch, read by the second
+  raster.setJob([push, pipeline = raster_, words, counters, large, draws, drawCount, opaqueDepth, maxDraws = maxDraws_,
+                 scene = scene_](graph::JobContext& context) mutable {
+    auto& ctx = rhi::rhiContext(context);
+    auto& cmd = ctx.cmd();
+    const FrameBuffers& frame = scene->frame(ctx.execution());
+    push.frame = frame.constantsIndex;
+    push.instances = frame.instancesIndex;
+    push.draws = ctx.storageBufferIndex(draws);
+    push.args = ctx.storageBufferIndex(drawCount);
+    push.counters = ctx.storageBufferIndex(counters);
+    push.largeList = ctx.storageBufferIndex(large);
+    push.words = ctx.storageBufferIndex(words);
+    const gpu::OpaqueDepthTest test = opaqueDepth.push(ctx);
+    push.depthOut = test.depths;
+    push.depthCompare = test.compareOp;
+    cmd.bindPipeline(pipeline);
+    cmd.push(push);
+    // One workgroup per possible draw; those past the GPU's count leave at once.
+    const uint32_t groups = std::max(maxDraws, 1u);
+    cmd.dispatch(std::min(groups, kDispatchWidth), (groups + kDispatchWidth - 1) / kDispatchWidth);
+    cmd.computeBarrier();  // the large list and its count, complete
+    gpu::VisPush largePass = push;
+    largePass.flags |= gpu::kFlagLargeTiles;
+    cmd.push(largePass);
+    cmd.dispatch(FGB_TRANSPARENT_LARGE_GROUPS);
+  });
+  raster.recordingFixed();
+  declareReadback(graph, "Transparent Stats Readback", counters, statsReadback_, "transparent counters readback",
+                  kCountersBytes);
+
+  auto shade = graph.addNode("Transparent Shade", graph::NodeType::Compute, kQueue);
+  shade.read(words, Access::StorageRead);
+  shade.read(draws, Access::StorageRead);
+  targets.hdr = shade.write(targets.hdr, Access::StorageReadWrite);
+  ClusteredLights clusters;
+  if (const auto* published = board.find<ClusteredLights>()) {
+    clusters = *published;
+    shade.read(clusters.counts, Access::StorageRead);
+    shade.read(clusters.indices, Access::StorageRead);
+  }
+  if (targets.exposure.valid()) shade.read(targets.exposure, Access::StorageRead);  // pre-exposure
+  shade.setJob([push, pipeline = shade_, words, draws, hdr = targets.hdr, clusters, extent = targets.extent,
+                scene = scene_](graph::JobContext& context) mutable {
+    auto& ctx = rhi::rhiContext(context);
+    auto& cmd = ctx.cmd();
+    const FrameBuffers& frame = scene->frame(ctx.execution());
+    push.frame = frame.constantsIndex;
+    push.instances = frame.instancesIndex;
+    push.lights = frame.lightsIndex;
+    push.draws = ctx.storageBufferIndex(draws);
+    push.words = ctx.storageBufferIndex(words);
+    push.hdr = ctx.storageTextureIndex(hdr);
+    if (clusters.counts.valid()) {
+      push.clusterCounts = ctx.storageBufferIndex(clusters.counts);
+      push.clusterIndices = ctx.storageBufferIndex(clusters.indices);
+    }
+    cmd.bindPipeline(pipeline);
+    cmd.push(push);
+    cmd.dispatch((extent.width + FGB_TRANSPARENT_SHADE_GROUP_SIZE - 1) / FGB_TRANSPARENT_SHADE_GROUP_SIZE,
+                 (extent.height + FGB_TRANSPARENT_SHADE_GROUP_SIZE - 1) / FGB_TRANSPARENT_SHADE_GROUP_SIZE);
+  });
+  shade.recordingFixed();
+  targets.color = targets.hdr;  // single-sampled: later colour passes load the blended image
+}
+
+void TransparentComputePasses::addStats(std::map<std::string, double>& stats) const {
+  gpu::TransparentCounters read{};
+  std::memcpy(&read, device_->mapped(statsReadback_).data(), sizeof(read));
+  stats["transparent_fragments_inserted"] = read.inserted;
+  stats["transparent_fragments_dropped"] = read.dropped;
+  stats["transparent_large_triangles"] = read.largeTriangles;
+  stats["transparent_large_overflow"] = read.largeOverflow;
+}
+
+}  // namespace fgb::features

@@ -1,0 +1,43 @@
+// The visibility-buffer path's transparent meshes in compute (render.transparent=compute; the
+// meshes feature owns them and declares these nodes in place of "Mesh Render Transparent"): from
+// "Transparent Cluster Cull"'s kept cluster draws (cluster form, kTransparentCullClusterIds),
+//   "Transparent Clear"  (transfer) empties the K-buffer and zeroes the counters;
+//   "Transparent Raster" keeps, per pixel, the FGB_TRANSPARENT_K nearest fragments in front of the
+//                        opaque depth (64-bit atomicMin cascade; small triangles one invocation
+//                        each, large ones shared by a workgroup);
+//   "Transparent Shade"  shades each kept fragment as "Material Shade" shades an opaque pixel and
+//                        blends them far to near over the HDR image (the raster pass's blend).
+// Per-pixel sorting blends overlapping instances, and an instance's own layers, in depth order,
+// where the raster pass blends instances back to front by their centres and an instance's
+// triangles in index order. Shaders: shaders/renderer/transparent_compute/; shared constants:
+// renderer/shared/transparent.h.
+#pragma once
+
+#include <map>
+#include <string>
+
+#include "../context/render_feature.hpp"
+
+namespace fgb::features {
+
+class TransparentComputePasses {
+ public:
+  // maxDraws: the most packed draws "Transparent Cluster Cull" writes.
+  void initialize(FeatureInit& init, uint32_t maxDraws);
+  // After the opaque scene (FrameTargets::opaqueDepth written); draws, drawCount: the packed
+  // cluster draws and their count. Writes FrameTargets::hdr (and color).
+  void declare(graph::FrameGraph& graph, Blackboard& board, graph::BufferHandle draws,
+               graph::BufferHandle drawCount) const;
+  void addStats(std::map<std::string, double>& stats) const;
+
+ private:
+  rhi::Device* device_ = nullptr;
+  const GpuScene* scene_ = nullptr;
+  rhi::PipelineId raster_;
+  rhi::PipelineId shade_;
+  rhi::BufferId statsReadback_;
+  uint32_t largeCapacity_ = 0;
+  uint32_t maxDraws_ = 0;
+};
+
+}  // namespace fgb::features

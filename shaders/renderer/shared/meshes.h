@@ -106,8 +106,11 @@ struct TransparentCullPush {
   // index buffer's full detail instead of running this; the cluster form runs with 0: level 0).
   float lodThreshold;
   uint flags;  // kTransparentCull* bits
+  // The cluster form: uvec3 indirect dispatch of one workgroup per kept draw, as (min(n, 32768),
+  // ceil(n / 32768), 1) (transparent_cluster_pack.comp; "Transparent Raster"). FGB_NONE otherwise.
+  uint dispatchArgs;
 };
-FGB_CHECK_PUSH(TransparentCullPush, 64)
+FGB_CHECK_PUSH(TransparentCullPush, 68)
 // The cluster form, for the compute transparent passes (render.transparent=compute,
 // renderer/shared/transparent.h): every kept entry is its cluster (no whole-mesh draws: the
 // K-buffer sorts per pixel, so the index buffer's order no longer matters), and a draw's

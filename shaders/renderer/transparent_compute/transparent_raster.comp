@@ -9,7 +9,8 @@
 // buffer's (visbuffer_triangle.glsl: setupTriangle, coveredDepth: 8-bit sub-pixel integer edge
 // functions, top-left rule, pixel centres, homogeneous edge functions behind the eye, depth
 // clipping), the depth test the raster pass's (include/opaque_depth.glsl).
-// Two dispatches in one node: one workgroup per packed cluster draw, one invocation per triangle,
+// Two dispatches in one node: one workgroup per packed cluster draw (indirect: the count
+// "Transparent Cluster Cull" kept), one invocation per triangle,
 // which walks a small triangle's box itself and appends a large one (more than
 // FGB_TRANSPARENT_SMALL_PIXELS pixels in its box) to the large list; then (kFlagLargeTiles)
 // FGB_TRANSPARENT_LARGE_GROUPS workgroups walk that list, each sharing one triangle's pixels among
@@ -81,7 +82,7 @@ void rasterBox(TransparentTriangle t, uint first, uint stride) {
 }
 
 void rasterSmall() {
-  uint draw = linearGroup();
+  uint draw = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;  // the pack's (x, y) dispatch
   uint triangle = gl_LocalInvocationID.x;
   if (draw >= fgbUintsRead[pc.args].values[0]) return;  // uniform across the workgroup
   if (triangle >= transparentDraws[pc.draws].draws[draw].indexCount / 3u) return;

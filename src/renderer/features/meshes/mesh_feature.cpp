@@ -186,8 +186,11 @@ void MeshFeature::initialize(FeatureInit& init) {
   injectNanPass_ = init.settings.injectNanPass;
   injectBiasPass_ = init.settings.injectBiasPass;
   if (depthPrepass_) pipelines_.depthOnly = init.device.createGraphicsPipeline(depthOnlyPipeline(init.settings));
+  // A fragment id of the compute passes is (packed draw << 7) | triangle (kClusterTriangleBits).
+  if (computeTransparent_ && uint64_t{transparentChunks_} * kChunk > (uint64_t{1} << 25))
+    throw std::logic_error("transparent cluster draws exceed the compute fragment id's 25 draw bits");
   if (computeTransparent_)
-    transparentCompute_.initialize(init, transparentChunks_ * kChunk);
+    transparentCompute_.initialize(init);
   else if (hasTransparent_)
     pipelines_.transparent =
         init.device.createGraphicsPipeline(forwardPipeline(init.settings, true, transparentDepthTest_));
@@ -312,6 +315,8 @@ TransparentClusterDraws MeshFeature::declareTransparentCull(graph::FrameGraph& g
       node.write(graph.createBuffer("transparent cluster draws", {draws * kCommandStride, {}}), Access::StorageWrite);
   out.drawCount = node.write(graph.createBuffer("transparent cluster draw count", {4, {}}), Access::StorageWrite);
   cull.stats = node.write(cull.stats, Access::StorageReadWrite);  // its transparent cluster words
+  if (computeTransparent_)
+    out.dispatchArgs = node.write(graph.createBuffer("transparent raster dispatch", {12, {}}), Access::StorageWrite);
   const TransparentClusters& clusters = scene.clusterGeometry.transparent;
   gpu::TransparentCullPush push{};
   push.clusters = device_->storageBufferIndex(scene.clusterGeometry.clusters);
@@ -334,6 +339,7 @@ TransparentClusterDraws MeshFeature::declareTransparentCull(graph::FrameGraph& g
     push.packed = ctx.storageBufferIndex(out.packed);
     push.drawCount = ctx.storageBufferIndex(out.drawCount);
     push.stats = ctx.storageBufferIndex(stats);
+    push.dispatchArgs = out.dispatchArgs.valid() ? ctx.storageBufferIndex(out.dispatchArgs) : FGB_NONE;
     const uint32_t groupsX = std::min(push.chunkCount, kMaxGroupsX);
     const uint32_t groupsY = (push.chunkCount + groupsX - 1) / groupsX;
     cmd.bindPipeline(pipelines.transparentCull);
@@ -416,7 +422,7 @@ void MeshFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
   if (depthPrepass_) declareDepthPrepass(graph, board, cull);
   if (drawsOpaque_) declareDraw(graph, board, {DrawClass::Opaque, DrawClass::Masked}, "Mesh Render", cull);
   if (computeTransparent_)
-    transparentCompute_.declare(graph, board, clusterDraws.packed, clusterDraws.drawCount);
+    transparentCompute_.declare(graph, board, clusterDraws.packed, clusterDraws.drawCount, clusterDraws.dispatchArgs);
   else if (transparentLod_)
     declareTransparentClusterDraw(graph, board, clusterDraws);
   else if (hasTransparent_)

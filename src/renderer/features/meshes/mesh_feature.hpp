@@ -64,6 +64,7 @@ struct TransparentClusterDraws {
   graph::BufferHandle chunkTotals;    // uvec4 per chunk: kept draws, of which whole meshes, triangles
   graph::BufferHandle packed;         // every kept draw in blend order
   graph::BufferHandle drawCount;      // uint: draws in `packed`
+  graph::BufferHandle dispatchArgs;   // render.transparent=compute: "Transparent Raster"'s indirect dispatch
 };
 
 class MeshFeature final : public IRenderFeature {

@@ -16,36 +16,19 @@ namespace {
 using graph::Access;
 constexpr graph::QueueClass kQueue = graph::QueueClass::Graphics;
 constexpr uint64_t kCountersBytes = sizeof(gpu::TransparentCounters);
-// Dispatches of one workgroup per draw are (min(n, W), ceil(n / W)) groups (visbuffer.glsl's
-// kDispatchWidth, linearGroup()).
-constexpr uint32_t kDispatchWidth = 32768;
-// A fragment id is (draw << 7) | triangle (kClusterTriangleBits).
-constexpr uint32_t kMaxDraws = 1u << 25;
-
-// Every buffer the three nodes share, and the push fields they have in common.
-struct KBuffers {
-  graph::BufferHandle words;     // the K-buffer
-  graph::BufferHandle counters;  // gpu::TransparentCounters
-  graph::BufferHandle large;     // large triangles' ids
-  graph::BufferHandle draws;
-  graph::BufferHandle drawCount;
-  graph::Extent extent;
-};
 
 }  // namespace
 
-void TransparentComputePasses::initialize(FeatureInit& init, uint32_t maxDraws) {
+void TransparentComputePasses::initialize(FeatureInit& init) {
   device_ = &init.device;
   scene_ = &init.scene;
   if (!init.device.shaderCapabilities().bufferInt64Atomics)
     throw DeviceError(
         "render.transparent=compute needs 64-bit storage-buffer atomics (shaderBufferInt64Atomics), which " +
         init.device.adapter().name + " lacks");
-  if (maxDraws > kMaxDraws) throw std::logic_error("transparent cluster draws exceed the fragment id's 25 draw bits");
   // Large triangles are few: glass panes near the camera. A list overflow is rasterised by the
   // small path (slower, same image) and counted.
   largeCapacity_ = 65536;
-  maxDraws_ = maxDraws;
   raster_ =
       init.device.createComputePipeline({"transparent raster", "renderer/transparent_compute/transparent_raster.comp"});
   shade_ =
@@ -54,7 +37,7 @@ void TransparentComputePasses::initialize(FeatureInit& init, uint32_t maxDraws) 
 }
 
 void TransparentComputePasses::declare(graph::FrameGraph& graph, Blackboard& board, graph::BufferHandle draws,
-                                       graph::BufferHandle drawCount) const {
+                                       graph::BufferHandle drawCount, graph::BufferHandle dispatchArgs) const {
   auto& targets = board.get<FrameTargets>();
   if (!targets.opaqueDepth.valid())
     throw std::logic_error("render.transparent=compute before the opaque depth buffer (the visibility buffer's)");
@@ -82,11 +65,12 @@ void TransparentComputePasses::declare(graph::FrameGraph& graph, Blackboard& boa
   auto raster = graph.addNode("Transparent Raster", graph::NodeType::Compute, kQueue);
   raster.read(draws, Access::StorageRead);
   raster.read(drawCount, Access::StorageRead);
+  raster.read(dispatchArgs, Access::Indirect);
   raster.read(targets.opaqueDepth, Access::StorageRead);
   words = raster.write(words, Access::StorageReadWrite);
   counters = raster.write(counters, Access::StorageReadWrite);
   large = raster.write(large, Access::StorageWrite);  // appended by the first dispatch, read by the second
-  raster.setJob([push, pipeline = raster_, words, counters, large, draws, drawCount, opaqueDepth, maxDraws = maxDraws_,
+  raster.setJob([push, pipeline = raster_, words, counters, large, draws, drawCount, opaqueDepth, dispatchArgs,
                  scene = scene_](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
@@ -103,9 +87,7 @@ void TransparentComputePasses::declare(graph::FrameGraph& graph, Blackboard& boa
     push.depthCompare = test.compareOp;
     cmd.bindPipeline(pipeline);
     cmd.push(push);
-    // One workgroup per possible draw; those past the GPU's count leave at once.
-    const uint32_t groups = std::max(maxDraws, 1u);
-    cmd.dispatch(std::min(groups, kDispatchWidth), (groups + kDispatchWidth - 1) / kDispatchWidth);
+    cmd.dispatchIndirect(ctx.buffer(dispatchArgs));  // one workgroup per kept draw
     cmd.computeBarrier();  // the large list and its count, complete
     gpu::VisPush largePass = push;
     largePass.flags |= gpu::kFlagLargeTiles;

@@ -22,12 +22,12 @@ namespace fgb::features {
 
 class TransparentComputePasses {
  public:
-  // maxDraws: the most packed draws "Transparent Cluster Cull" writes.
-  void initialize(FeatureInit& init, uint32_t maxDraws);
-  // After the opaque scene (FrameTargets::opaqueDepth written); draws, drawCount: the packed
-  // cluster draws and their count. Writes FrameTargets::hdr (and color).
-  void declare(graph::FrameGraph& graph, Blackboard& board, graph::BufferHandle draws,
-               graph::BufferHandle drawCount) const;
+  void initialize(FeatureInit& init);
+  // After the opaque scene (FrameTargets::opaqueDepth written); draws, drawCount, dispatchArgs:
+  // "Transparent Cluster Cull"'s packed cluster draws, their count, and one workgroup per draw as
+  // indirect dispatch arguments. Writes FrameTargets::hdr (and color).
+  void declare(graph::FrameGraph& graph, Blackboard& board, graph::BufferHandle draws, graph::BufferHandle drawCount,
+               graph::BufferHandle dispatchArgs) const;
   void addStats(std::map<std::string, double>& stats) const;
 
  private:
@@ -37,7 +37,6 @@ class TransparentComputePasses {
   rhi::PipelineId shade_;
   rhi::BufferId statsReadback_;
   uint32_t largeCapacity_ = 0;
-  uint32_t maxDraws_ = 0;
 };
 
 }  // namespace fgb::features

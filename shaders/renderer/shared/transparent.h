@@ -10,8 +10,9 @@
 //   args      that node's draw count (uint)
 //   counters  TransparentCounters
 //   largeList large triangles' fragment ids (uint each), largeCapacity of them
-//   words     the K-buffer: FGB_TRANSPARENT_K planes of one uint64 per pixel (slot i of pixel p
-//             at i * pixels + p: the shade's early out reads plane 0 alone)
+//   words     the K-buffer (persistent, empty between frames): FGB_TRANSPARENT_K planes of one
+//             uint64 per pixel, slot i of pixel p at i * pixels + p (the shade's early out
+//             reads plane 0 alone)
 //   depthOut  the opaque depth "Material Shade" wrote (read only), rows of viewport width
 //   depthCompare the opaque depth test's comparison (OpaqueDepthTest::compareOp)
 //   hdr       the HDR image (read and written by the shade)

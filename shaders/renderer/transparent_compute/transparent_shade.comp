@@ -5,7 +5,8 @@
 // (shadeTrianglePixel: the forward path's surface_shading.glsl, pre-exposed) and blend them far to
 // near over the HDR image with the raster pass's blend state (rhi BlendMode::Alpha: colour
 // src.a * src + (1 - src.a) * dst, alpha src.a + (1 - src.a) * dst.a), in float, rounding to R16F
-// once where the raster pass rounds after each fragment.
+// once where the raster pass rounds after each fragment. It empties the slots it read: the
+// K-buffer persists from frame to frame, empty between them, so no pass fills all of it.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_nonuniform_qualifier : require
 #include "../include/visbuffer_material.glsl"
@@ -21,13 +22,14 @@ void main() {
   uvec2 size = uvec2(viewportSize());
   if (any(greaterThanEqual(pixel, size))) return;
   uint index = pixel.y * size.x + pixel.x;
-  if (visWordsRead[pc.words].words[index] == kEmpty) return;
+  if (visWords[pc.words].words[index] == kEmpty) return;
   uint ids[TRANSPARENT_K];
   int kept = 0;
   for (uint i = 0u; i < TRANSPARENT_K; ++i) {
-    uint64_t word = visWordsRead[pc.words].words[kSlotIndex(i, index)];
+    uint64_t word = visWords[pc.words].words[kSlotIndex(i, index)];
     if (word == kEmpty) break;  // the slots fill from the nearest: the rest are empty too
     ids[kept++] = uint(word);
+    visWords[pc.words].words[kSlotIndex(i, index)] = kEmpty;  // empty for the next frame's raster
   }
   vec4 dst = imageLoad(fgbImagesRgba16f[pc.hdr], ivec2(pixel));
   for (int i = kept - 1; i >= 0; --i) {

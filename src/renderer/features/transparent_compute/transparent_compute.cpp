@@ -34,6 +34,9 @@ void TransparentComputePasses::initialize(FeatureInit& init) {
   shade_ =
       init.device.createComputePipeline({"transparent shade", "renderer/transparent_compute/transparent_shade.comp"});
   statsReadback_ = createReadbackBuffer(init.device, "transparent counters readback", kCountersBytes);
+  kBufferBytes_ = uint64_t{8} * FGB_TRANSPARENT_K * init.settings.sceneWidth() * init.settings.sceneHeight();
+  kBuffer_ = init.device.createBuffer({"transparent k-buffer", kBufferBytes_,
+                                       rhi::kBufferStorage | rhi::kBufferTransferDst, rhi::MemoryUsage::DeviceLocal});
 }
 
 void TransparentComputePasses::declare(graph::FrameGraph& graph, Blackboard& board, graph::BufferHandle draws,
@@ -41,22 +44,31 @@ void TransparentComputePasses::declare(graph::FrameGraph& graph, Blackboard& boa
   auto& targets = board.get<FrameTargets>();
   if (!targets.opaqueDepth.valid())
     throw std::logic_error("render.transparent=compute before the opaque depth buffer (the visibility buffer's)");
-  const uint64_t pixels = uint64_t{targets.extent.width} * targets.extent.height;
-  const uint64_t wordBytes = uint64_t{8} * FGB_TRANSPARENT_K * pixels;
-  graph::BufferHandle words = graph.createBuffer("transparent k-buffer", {wordBytes, {}});
+  if (uint64_t{8} * FGB_TRANSPARENT_K * targets.extent.width * targets.extent.height != kBufferBytes_)
+    throw std::logic_error("the transparent K-buffer was sized for other scene passes");
+  // Kept from frame to frame, empty between frames: "Transparent Shade" empties the slots it read.
+  const graph::ImportState computeState{graph::kStageComputeShader,
+                                        graph::kAccessShaderStorageRead | graph::kAccessShaderStorageWrite,
+                                        graph::Layout::Undefined, kQueue};
+  graph::BufferHandle words = graph.importBuffer("transparent k-buffer", {kBufferBytes_, {}}, rhi::external(kBuffer_),
+                                                 computeState, computeState);
   graph::BufferHandle counters = graph.createBuffer("transparent counters", {kCountersBytes, {}});
   graph::BufferHandle large = graph.createBuffer("transparent large triangles", {uint64_t{4} * largeCapacity_, {}});
 
-  // Every slot empty (all ones: larger than any fragment's word), the counters zero.
+  // The counters zero every frame; the K-buffer's slots empty (all ones: larger than any
+  // fragment's word) once, in the first recording: after it the shade leaves them empty (a fill
+  // of 8 K bytes a pixel every frame, 66 MB at 1920x1080, would cost more than the shade's
+  // stores to the pixels that had fragments).
   auto clear = graph.addNode("Transparent Clear", graph::NodeType::Transfer, kQueue);
   words = clear.write(words, Access::TransferDst);
   counters = clear.write(counters, Access::TransferDst);
-  clear.setJob([words, counters, wordBytes](graph::JobContext& context) {
+  clear.setJob([words, counters, bytes = kBufferBytes_, emptied = kBufferEmptied_](graph::JobContext& context) {
     auto& ctx = rhi::rhiContext(context);
-    ctx.cmd().fillBuffer(ctx.buffer(words), 0, wordBytes, 0xffffffffu);
+    if (!*emptied) ctx.cmd().fillBuffer(ctx.buffer(words), 0, bytes, 0xffffffffu);
+    *emptied = true;
     ctx.cmd().fillBuffer(ctx.buffer(counters), 0, kCountersBytes, 0);
   });
-  clear.recordingFixed();
+  clear.recordingDependsOn([emptied = kBufferEmptied_] { return uint64_t{*emptied}; });
 
   gpu::VisPush push = visScenePush(*device_, *scene_);
   push.largeCapacity = largeCapacity_;
@@ -99,7 +111,7 @@ void TransparentComputePasses::declare(graph::FrameGraph& graph, Blackboard& boa
                   kCountersBytes);
 
   auto shade = graph.addNode("Transparent Shade", graph::NodeType::Compute, kQueue);
-  shade.read(words, Access::StorageRead);
+  words = shade.write(words, Access::StorageReadWrite);  // reads the slots, empties them
   shade.read(draws, Access::StorageRead);
   targets.hdr = shade.write(targets.hdr, Access::StorageReadWrite);
   ClusteredLights clusters;

@@ -1,7 +1,8 @@
 // The visibility-buffer path's transparent meshes in compute (render.transparent=compute; the
 // meshes feature owns them and declares these nodes in place of "Mesh Render Transparent"): from
 // "Transparent Cluster Cull"'s kept cluster draws (cluster form, kTransparentCullClusterIds),
-//   "Transparent Clear"  (transfer) empties the K-buffer and zeroes the counters;
+//   "Transparent Clear"  (transfer) zeroes the counters (and, in its first recording, empties the
+//                        K-buffer, which persists: the shade empties what it read);
 //   "Transparent Raster" keeps, per pixel, the FGB_TRANSPARENT_K nearest fragments in front of the
 //                        opaque depth (64-bit atomicMin cascade; small triangles one invocation
 //                        each, large ones shared by a workgroup);
@@ -14,6 +15,7 @@
 #pragma once
 
 #include <map>
+#include <memory>
 #include <string>
 
 #include "../context/render_feature.hpp"
@@ -37,6 +39,10 @@ class TransparentComputePasses {
   rhi::PipelineId shade_;
   rhi::BufferId statsReadback_;
   uint32_t largeCapacity_ = 0;
+  rhi::BufferId kBuffer_;  // persistent, empty between frames
+  uint64_t kBufferBytes_ = 0;
+  // Whether a recording of "Transparent Clear" has emptied kBuffer_ (the first one does).
+  std::shared_ptr<bool> kBufferEmptied_ = std::make_shared<bool>(false);
 };
 
 }  // namespace fgb::features

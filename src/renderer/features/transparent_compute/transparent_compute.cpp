@@ -19,6 +19,15 @@ constexpr uint64_t kCountersBytes = sizeof(gpu::TransparentCounters);
 
 }  // namespace
 
+struct TransparentComputePasses::PassBuffers {
+  graph::BufferHandle words;         // the K-buffer (persistent)
+  graph::BufferHandle counters;      // gpu::TransparentCounters
+  graph::BufferHandle large;         // large triangles' fragment ids
+  graph::BufferHandle draws;         // "Transparent Cluster Cull"'s packed cluster draws,
+  graph::BufferHandle drawCount;     // their count,
+  graph::BufferHandle dispatchArgs;  // and one raster workgroup per draw
+};
+
 void TransparentComputePasses::initialize(FeatureInit& init) {
   device_ = &init.device;
   scene_ = &init.scene;
@@ -50,69 +59,82 @@ void TransparentComputePasses::declare(graph::FrameGraph& graph, Blackboard& boa
   const graph::ImportState computeState{graph::kStageComputeShader,
                                         graph::kAccessShaderStorageRead | graph::kAccessShaderStorageWrite,
                                         graph::Layout::Undefined, kQueue};
-  graph::BufferHandle words = graph.importBuffer("transparent k-buffer", {kBufferBytes_, {}}, rhi::external(kBuffer_),
-                                                 computeState, computeState);
-  graph::BufferHandle counters = graph.createBuffer("transparent counters", {kCountersBytes, {}});
-  graph::BufferHandle large = graph.createBuffer("transparent large triangles", {uint64_t{4} * largeCapacity_, {}});
+  PassBuffers b;
+  b.words = graph.importBuffer("transparent k-buffer", {kBufferBytes_, {}}, rhi::external(kBuffer_), computeState,
+                               computeState);
+  b.counters = graph.createBuffer("transparent counters", {kCountersBytes, {}});
+  b.large = graph.createBuffer("transparent large triangles", {uint64_t{4} * largeCapacity_, {}});
+  b.draws = draws;
+  b.drawCount = drawCount;
+  b.dispatchArgs = dispatchArgs;
+  declareClear(graph, b);
+  declareRaster(graph, targets, b);
+  declareReadback(graph, "Transparent Stats Readback", b.counters, statsReadback_, "transparent counters readback",
+                  kCountersBytes);
+  declareShade(graph, board, b);
+}
 
-  // The counters zero every frame; the K-buffer's slots empty (all ones: larger than any
-  // fragment's word) once, in the first recording: after it the shade leaves them empty (a fill
-  // of 8 K bytes a pixel every frame, 66 MB at 1920x1080, would cost more than the shade's
-  // stores to the pixels that had fragments).
+// The counters zero every frame; the K-buffer's slots empty (all ones: larger than any fragment's
+// word) once, in the first recording: after it the shade leaves them empty (a fill of 8 K bytes a
+// pixel every frame, 66 MB at 1920x1080, would cost more than the shade's stores to the pixels
+// that had fragments).
+void TransparentComputePasses::declareClear(graph::FrameGraph& graph, PassBuffers& b) const {
   auto clear = graph.addNode("Transparent Clear", graph::NodeType::Transfer, kQueue);
-  words = clear.write(words, Access::TransferDst);
-  counters = clear.write(counters, Access::TransferDst);
-  clear.setJob([words, counters, bytes = kBufferBytes_, emptied = kBufferEmptied_](graph::JobContext& context) {
+  b.words = clear.write(b.words, Access::TransferDst);
+  b.counters = clear.write(b.counters, Access::TransferDst);
+  clear.setJob([b, bytes = kBufferBytes_, emptied = kBufferEmptied_](graph::JobContext& context) {
     auto& ctx = rhi::rhiContext(context);
-    if (!*emptied) ctx.cmd().fillBuffer(ctx.buffer(words), 0, bytes, 0xffffffffu);
+    if (!*emptied) ctx.cmd().fillBuffer(ctx.buffer(b.words), 0, bytes, 0xffffffffu);
     *emptied = true;
-    ctx.cmd().fillBuffer(ctx.buffer(counters), 0, kCountersBytes, 0);
+    ctx.cmd().fillBuffer(ctx.buffer(b.counters), 0, kCountersBytes, 0);
   });
   clear.recordingDependsOn([emptied = kBufferEmptied_] { return uint64_t{*emptied}; });
+}
 
+void TransparentComputePasses::declareRaster(graph::FrameGraph& graph, const FrameTargets& targets,
+                                             PassBuffers& b) const {
+  auto raster = graph.addNode("Transparent Raster", graph::NodeType::Compute, kQueue);
+  raster.read(b.draws, Access::StorageRead);
+  raster.read(b.drawCount, Access::StorageRead);
+  raster.read(b.dispatchArgs, Access::Indirect);
+  raster.read(targets.opaqueDepth, Access::StorageRead);
+  b.words = raster.write(b.words, Access::StorageReadWrite);
+  b.counters = raster.write(b.counters, Access::StorageReadWrite);
+  b.large = raster.write(b.large, Access::StorageWrite);  // appended by the first dispatch, read by the second
   gpu::VisPush push = visScenePush(*device_, *scene_);
   push.largeCapacity = largeCapacity_;
-  const OpaqueDepthSource opaqueDepth = opaqueDepthSource(targets, DepthTest::OpaqueDepthBuffer);
-
-  auto raster = graph.addNode("Transparent Raster", graph::NodeType::Compute, kQueue);
-  raster.read(draws, Access::StorageRead);
-  raster.read(drawCount, Access::StorageRead);
-  raster.read(dispatchArgs, Access::Indirect);
-  raster.read(targets.opaqueDepth, Access::StorageRead);
-  words = raster.write(words, Access::StorageReadWrite);
-  counters = raster.write(counters, Access::StorageReadWrite);
-  large = raster.write(large, Access::StorageWrite);  // appended by the first dispatch, read by the second
-  raster.setJob([push, pipeline = raster_, words, counters, large, draws, drawCount, opaqueDepth, dispatchArgs,
+  raster.setJob([push, pipeline = raster_, b, opaqueDepth = opaqueDepthSource(targets, DepthTest::OpaqueDepthBuffer),
                  scene = scene_](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
     const FrameBuffers& frame = scene->frame(ctx.execution());
     push.frame = frame.constantsIndex;
     push.instances = frame.instancesIndex;
-    push.draws = ctx.storageBufferIndex(draws);
-    push.args = ctx.storageBufferIndex(drawCount);
-    push.counters = ctx.storageBufferIndex(counters);
-    push.largeList = ctx.storageBufferIndex(large);
-    push.words = ctx.storageBufferIndex(words);
+    push.draws = ctx.storageBufferIndex(b.draws);
+    push.args = ctx.storageBufferIndex(b.drawCount);
+    push.counters = ctx.storageBufferIndex(b.counters);
+    push.largeList = ctx.storageBufferIndex(b.large);
+    push.words = ctx.storageBufferIndex(b.words);
     const gpu::OpaqueDepthTest test = opaqueDepth.push(ctx);
     push.depthOut = test.depths;
     push.depthCompare = test.compareOp;
     cmd.bindPipeline(pipeline);
     cmd.push(push);
-    cmd.dispatchIndirect(ctx.buffer(dispatchArgs));  // one workgroup per kept draw
-    cmd.computeBarrier();  // the large list and its count, complete
+    cmd.dispatchIndirect(ctx.buffer(b.dispatchArgs));  // one workgroup per kept draw
+    cmd.computeBarrier();                              // the large list and its count, complete
     gpu::VisPush largePass = push;
     largePass.flags |= gpu::kFlagLargeTiles;
     cmd.push(largePass);
     cmd.dispatch(FGB_TRANSPARENT_LARGE_GROUPS);
   });
   raster.recordingFixed();
-  declareReadback(graph, "Transparent Stats Readback", counters, statsReadback_, "transparent counters readback",
-                  kCountersBytes);
+}
 
+void TransparentComputePasses::declareShade(graph::FrameGraph& graph, Blackboard& board, PassBuffers& b) const {
+  auto& targets = board.get<FrameTargets>();
   auto shade = graph.addNode("Transparent Shade", graph::NodeType::Compute, kQueue);
-  words = shade.write(words, Access::StorageReadWrite);  // reads the slots, empties them
-  shade.read(draws, Access::StorageRead);
+  b.words = shade.write(b.words, Access::StorageReadWrite);  // reads the slots, empties them
+  shade.read(b.draws, Access::StorageRead);
   targets.hdr = shade.write(targets.hdr, Access::StorageReadWrite);
   ClusteredLights clusters;
   if (const auto* published = board.find<ClusteredLights>()) {
@@ -121,16 +143,16 @@ void TransparentComputePasses::declare(graph::FrameGraph& graph, Blackboard& boa
     shade.read(clusters.indices, Access::StorageRead);
   }
   if (targets.exposure.valid()) shade.read(targets.exposure, Access::StorageRead);  // pre-exposure
-  shade.setJob([push, pipeline = shade_, words, draws, hdr = targets.hdr, clusters, extent = targets.extent,
-                scene = scene_](graph::JobContext& context) mutable {
+  shade.setJob([push = visScenePush(*device_, *scene_), pipeline = shade_, b, hdr = targets.hdr, clusters,
+                extent = targets.extent, scene = scene_](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
     const FrameBuffers& frame = scene->frame(ctx.execution());
     push.frame = frame.constantsIndex;
     push.instances = frame.instancesIndex;
     push.lights = frame.lightsIndex;
-    push.draws = ctx.storageBufferIndex(draws);
-    push.words = ctx.storageBufferIndex(words);
+    push.draws = ctx.storageBufferIndex(b.draws);
+    push.words = ctx.storageBufferIndex(b.words);
     push.hdr = ctx.storageTextureIndex(hdr);
     if (clusters.counts.valid()) {
       push.clusterCounts = ctx.storageBufferIndex(clusters.counts);

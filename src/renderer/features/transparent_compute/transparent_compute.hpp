@@ -33,6 +33,11 @@ class TransparentComputePasses {
   void addStats(std::map<std::string, double>& stats) const;
 
  private:
+  struct PassBuffers;  // one frame's buffers of the three nodes (transparent_compute.cpp)
+  void declareClear(graph::FrameGraph& graph, PassBuffers& b) const;
+  void declareRaster(graph::FrameGraph& graph, const FrameTargets& targets, PassBuffers& b) const;
+  void declareShade(graph::FrameGraph& graph, Blackboard& board, PassBuffers& b) const;
+
   rhi::Device* device_ = nullptr;
   const GpuScene* scene_ = nullptr;
   rhi::PipelineId raster_;

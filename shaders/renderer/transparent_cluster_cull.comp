@@ -10,6 +10,8 @@
 // draws first, in invocation order, then zero draws up to its size, and its totals: the chunk's
 // draws are already a valid multi-draw in blend order (devices without
 // vkCmdDrawIndexedIndirectCount draw them as they are), which transparent_cluster_pack.comp packs.
+// With kTransparentCullClusterIds (render.transparent=compute) every kept entry is a cluster draw
+// naming its cluster (renderer/shared/meshes.h).
 #extension GL_GOOGLE_include_directive : require
 #include "include/transparent_clusters.glsl"
 
@@ -36,8 +38,9 @@ DrawCommand entryDraw(uint slot, uint entry, out bool whole) {
   TransparentMeshClusters mesh = transparentMeshes[pc.meshes].meshes[inst.mesh];
   if (entry >= mesh.entryCount || !boxInside(frame, inst.boundsMin.xyz, inst.boundsMax.xyz)) return none;
   float scale = maxScale(inst.model);
+  const bool clusterIds = (pc.flags & kTransparentCullClusterIds) != 0u;
   // firstInstance is the GPU instance itself: forward.vert reads it directly (kForwardInstanceIsSlot).
-  if (wholeMeshInCut(mesh, inst.model, scale, frame)) {
+  if (!clusterIds && wholeMeshInCut(mesh, inst.model, scale, frame)) {
     whole = entry == 0u;
     return whole ? DrawCommand(mesh.indexCount, 1u, mesh.firstIndex, mesh.vertexOffset, instanceId) : none;
   }
@@ -45,7 +48,8 @@ DrawCommand entryDraw(uint slot, uint entry, out bool whole) {
   ClusterData cluster = visClusters[pc.clusters].clusters[target.cluster];
   if (!lodInCut(cluster, inst.model, scale, frame, pc.lodThreshold)) return none;
   if (!sphereInside(frame, (inst.model * vec4(cluster.sphere.xyz, 1.0)).xyz, cluster.sphere.w * scale)) return none;
-  return DrawCommand(3u * cluster.triangleCount, 1u, target.firstIndex, mesh.vertexOffset, instanceId);
+  return DrawCommand(3u * cluster.triangleCount, 1u, clusterIds ? target.cluster : target.firstIndex, mesh.vertexOffset,
+                     instanceId);
 }
 
 void main() {

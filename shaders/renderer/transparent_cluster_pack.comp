@@ -35,5 +35,11 @@ void main() {
     fgbUints[pc.stats].values[4] = draws - wholeMeshes;  // MeshCullStats::transparentClusters
     fgbUints[pc.stats].values[5] = triangles;            // MeshCullStats::transparentClusterTriangles
     fgbUints[pc.stats].values[6] = wholeMeshes;          // MeshCullStats::transparentWholeMeshes
+    if (pc.dispatchArgs != FGB_NONE) {  // the cluster form: one "Transparent Raster" workgroup per draw
+      const uint width = 32768u;
+      fgbUints[pc.dispatchArgs].values[0] = min(draws, width);
+      fgbUints[pc.dispatchArgs].values[1] = (draws + width - 1u) / width;
+      fgbUints[pc.dispatchArgs].values[2] = 1u;
+    }
   }
 }

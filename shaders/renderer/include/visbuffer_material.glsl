@@ -53,4 +53,42 @@ vec2 interpolateUv(uvec3 clusterVertices, vec3 b, vec3 dbdx, vec3 dbdy) {
   return interpolateStreamUv(streamVertices(clusterVertices), b, dbdx, dbdy);
 }
 
+vec3 interpolate3(vec3 a, vec3 b, vec3 c, vec3 w) { return a * w.x + b * w.y + c * w.z; }
+
+// A triangle's surface at a pixel centre, shaded ("Material Shade" for the opaque pixel, and
+// "Transparent Shade" for each kept transparent fragment): perspective-correct barycentrics and
+// their screen derivatives analytically (homogeneous form, visbuffer.glsl), the attributes
+// interpolated, then the forward path's shadeSurface: rgb pre-exposed, a the coverage (base alpha
+// for blended materials). `p`: the surface point shaded (the debug views colour it).
+vec4 shadeTrianglePixel(VisTriangle tri, uvec2 pixel, out SurfacePoint p) {
+  vec2 size = viewportSize();
+  Instance inst = fgbInstances[pc.instances].instances[tri.instance];
+  ScreenTriangle screen = setupTriangle(modelViewProj(inst.model), tri.vertices);
+  BarycentricFrame bf = barycentricFrame(screen.clip[0], screen.clip[1], screen.clip[2], size);
+  vec3 b, dbdx, dbdy;
+  barycentricsAt(bf, pixelNdc(pixel, size), b, dbdx, dbdy);
+
+  uvec3 v = streamVertices(tri.vertices);
+  vec3 world0 = (inst.model * vec4(clusterPosition(tri.vertices.x), 1.0)).xyz;
+  vec3 world1 = (inst.model * vec4(clusterPosition(tri.vertices.y), 1.0)).xyz;
+  vec3 world2 = (inst.model * vec4(clusterPosition(tri.vertices.z), 1.0)).xyz;
+  p.worldPosition = interpolate3(world0, world1, world2, b);
+  mat3 normalMatrix = mat3(inst.normalMatrix);
+  p.normal = normalMatrix * interpolate3(fetchVec3(pc.vertices, pc.normals, v.x), fetchVec3(pc.vertices, pc.normals, v.y),
+                                         fetchVec3(pc.vertices, pc.normals, v.z), b);
+  vec4 t0 = fetchTangent(v.x), t1 = fetchTangent(v.y), t2 = fetchTangent(v.z);
+  p.tangent = vec4(mat3(inst.model) * interpolate3(t0.xyz, t1.xyz, t2.xyz, b), t0.w * b.x + t1.w * b.y + t2.w * b.z);
+  p.uv = safeUv(interpolateStreamUv(v, b, dbdx, dbdy));
+  // The screen derivatives of the position, as forward.frag's cross(dFdx, dFdy) sees them.
+  p.geometricNormal = cross(world0 * dbdx.x + world1 * dbdx.y + world2 * dbdx.z,
+                            world0 * dbdy.x + world1 * dbdy.y + world2 * dbdy.z);
+  p.frontFacing = framebufferFront(screen);
+  p.fragCoord = vec2(pixel) + 0.5;
+
+  FrameConstants frame = fgbFrames[pc.frame].frame;
+  Material m = fgbMaterials[pc.materials].materials[inst.material];
+  vec4 base = surfaceBaseColor(m, p.uv);
+  return shadeSurface(frame, m, base, p, LightLists(pc.lights, pc.clusterCounts, pc.clusterIndices));
+}
+
 #endif

@@ -170,6 +170,24 @@ EdgeSetup edgeSetup(ScreenTriangle t) {
                           abs(t.area));
 }
 
+// Whether the triangle covers a pixel centre, and its NDC depth there (before depth clipping):
+// integer edge functions for a projected triangle (`edges`: edgeSetup(t)), homogeneous ones for
+// the others (`frame`: barycentricFrame of its clip positions; unused for projected ones).
+bool coveredDepth(ScreenTriangle t, EdgeSetup edges, BarycentricFrame frame, ivec2 pixel, out float z) {
+  z = 0.0;
+  if (t.projected) {
+    vec3 w = coverage(edges, t, pixel);
+    if (w.x < 0.0) return false;
+    vec3 ndcZ = vec3(t.clip[0].z / t.clip[0].w, t.clip[1].z / t.clip[1].w, t.clip[2].z / t.clip[2].w);
+    z = dot(w, ndcZ);
+    return true;
+  }
+  vec3 e = frame.inverse * vec3(pixelNdc(uvec2(pixel), viewportSize()), 1.0);
+  if (e.x < 0.0 || e.y < 0.0 || e.z < 0.0 || e.x + e.y + e.z <= 0.0) return false;
+  z = dot(e, vec3(t.clip[0].z, t.clip[1].z, t.clip[2].z));
+  return true;
+}
+
 // Small triangles travel from "Triangle Filter" to "Visibility Raster" already set up (two uvec4
 // per triangle), so the raster fetches nothing else: the id, the first covered pixel, the three
 // sub-pixel positions relative to that pixel (16 bits each) and the three NDC depths.

@@ -16,6 +16,7 @@
 #include "renderer/shared/debug.h"
 #include "renderer/shared/post.h"
 #include "renderer/shared/scene.h"
+#include "renderer/shared/transparent.h"
 #include "renderer/shared/visbuffer.h"
 
 layout(local_size_x = 1) in;

@@ -102,11 +102,21 @@ struct TransparentCullPush {
   uint slotCount;
   uint entryStride;  // the most entries of one transparent mesh
   uint chunkCount;
-  // render.lod_error in scene pixels (times render.ssaa), > 0 (at 0 the pass draws the index
-  // buffer's full detail instead of running this).
+  // render.lod_error in scene pixels (times render.ssaa), > 0 (at 0 the raster pass draws the
+  // index buffer's full detail instead of running this; the cluster form runs with 0: level 0).
   float lodThreshold;
+  uint flags;  // kTransparentCull* bits
+  // The cluster form: uvec3 indirect dispatch of one workgroup per kept draw, as (min(n, 32768),
+  // ceil(n / 32768), 1) (transparent_cluster_pack.comp; "Transparent Raster"). FGB_NONE otherwise.
+  uint dispatchArgs;
 };
-FGB_CHECK_PUSH(TransparentCullPush, 60)
+FGB_CHECK_PUSH(TransparentCullPush, 68)
+// The cluster form, for the compute transparent passes (render.transparent=compute,
+// renderer/shared/transparent.h): every kept entry is its cluster (no whole-mesh draws: the
+// K-buffer sorts per pixel, so the index buffer's order no longer matters), and a draw's
+// firstIndex holds the ClusterData index instead of its index-buffer start. At render.lod_error=0
+// the cut is level 0 (lodInCut), the mesh's own triangles.
+const uint kTransparentCullClusterIds = 1u;
 
 FGB_GPU_END
 

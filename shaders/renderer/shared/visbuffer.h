@@ -181,7 +181,7 @@ struct VisPush {
   uint flags;           // kFlagReversedZ, kFlagLargeTiles, kFlagSerialSubgroups
   uint tileJobs;        // kTileJobBytes per tile job: large-list slot, job index within the triangle
   uint tileJobCapacity;
-  uint pad;
+  uint depthCompare;    // the compute transparent passes: the opaque depth test's OpaqueDepthTest::compareOp
   vec4 background;      // (at byte 112) HDR clear of pixels no triangle covers (pre-exposed, alpha 0)
 };
 FGB_CHECK_PUSH(VisPush, 128)

@@ -79,17 +79,7 @@ bool keyBeaten(ivec2 pixel, uint width, uint key) { return uint(visWordAt(pc.wor
 
 void rasterPixel(RasterTriangle r, ivec2 pixel) {
   float z;
-  if (r.screen.projected) {
-    vec3 w = coverage(r.edges, r.screen, pixel);
-    if (w.x < 0.0) return;
-    vec3 ndcZ = vec3(r.screen.clip[0].z / r.screen.clip[0].w, r.screen.clip[1].z / r.screen.clip[1].w,
-                     r.screen.clip[2].z / r.screen.clip[2].w);
-    z = dot(w, ndcZ);
-  } else {
-    vec3 e = r.frame.inverse * vec3(pixelNdc(uvec2(pixel), viewportSize()), 1.0);
-    if (e.x < 0.0 || e.y < 0.0 || e.z < 0.0 || e.x + e.y + e.z <= 0.0) return;
-    z = dot(e, vec3(r.screen.clip[0].z, r.screen.clip[1].z, r.screen.clip[2].z));
-  }
+  if (!coveredDepth(r.screen, r.edges, r.frame, pixel, z)) return;
   if (!(z >= 0.0 && z <= 1.0)) return;  // depth clipping (also drops NaN)
   uint width = uint(viewportSize().x);
   uint key = depthKey(z, reversedZ());

@@ -1,5 +1,8 @@
 #include "feature_registry.hpp"
 
+#include <algorithm>
+#include <fgb/core/error.hpp>
+
 #include "bloom/bloom_feature.hpp"
 #include "exposure/exposure_feature.hpp"
 #include "lighting/clustered_lighting.hpp"
@@ -10,8 +13,6 @@
 #include "ssaa/ssaa_resolve_feature.hpp"
 #include "tonemap/tonemap_feature.hpp"
 #include "visbuffer/visbuffer_feature.hpp"
-
-#include <algorithm>
 
 namespace fgb::features {
 namespace {
@@ -39,8 +40,15 @@ FeatureKind meshes() {
       {"opaque", true, "draws the opaque and alpha-masked scene (\"Mesh Render\"), writing the depth attachment"},
       {"lod", false,
        "draws transparent instances as each mesh's LOD cut at render.lod_error (\"Transparent Cluster Cull\"; "
-       "false: full detail)"}};
+       "false: full detail)"},
+      {"transparent", "raster",
+       "raster | compute: transparent instances by \"Mesh Render Transparent\", or (with \"lod\") by \"Transparent "
+       "Raster\" and \"Transparent Shade\" in compute; render.transparent overrides it"}};
   kind.contract = [](const Options& options, const RenderPath& path) {
+    const std::string transparent = options.at("transparent").get<std::string>();
+    if (transparent != "raster" && transparent != "compute")
+      throw InputError("--set render.path=" + path.source + ": the meshes option \"transparent\" is \"" + transparent +
+                       "\", not raster or compute");
     FeatureContract contract;
     // "Mesh Render Transparent" tests the opaque depth the way the path says; its LOD cut is
     // drawn from the uploaded clusters.
@@ -50,7 +58,8 @@ FeatureKind meshes() {
     return contract;
   };
   kind.create = [](const Options& options) -> std::unique_ptr<IRenderFeature> {
-    return std::make_unique<MeshFeature>(options.at("opaque").get<bool>(), options.at("lod").get<bool>());
+    return std::make_unique<MeshFeature>(options.at("opaque").get<bool>(), options.at("lod").get<bool>(),
+                                         options.at("transparent").get<std::string>() == "compute");
   };
   return kind;
 }

@@ -111,6 +111,13 @@ const std::vector<RendererKnob>& rendererKnobs() {
            "auto"),
       flag("render.occlusion", &S::occlusion,
            "visbuffer: two-phase HiZ occlusion culling of clusters (no effect on render.path=forward)", CostOnly, "0"),
+      // Per-pixel sorting is no approximation of the raster pass's instance order: another cost.
+      word(
+          "render.transparent", &S::transparentDraw,
+          {{"plan", TransparentDraw::Plan}, {"raster", TransparentDraw::Raster}, {"compute", TransparentDraw::Compute}},
+          "visbuffer: transparent meshes by the hardware raster, or in compute through a per-pixel K-buffer (plan: "
+          "the path's meshes option \"transparent\"; forward and meshlet always raster)",
+          CostOnly, "plan"),
       // Exact at 0 (every mesh at full detail): the sweep's reference draws level 0.
       number("render.lod_error", 0, 64, &S::lodError,
              "visbuffer: LOD error in output pixels a cluster cut may show (0: full detail; paths with \"lod\")",

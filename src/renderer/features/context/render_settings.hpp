@@ -20,6 +20,13 @@ enum class DebugView : uint8_t { None, LightComplexity, Lod, Clusters };
 // workload resolves it once the device is open (features::resolveVisBacking).
 enum class VisBacking : uint8_t { Auto, Buffer, Image };
 
+// render.transparent: how the visibility-buffer path draws transparent meshes. Plan: as its plan
+// says (the meshes feature's "transparent" option); Raster: "Mesh Render Transparent" (hardware,
+// blended in instance order); Compute: "Transparent Raster" and "Transparent Shade" (a per-pixel
+// K-buffer, features/transparent_compute/). Paths whose meshes feature has no "lod" (forward,
+// meshlet) always raster.
+enum class TransparentDraw : uint8_t { Plan, Raster, Compute };
+
 // Clustered: each fragment shades the lights of its cluster (at most lighting.max_per_cluster).
 // All: each fragment shades every light, with no cap (the reference; no cluster passes at all).
 enum class LightingMode : uint8_t { Clustered, All };
@@ -32,6 +39,7 @@ struct RenderSettings {
   // through FeatureInit (scene_workload/render_paths.cpp reads the knob).
   VisBacking visBacking = VisBacking::Auto;     // render.vis_backing = auto | buffer | image
   bool occlusion = false;             // render.occlusion: two-phase HiZ cluster culling (visbuffer)
+  TransparentDraw transparentDraw = TransparentDraw::Plan;  // render.transparent = plan | raster | compute
   bool recordEveryFrame = false;      // debug.record_every_frame: no reuse of kept command buffers
   bool nodeBuffers = false;           // debug.node_buffers: a command buffer per node, not per submit
   bool occlusionHoldBack = false;     // debug.occlusion_hold_back: phase 1 also holds back odd clusters

@@ -135,6 +135,11 @@ void readDrawCommands(graph::NodeBuilder& node, const MeshCullOutputs& cull, boo
   }
 }
 
+// render.transparent over the plan's option "transparent".
+bool computesTransparent(TransparentDraw knob, bool plan) {
+  return knob == TransparentDraw::Compute || (knob == TransparentDraw::Plan && plan);
+}
+
 }  // namespace
 
 void MeshFeature::configure(const GpuScene& scene) {
@@ -151,7 +156,13 @@ void MeshFeature::initialize(FeatureInit& init) {
   // At render.lod_error=0 the index range is full detail in the index buffer's triangle order: the
   // image without LOD.
   const TransparentClusters& clusters = init.scene.clusterGeometry.transparent;
-  transparentLod_ = lod_ && hasTransparent_ && clusters.maxEntries > 0 && init.settings.lodError > 0.0f;
+  const bool clusterCut = lod_ && hasTransparent_ && clusters.maxEntries > 0;
+  // The compute passes blend over the image "Material Shade" wrote and test its depth buffer: a
+  // scene with nothing opaque (no Material Shade) rasters.
+  computeTransparent_ = clusterCut && transparentDepthTest_ == DepthTest::OpaqueDepthBuffer &&
+                        init.scene.clusterGeometry.drawCount > 0 &&
+                        computesTransparent(init.settings.transparentDraw, planComputeTransparent_);
+  transparentLod_ = clusterCut && (computeTransparent_ || init.settings.lodError > 0.0f);
   if (transparentLod_) {
     lodThreshold_ = init.settings.lodThresholdScenePixels();
     // One invocation per (transparent instance, cluster of the largest transparent mesh).
@@ -175,7 +186,12 @@ void MeshFeature::initialize(FeatureInit& init) {
   injectNanPass_ = init.settings.injectNanPass;
   injectBiasPass_ = init.settings.injectBiasPass;
   if (depthPrepass_) pipelines_.depthOnly = init.device.createGraphicsPipeline(depthOnlyPipeline(init.settings));
-  if (hasTransparent_)
+  // A fragment id of the compute passes is (packed draw << 7) | triangle (kClusterTriangleBits).
+  if (computeTransparent_ && uint64_t{transparentChunks_} * kChunk > (uint64_t{1} << 25))
+    throw std::logic_error("transparent cluster draws exceed the compute fragment id's 25 draw bits");
+  if (computeTransparent_)
+    transparentCompute_.initialize(init);
+  else if (hasTransparent_)
     pipelines_.transparent =
         init.device.createGraphicsPipeline(forwardPipeline(init.settings, true, transparentDepthTest_));
   statsReadback_ = createReadbackBuffer(init.device, "mesh cull stats readback", kStatsBytes);
@@ -299,6 +315,8 @@ TransparentClusterDraws MeshFeature::declareTransparentCull(graph::FrameGraph& g
       node.write(graph.createBuffer("transparent cluster draws", {draws * kCommandStride, {}}), Access::StorageWrite);
   out.drawCount = node.write(graph.createBuffer("transparent cluster draw count", {4, {}}), Access::StorageWrite);
   cull.stats = node.write(cull.stats, Access::StorageReadWrite);  // its transparent cluster words
+  if (computeTransparent_)
+    out.dispatchArgs = node.write(graph.createBuffer("transparent raster dispatch", {12, {}}), Access::StorageWrite);
   const TransparentClusters& clusters = scene.clusterGeometry.transparent;
   gpu::TransparentCullPush push{};
   push.clusters = device_->storageBufferIndex(scene.clusterGeometry.clusters);
@@ -309,6 +327,7 @@ TransparentClusterDraws MeshFeature::declareTransparentCull(graph::FrameGraph& g
   push.entryStride = clusters.maxEntries;
   push.chunkCount = transparentChunks_;
   push.lodThreshold = lodThreshold_;
+  push.flags = computeTransparent_ ? gpu::kTransparentCullClusterIds : 0u;
   node.setJob([push, pipelines = pipelines_, out, stats = cull.stats, &scene](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
@@ -320,6 +339,7 @@ TransparentClusterDraws MeshFeature::declareTransparentCull(graph::FrameGraph& g
     push.packed = ctx.storageBufferIndex(out.packed);
     push.drawCount = ctx.storageBufferIndex(out.drawCount);
     push.stats = ctx.storageBufferIndex(stats);
+    push.dispatchArgs = out.dispatchArgs.valid() ? ctx.storageBufferIndex(out.dispatchArgs) : FGB_NONE;
     const uint32_t groupsX = std::min(push.chunkCount, kMaxGroupsX);
     const uint32_t groupsY = (push.chunkCount + groupsX - 1) / groupsX;
     cmd.bindPipeline(pipelines.transparentCull);
@@ -401,7 +421,9 @@ void MeshFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
   declareReadback(graph, "Mesh Stats Readback", cull.stats, statsReadback_, "mesh cull stats readback", kStatsBytes);
   if (depthPrepass_) declareDepthPrepass(graph, board, cull);
   if (drawsOpaque_) declareDraw(graph, board, {DrawClass::Opaque, DrawClass::Masked}, "Mesh Render", cull);
-  if (transparentLod_)
+  if (computeTransparent_)
+    transparentCompute_.declare(graph, board, clusterDraws.packed, clusterDraws.drawCount, clusterDraws.dispatchArgs);
+  else if (transparentLod_)
     declareTransparentClusterDraw(graph, board, clusterDraws);
   else if (hasTransparent_)
     declareDraw(graph, board, {DrawClass::Transparent}, "Mesh Render Transparent", cull);
@@ -418,6 +440,7 @@ void MeshFeature::addStats(std::map<std::string, double>& stats) const {
   if (!transparentLod_) return;
   stats["transparent_clusters_drawn"] = read.transparentClusters;
   stats["transparent_whole_meshes_drawn"] = read.transparentWholeMeshes;
+  if (computeTransparent_) transparentCompute_.addStats(stats);
 }
 
 }  // namespace fgb::features

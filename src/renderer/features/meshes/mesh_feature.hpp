@@ -19,11 +19,16 @@
 // "Mesh Render Transparent" issues them with one vkCmdDrawIndexedIndirectCount, so the blend
 // order across instances is the sorted one. At render.lod_error=0 it draws the index range as
 // without the option (full detail, the same image).
+// With render.transparent=compute (or the option "transparent": "compute"; needs "lod" and the
+// opaque depth buffer) the cut's cluster draws go to TransparentComputePasses
+// (features/transparent_compute/: "Transparent Clear", "Transparent Raster", "Transparent Shade")
+// instead, at render.lod_error=0 too (the cut is then level 0).
 #pragma once
 
 #include <vector>
 
 #include "../context/render_feature.hpp"
+#include "../transparent_compute/transparent_compute.hpp"
 #include "renderer/shared/meshes.h"
 
 namespace fgb::features {
@@ -59,12 +64,15 @@ struct TransparentClusterDraws {
   graph::BufferHandle chunkTotals;    // uvec4 per chunk: kept draws, of which whole meshes, triangles
   graph::BufferHandle packed;         // every kept draw in blend order
   graph::BufferHandle drawCount;      // uint: draws in `packed`
+  graph::BufferHandle dispatchArgs;   // render.transparent=compute: "Transparent Raster"'s indirect dispatch
 };
 
 class MeshFeature final : public IRenderFeature {
  public:
-  // drawsOpaque, lod: the path's "opaque" and "lod" options (feature_registry.cpp).
-  explicit MeshFeature(bool drawsOpaque = true, bool lod = false) : drawsOpaque_(drawsOpaque), lod_(lod) {}
+  // drawsOpaque, lod: the path's "opaque" and "lod" options; computeTransparent: its "transparent"
+  // option is "compute" (feature_registry.cpp).
+  explicit MeshFeature(bool drawsOpaque = true, bool lod = false, bool computeTransparent = false)
+      : drawsOpaque_(drawsOpaque), lod_(lod), planComputeTransparent_(computeTransparent) {}
   [[nodiscard]] std::string_view name() const override { return "meshes"; }
   [[nodiscard]] bool enabled() const override { return instanceCount_ > 0 && (drawsOpaque_ || hasTransparent_); }
   void initialize(FeatureInit& init) override;
@@ -114,6 +122,12 @@ class MeshFeature final : public IRenderFeature {
   bool transparentLod_ = false;
   float lodThreshold_ = 0.0f;       // scene pixels (render.lod_error x render.ssaa)
   uint32_t transparentChunks_ = 0;  // "Transparent Cluster Cull"'s workgroups (chunks of draws)
+  // render.transparent (plan: the option "transparent"): computeTransparent_ where it applies
+  // (option "lod", the opaque depth buffer): "Transparent Cluster Cull" in the cluster form at any
+  // render.lod_error, then TransparentComputePasses instead of "Mesh Render Transparent".
+  bool planComputeTransparent_ = false;
+  bool computeTransparent_ = false;
+  TransparentComputePasses transparentCompute_;
 };
 
 }  // namespace fgb::features

@@ -49,6 +49,24 @@ std::string materialShadeShader(const RenderSettings& settings) {
 
 }  // namespace
 
+gpu::VisPush visScenePush(rhi::Device& device, const GpuScene& scene) {
+  const ClusterGeometry& geometry = scene.clusterGeometry;
+  gpu::VisPush p{};
+  p.materials = device.storageBufferIndex(scene.materials);
+  p.clusters = device.storageBufferIndex(geometry.clusters);
+  p.indices = device.storageBufferIndex(geometry.packedTriangles);
+  p.vertices = device.storageBufferIndex(scene.vertices);
+  p.positions = device.storageBufferIndex(geometry.vertices);
+  p.normals = uint32_t(scene.streams.normals / 4);
+  p.tangents = uint32_t(scene.streams.tangents / 4);
+  p.uvs = uint32_t(scene.streams.uvs / 4);
+  p.materialSampler = device.samplerIndex(scene.materialSampler);
+  p.clusterCounts = p.clusterIndices = rhi::kInvalidId;
+  p.flags = (projectsReversedZ(scene.constants) ? gpu::kFlagReversedZ : 0u) |
+            (device.adapter().type == "cpu" ? gpu::kFlagSerialSubgroups : 0u);
+  return p;
+}
+
 // One culling phase's counters: render.occlusion runs the filter and raster twice, the second
 // time ("late") with counters of its own (the lists are reused: phase 1's raster has read them).
 struct VisPhase {
@@ -175,21 +193,10 @@ VisBufferFeature::Buffers VisBufferFeature::declareBuffers(graph::FrameGraph& gr
   b.depth = graph.createBuffer("visibility depth", {uint64_t{4} * pixels, {}});
 
   gpu::VisPush& p = b.push;
-  p.materials = device_->storageBufferIndex(scene.materials);
+  p = visScenePush(*device_, scene);
   p.draws = device_->storageBufferIndex(geometry.draws);
-  p.clusters = device_->storageBufferIndex(geometry.clusters);
-  p.indices = device_->storageBufferIndex(geometry.packedTriangles);
-  p.vertices = device_->storageBufferIndex(scene.vertices);
-  p.positions = device_->storageBufferIndex(geometry.vertices);
-  p.normals = uint32_t(scene.streams.normals / 4);
-  p.tangents = uint32_t(scene.streams.tangents / 4);
-  p.uvs = uint32_t(scene.streams.uvs / 4);
   p.largeCapacity = largeCapacity_;
   p.tileJobCapacity = tileJobCapacity_;
-  p.materialSampler = device_->samplerIndex(scene.materialSampler);
-  p.clusterCounts = p.clusterIndices = rhi::kInvalidId;
-  p.flags =
-      (reversedZ_ ? gpu::kFlagReversedZ : 0u) | (device_->adapter().type == "cpu" ? gpu::kFlagSerialSubgroups : 0u);
   p.background = {targets.background[0], targets.background[1], targets.background[2], targets.background[3]};
   return b;
 }

@@ -25,10 +25,16 @@
 #pragma once
 
 #include "../context/render_feature.hpp"
+#include "renderer/shared/visbuffer.h"
 
 namespace fgb::features {
 
 struct VisPhase;  // one culling phase's counters (visbuffer_feature.cpp)
+
+// The push fields every node taking gpu::VisPush shares (the scene's cluster geometry, vertex
+// streams, materials; reversed Z, CPU device); the nodes fill in their own buffers. Also the
+// compute transparent passes' (features/transparent_compute/).
+[[nodiscard]] gpu::VisPush visScenePush(rhi::Device& device, const GpuScene& scene);
 
 // Published by the visibility-buffer feature for later nodes (debug views, statistics).
 struct VisibilityOutputs {

@@ -1,0 +1,179 @@
+#include "transparent_compute.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <fgb/core/error.hpp>
+#include <fgb/rhi/job_context.hpp>
+#include <stdexcept>
+
+#include "../context/handles.hpp"
+#include "../visbuffer/visbuffer_feature.hpp"
+#include "renderer/shared/transparent.h"
+
+namespace fgb::features {
+namespace {
+
+using graph::Access;
+constexpr graph::QueueClass kQueue = graph::QueueClass::Graphics;
+constexpr uint64_t kCountersBytes = sizeof(gpu::TransparentCounters);
+
+}  // namespace
+
+struct TransparentComputePasses::PassBuffers {
+  graph::BufferHandle words;         // the K-buffer (persistent)
+  graph::BufferHandle counters;      // gpu::TransparentCounters
+  graph::BufferHandle large;         // large triangles' fragment ids
+  graph::BufferHandle draws;         // "Transparent Cluster Cull"'s packed cluster draws,
+  graph::BufferHandle drawCount;     // their count,
+  graph::BufferHandle dispatchArgs;  // and one raster workgroup per draw
+};
+
+void TransparentComputePasses::initialize(FeatureInit& init) {
+  device_ = &init.device;
+  scene_ = &init.scene;
+  if (!init.device.shaderCapabilities().bufferInt64Atomics)
+    throw DeviceError(
+        "render.transparent=compute needs 64-bit storage-buffer atomics (shaderBufferInt64Atomics), which " +
+        init.device.adapter().name + " lacks");
+  // Large triangles are few: glass panes near the camera. A list overflow is rasterised by the
+  // small path (slower, same image) and counted.
+  largeCapacity_ = 65536;
+  raster_ =
+      init.device.createComputePipeline({"transparent raster", "renderer/transparent_compute/transparent_raster.comp"});
+  shade_ =
+      init.device.createComputePipeline({"transparent shade", "renderer/transparent_compute/transparent_shade.comp"});
+  statsReadback_ = createReadbackBuffer(init.device, "transparent counters readback", kCountersBytes);
+  kBufferBytes_ = uint64_t{8} * FGB_TRANSPARENT_K * init.settings.sceneWidth() * init.settings.sceneHeight();
+  kBuffer_ = init.device.createBuffer({"transparent k-buffer", kBufferBytes_,
+                                       rhi::kBufferStorage | rhi::kBufferTransferDst, rhi::MemoryUsage::DeviceLocal});
+}
+
+void TransparentComputePasses::declare(graph::FrameGraph& graph, Blackboard& board, graph::BufferHandle draws,
+                                       graph::BufferHandle drawCount, graph::BufferHandle dispatchArgs) const {
+  auto& targets = board.get<FrameTargets>();
+  if (!targets.opaqueDepth.valid())
+    throw std::logic_error("render.transparent=compute before the opaque depth buffer (the visibility buffer's)");
+  if (uint64_t{8} * FGB_TRANSPARENT_K * targets.extent.width * targets.extent.height != kBufferBytes_)
+    throw std::logic_error("the transparent K-buffer was sized for other scene passes");
+  // Kept from frame to frame, empty between frames: "Transparent Shade" empties the slots it read.
+  const graph::ImportState computeState{graph::kStageComputeShader,
+                                        graph::kAccessShaderStorageRead | graph::kAccessShaderStorageWrite,
+                                        graph::Layout::Undefined, kQueue};
+  PassBuffers b;
+  b.words = graph.importBuffer("transparent k-buffer", {kBufferBytes_, {}}, rhi::external(kBuffer_), computeState,
+                               computeState);
+  b.counters = graph.createBuffer("transparent counters", {kCountersBytes, {}});
+  b.large = graph.createBuffer("transparent large triangles", {uint64_t{4} * largeCapacity_, {}});
+  b.draws = draws;
+  b.drawCount = drawCount;
+  b.dispatchArgs = dispatchArgs;
+  declareClear(graph, b);
+  declareRaster(graph, targets, b);
+  declareReadback(graph, "Transparent Stats Readback", b.counters, statsReadback_, "transparent counters readback",
+                  kCountersBytes);
+  declareShade(graph, board, b);
+}
+
+// The counters zero every frame; the K-buffer's slots empty (all ones: larger than any fragment's
+// word) once, in the first recording: after it the shade leaves them empty (a fill of 8 K bytes a
+// pixel every frame, 66 MB at 1920x1080, would cost more than the shade's stores to the pixels
+// that had fragments).
+void TransparentComputePasses::declareClear(graph::FrameGraph& graph, PassBuffers& b) const {
+  auto clear = graph.addNode("Transparent Clear", graph::NodeType::Transfer, kQueue);
+  b.words = clear.write(b.words, Access::TransferDst);
+  b.counters = clear.write(b.counters, Access::TransferDst);
+  clear.setJob([b, bytes = kBufferBytes_, emptied = kBufferEmptied_](graph::JobContext& context) {
+    auto& ctx = rhi::rhiContext(context);
+    if (!*emptied) ctx.cmd().fillBuffer(ctx.buffer(b.words), 0, bytes, 0xffffffffu);
+    *emptied = true;
+    ctx.cmd().fillBuffer(ctx.buffer(b.counters), 0, kCountersBytes, 0);
+  });
+  clear.recordingDependsOn([emptied = kBufferEmptied_] { return uint64_t{*emptied}; });
+}
+
+void TransparentComputePasses::declareRaster(graph::FrameGraph& graph, const FrameTargets& targets,
+                                             PassBuffers& b) const {
+  auto raster = graph.addNode("Transparent Raster", graph::NodeType::Compute, kQueue);
+  raster.read(b.draws, Access::StorageRead);
+  raster.read(b.drawCount, Access::StorageRead);
+  raster.read(b.dispatchArgs, Access::Indirect);
+  raster.read(targets.opaqueDepth, Access::StorageRead);
+  b.words = raster.write(b.words, Access::StorageReadWrite);
+  b.counters = raster.write(b.counters, Access::StorageReadWrite);
+  b.large = raster.write(b.large, Access::StorageWrite);  // appended by the first dispatch, read by the second
+  gpu::VisPush push = visScenePush(*device_, *scene_);
+  push.largeCapacity = largeCapacity_;
+  raster.setJob([push, pipeline = raster_, b, opaqueDepth = opaqueDepthSource(targets, DepthTest::OpaqueDepthBuffer),
+                 scene = scene_](graph::JobContext& context) mutable {
+    auto& ctx = rhi::rhiContext(context);
+    auto& cmd = ctx.cmd();
+    const FrameBuffers& frame = scene->frame(ctx.execution());
+    push.frame = frame.constantsIndex;
+    push.instances = frame.instancesIndex;
+    push.draws = ctx.storageBufferIndex(b.draws);
+    push.args = ctx.storageBufferIndex(b.drawCount);
+    push.counters = ctx.storageBufferIndex(b.counters);
+    push.largeList = ctx.storageBufferIndex(b.large);
+    push.words = ctx.storageBufferIndex(b.words);
+    const gpu::OpaqueDepthTest test = opaqueDepth.push(ctx);
+    push.depthOut = test.depths;
+    push.depthCompare = test.compareOp;
+    cmd.bindPipeline(pipeline);
+    cmd.push(push);
+    cmd.dispatchIndirect(ctx.buffer(b.dispatchArgs));  // one workgroup per kept draw
+    cmd.computeBarrier();                              // the large list and its count, complete
+    gpu::VisPush largePass = push;
+    largePass.flags |= gpu::kFlagLargeTiles;
+    cmd.push(largePass);
+    cmd.dispatch(FGB_TRANSPARENT_LARGE_GROUPS);
+  });
+  raster.recordingFixed();
+}
+
+void TransparentComputePasses::declareShade(graph::FrameGraph& graph, Blackboard& board, PassBuffers& b) const {
+  auto& targets = board.get<FrameTargets>();
+  auto shade = graph.addNode("Transparent Shade", graph::NodeType::Compute, kQueue);
+  b.words = shade.write(b.words, Access::StorageReadWrite);  // reads the slots, empties them
+  shade.read(b.draws, Access::StorageRead);
+  targets.hdr = shade.write(targets.hdr, Access::StorageReadWrite);
+  ClusteredLights clusters;
+  if (const auto* published = board.find<ClusteredLights>()) {
+    clusters = *published;
+    shade.read(clusters.counts, Access::StorageRead);
+    shade.read(clusters.indices, Access::StorageRead);
+  }
+  if (targets.exposure.valid()) shade.read(targets.exposure, Access::StorageRead);  // pre-exposure
+  shade.setJob([push = visScenePush(*device_, *scene_), pipeline = shade_, b, hdr = targets.hdr, clusters,
+                extent = targets.extent, scene = scene_](graph::JobContext& context) mutable {
+    auto& ctx = rhi::rhiContext(context);
+    auto& cmd = ctx.cmd();
+    const FrameBuffers& frame = scene->frame(ctx.execution());
+    push.frame = frame.constantsIndex;
+    push.instances = frame.instancesIndex;
+    push.lights = frame.lightsIndex;
+    push.draws = ctx.storageBufferIndex(b.draws);
+    push.words = ctx.storageBufferIndex(b.words);
+    push.hdr = ctx.storageTextureIndex(hdr);
+    if (clusters.counts.valid()) {
+      push.clusterCounts = ctx.storageBufferIndex(clusters.counts);
+      push.clusterIndices = ctx.storageBufferIndex(clusters.indices);
+    }
+    cmd.bindPipeline(pipeline);
+    cmd.push(push);
+    cmd.dispatch((extent.width + FGB_TRANSPARENT_SHADE_GROUP_SIZE - 1) / FGB_TRANSPARENT_SHADE_GROUP_SIZE,
+                 (extent.height + FGB_TRANSPARENT_SHADE_GROUP_SIZE - 1) / FGB_TRANSPARENT_SHADE_GROUP_SIZE);
+  });
+  shade.recordingFixed();
+  targets.color = targets.hdr;  // single-sampled: later colour passes load the blended image
+}
+
+void TransparentComputePasses::addStats(std::map<std::string, double>& stats) const {
+  gpu::TransparentCounters read{};
+  std::memcpy(&read, device_->mapped(statsReadback_).data(), sizeof(read));
+  stats["transparent_fragments_inserted"] = read.inserted;
+  stats["transparent_fragments_dropped"] = read.dropped;
+  stats["transparent_large_triangles"] = read.largeTriangles;
+  stats["transparent_large_overflow"] = read.largeOverflow;
+}
+
+}  // namespace fgb::features

@@ -79,23 +79,6 @@ TEST(SceneWorkload, AtriumDeclaresEveryThesisPassInOrder) {
   EXPECT_EQ(stats.at("lights"), 28.0);
 }
 
-// The light counts (statistics) ride on a later node: on the forward path Bloom copies them, so
-// no "Light Stats Readback" node runs; without bloom no node carries them and the node of their
-// own comes back. The stats are the same either way (a copy of the same counts).
-TEST(SceneWorkload, LightCountsRideOnBloomElseGetANodeOfTheirOwn) {
-  auto carried = render("atrium-small.json", {}, 2, true);
-  auto own = render("atrium-small.json", {{"post.bloom", "0"}}, 2, true);
-  EXPECT_EQ(carried.workload->validationMessages(), 0u);
-  EXPECT_EQ(own.workload->validationMessages(), 0u);
-  EXPECT_TRUE(aliveNames(carried.passes).count("Bloom"));
-  EXPECT_FALSE(aliveNames(carried.passes).count("Light Stats Readback"));
-  EXPECT_FALSE(aliveNames(own.passes).count("Bloom"));
-  EXPECT_TRUE(aliveNames(own.passes).count("Light Stats Readback"));
-  for (const char* key : {"lights_per_cluster_avg", "lights_per_cluster_max", "clusters_overflowed"})
-    EXPECT_EQ(carried.workload->stats().at(key), own.workload->stats().at(key)) << key;
-  EXPECT_GT(carried.workload->stats().at("lights_per_cluster_max"), 0.0);
-}
-
 TEST(SceneWorkload, ShowcaseLightsTheObjects) {
   auto r = render("showcase-small.json");
   EXPECT_GT(meanOf(r.workload->readDisplay()), 0.02);

@@ -386,7 +386,6 @@ class SceneWorkload final : public Workload {
     const auto& targets = board.set(makeTargets(graph));
     for (auto& feature : features_)
       if (feature->enabled()) feature->declare(graph, board);
-    features::declareUncarriedHostCopies(graph, board);
     rhi::GraphOptions options;
     options.name = "frame";
     if (!settings_.asyncCompute) options.queues = 1;

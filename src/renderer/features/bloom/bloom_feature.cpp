@@ -59,16 +59,12 @@ void BloomFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
   }
   std::vector<graph::Extent> sizes(size_t{mips_} + 1);
   for (uint32_t level = 0; level <= mips_; ++level) sizes[level] = levelExtent(targets.extent, level);
-  // Statistics no earlier compute node took (the forward path's light counts): the shading before
-  // Bloom read them, so their barrier joins the one Bloom waits at for the HDR image.
-  const std::vector<HostCopy> hostCopies = carryHostCopies(node, board);
 
   node.setJob([down = downPipeline_, up = upPipeline_, sampler = samplerIndex_, bloom = bloom_, mips = mips_, hdr,
-               levels, sizes, exposure = exposureIndex_, injectNan = injectNan_, injectBias = injectBias_,
-               hostCopies](graph::JobContext& context) {
+               levels, sizes, exposure = exposureIndex_, injectNan = injectNan_,
+               injectBias = injectBias_](graph::JobContext& context) {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
-    recordHostCopies(ctx, hostCopies);  // no barrier after: the dispatches neither read nor write them
     const auto xy = [](const graph::Extent& e) { return glm::ivec2(int32_t(e.width), int32_t(e.height)); };
     cmd.bindPipeline(down);
     for (uint32_t level = 1; level <= mips; ++level) {

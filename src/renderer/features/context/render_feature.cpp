@@ -131,64 +131,21 @@ rhi::BufferId createReadbackBuffer(rhi::Device& device, const std::string& name,
   return buffer;
 }
 
-namespace {
-
-graph::BufferHandle importReadback(graph::FrameGraph& graph, rhi::BufferId readback, std::string_view name,
-                                   uint64_t bytes) {
+void declareReadback(graph::FrameGraph& graph, std::string_view nodeName, graph::BufferHandle source,
+                     rhi::BufferId readback, std::string_view name, uint64_t bytes) {
   const graph::ImportState hostState{graph::kStageHost | graph::kStageTransfer,
                                      graph::kAccessHostRead | graph::kAccessTransferWrite, graph::Layout::Undefined,
                                      graph::QueueClass::Graphics};
-  return graph.importBuffer(name, {bytes, {}}, rhi::external(readback), hostState, hostState);
-}
-
-// A side-effect transfer node of its own that makes `copy`.
-void declareCopyNode(graph::FrameGraph& graph, std::string_view nodeName, HostCopy copy) {
+  auto target = graph.importBuffer(name, {bytes, {}}, rhi::external(readback), hostState, hostState);
   auto node = graph.addNode(nodeName, graph::NodeType::Transfer);
-  node.read(copy.source, graph::Access::TransferSrc);
-  copy.target = node.write(copy.target, graph::Access::TransferDst);
+  node.read(source, graph::Access::TransferSrc);
+  target = node.write(target, graph::Access::TransferDst);
   node.sideEffect();
-  node.setJob([copies = std::vector<HostCopy>{copy}](graph::JobContext& context) {
-    recordHostCopies(rhi::rhiContext(context), copies);
+  node.setJob([source, target, bytes](graph::JobContext& context) {
+    auto& ctx = rhi::rhiContext(context);
+    ctx.cmd().copyBuffer(ctx.buffer(source), ctx.buffer(target), bytes);
   });
   node.recordingFixed();
-}
-
-}  // namespace
-
-void declareReadback(graph::FrameGraph& graph, std::string_view nodeName, graph::BufferHandle source,
-                     rhi::BufferId readback, std::string_view name, uint64_t bytes) {
-  declareCopyNode(graph, nodeName, {source, importReadback(graph, readback, name, bytes), bytes, {}});
-}
-
-void requestHostCopy(graph::FrameGraph& graph, Blackboard& board, std::string nodeName, graph::BufferHandle source,
-                     rhi::BufferId readback, std::string_view name, uint64_t bytes) {
-  HostCopies* copies = board.find<HostCopies>();
-  if (copies == nullptr) copies = &board.set(HostCopies{});
-  copies->pending.push_back({source, importReadback(graph, readback, name, bytes), bytes, std::move(nodeName)});
-}
-
-std::vector<HostCopy> carryHostCopies(graph::NodeBuilder& node, Blackboard& board) {
-  HostCopies* copies = board.find<HostCopies>();
-  if (copies == nullptr) return {};
-  std::vector<HostCopy> carried = std::move(copies->pending);
-  copies->pending.clear();
-  for (HostCopy& copy : carried) {
-    node.read(copy.source, graph::Access::TransferSrc);
-    copy.target = node.write(copy.target, graph::Access::TransferDst);
-  }
-  return carried;
-}
-
-void recordHostCopies(rhi::JobContext& ctx, const std::vector<HostCopy>& copies) {
-  for (const HostCopy& copy : copies)
-    ctx.cmd().copyBuffer(ctx.buffer(copy.source), ctx.buffer(copy.target), copy.bytes);
-}
-
-void declareUncarriedHostCopies(graph::FrameGraph& graph, Blackboard& board) {
-  HostCopies* copies = board.find<HostCopies>();
-  if (copies == nullptr) return;
-  for (const HostCopy& copy : copies->pending) declareCopyNode(graph, copy.nodeName, copy);
-  copies->pending.clear();
 }
 
 }  // namespace fgb::features

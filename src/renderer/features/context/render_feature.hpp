@@ -88,28 +88,4 @@ rhi::BufferId createReadbackBuffer(rhi::Device& device, const std::string& name,
 void declareReadback(graph::FrameGraph& graph, std::string_view nodeName, graph::BufferHandle source,
                      rhi::BufferId readback, std::string_view name, uint64_t bytes);
 
-// Statistics copied to the host by a later node instead of a node of their own (which sits on the
-// frame's path: H200, "Light Stats Readback" 0.018 ms a frame). A feature asks with
-// requestHostCopy; the next compute node declared after it that calls carryHostCopies (one that
-// already depends on the source, so the copy's barrier joins the ones it waits at anyway) records
-// the copies before its own work, with no barrier between them, so they run beside it. A request
-// no node carried gets a transfer node of its own (declareUncarriedHostCopies, after every
-// feature), so the statistics never depend on which features the path has.
-struct HostCopy {
-  graph::BufferHandle source;
-  graph::BufferHandle target;  // the readback buffer, imported
-  uint64_t bytes = 0;
-  std::string nodeName;  // of the node it gets when no node carries it
-};
-struct HostCopies {
-  std::vector<HostCopy> pending;
-};
-void requestHostCopy(graph::FrameGraph& graph, Blackboard& board, std::string nodeName, graph::BufferHandle source,
-                     rhi::BufferId readback, std::string_view name, uint64_t bytes);
-// Declares the pending copies' uses on `node` (a compute or transfer node: a graphics node's
-// commands run inside its rendering) and hands them over; record them with recordHostCopies.
-[[nodiscard]] std::vector<HostCopy> carryHostCopies(graph::NodeBuilder& node, Blackboard& board);
-void recordHostCopies(rhi::JobContext& ctx, const std::vector<HostCopy>& copies);
-void declareUncarriedHostCopies(graph::FrameGraph& graph, Blackboard& board);
-
 }  // namespace fgb::features

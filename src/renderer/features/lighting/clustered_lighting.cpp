@@ -93,8 +93,7 @@ void ClusteredLighting::declare(graph::FrameGraph& graph, Blackboard& board) {
     ctx.cmd().dispatch(groups[0], groups[1], groups[2]);  // one invocation per cluster
   });
   node.recordingFixed();
-  // Statistics only: carried by a later node (Material Shade, Bloom), else "Light Stats Readback".
-  requestHostCopy(graph, board, "Light Stats Readback", lists.counts, countsReadback_, "cluster counts readback",
+  declareReadback(graph, "Light Stats Readback", lists.counts, countsReadback_, "cluster counts readback",
                   uint64_t{4} * clusterCount_);
   board.set(lists);
 }

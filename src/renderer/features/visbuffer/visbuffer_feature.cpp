@@ -413,8 +413,7 @@ void VisBufferFeature::declareHizBuild(graph::FrameGraph& graph, Buffers& b) con
 // the critical path (H100: 5 us plus a ~20 us bubble); here the 80-byte copy (one per phase with
 // render.occlusion) is recorded before the dispatch with no barrier between them, so it runs
 // beside the shading, and its source's barrier (filter's compute write -> transfer read) joins the
-// one shading waits at anyway. It carries other features' statistics the same way (the light
-// counts: carryHostCopies).
+// one shading waits at anyway.
 void VisBufferFeature::declareShade(graph::FrameGraph& graph, Blackboard& board, Buffers& b) const {
   auto& targets = board.get<FrameTargets>();
   const graph::ImportState hostState{graph::kStageHost | graph::kStageTransfer,
@@ -438,13 +437,11 @@ void VisBufferFeature::declareShade(graph::FrameGraph& graph, Blackboard& board,
   }
   // Shading pre-exposes what it writes, like every colour pass (auto exposure: this frame's state).
   if (targets.exposure.valid()) node.read(targets.exposure, Access::StorageRead);
-  const std::vector<HostCopy> hostCopies = carryHostCopies(node, board);
   node.setJob([push = b.push, pipelines = pipelines_, b, hdr = targets.hdr, clusters, stats, scene = scene_,
-               injectBias = injectBias_, hostCopies](graph::JobContext& context) mutable {
+               injectBias = injectBias_](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
     useFrame(push, *scene, ctx.execution());
-    recordHostCopies(ctx, hostCopies);
     cmd.copyBuffer(ctx.buffer(b.early.rasterArgs), ctx.buffer(stats), sizeof(VisCounters));
     if (b.late.rasterArgs.valid()) {
       const rhi::BufferCopy second{0, sizeof(VisCounters), sizeof(VisCounters)};

@@ -119,5 +119,10 @@ void main() {
     }
     barrier();  // every lane done with the list and the mask before the next chunk resets them
   }
-  if (inGrid) fgbUints[pc.counts].values[cluster] = found;
+  if (inGrid) {
+    fgbUints[pc.counts].values[cluster] = found;
+    // A second store rather than a copy command: on an H200 the 14 KB copy to host memory, in a
+    // node of its own or recorded beside another, cost about 0.02 ms of every frame.
+    fgbUints[pc.countsToHost].values[cluster] = found;
+  }
 }

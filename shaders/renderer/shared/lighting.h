@@ -27,8 +27,10 @@ struct LightCullPush {
   uint counts;   // per cluster: lights found (may exceed the capacity: overflow is visible)
   uint indices;  // cluster c's lights at [c * capacity, c * capacity + min(count, capacity))
   uint dropLight;  // debug.drop_light: K >= 1 leaves light K - 1 out of every cluster; 0: none
+  uint countsToHost;  // the host's copy of `counts` (statistics), written beside it
+  uint pad;
 };
-FGB_CHECK_PUSH(LightCullPush, 24)
+FGB_CHECK_PUSH(LightCullPush, 32)
 
 FGB_GPU_END
 

@@ -36,7 +36,10 @@ void ClusteredLighting::initialize(FeatureInit& init) {
   cullPipeline_ = init.device.createComputePipeline({"clustered light cull", "renderer/light_cull.comp"});
   bounds_ = init.device.createBuffer(
       {"cluster bounds", uint64_t{32} * clusterCount_, rhi::kBufferStorage, rhi::MemoryUsage::DeviceLocal});
-  countsReadback_ = createReadbackBuffer(init.device, "cluster counts readback", uint64_t{4} * clusterCount_);
+  // Written by the cull shader itself (statistics): a storage buffer the host reads.
+  countsReadback_ = init.device.createBuffer(
+      {"cluster counts readback", uint64_t{4} * clusterCount_, rhi::kBufferStorage, rhi::MemoryUsage::Readback});
+  std::memset(init.device.mapped(countsReadback_).data(), 0, uint64_t{4} * clusterCount_);
 }
 
 graph::BufferHandle ClusteredLighting::declareBounds(graph::FrameGraph& graph) {
@@ -73,28 +76,36 @@ void ClusteredLighting::declare(graph::FrameGraph& graph, Blackboard& board) {
   lists.counts = graph.createBuffer("cluster light counts", {uint64_t{4} * clusterCount_, {}});
   lists.indices = graph.createBuffer("cluster light indices", {uint64_t{4} * clusterCount_ * capacity_, {}});
 
+  // The host reads the counts after the frame (addStats): before and after the graph, the
+  // readback is in the host's hands.
+  const graph::ImportState hostRead{graph::kStageHost, graph::kAccessHostRead, graph::Layout::Undefined,
+                                    graph::QueueClass::Graphics};
+  auto countsToHost = graph.importBuffer("cluster counts readback", {uint64_t{4} * clusterCount_, {}},
+                                         rhi::external(countsReadback_), hostRead, hostRead);
+
   auto node = graph.addNode("Clustered Light Cull", graph::NodeType::Compute);
   node.read(bounds, Access::StorageRead);
   lists.counts = node.write(lists.counts, Access::StorageWrite);
   lists.indices = node.write(lists.indices, Access::StorageWrite);
-  gpu::LightCullPush push{0, device_->storageBufferIndex(bounds_), 0, 0, 0, dropLight_};
+  countsToHost = node.write(countsToHost, Access::StorageWrite);
+  gpu::LightCullPush push{0, device_->storageBufferIndex(bounds_), 0, 0, 0, dropLight_, 0, 0};
   const auto& grid = scene_->constants.clusterGrid;
   constexpr uint32_t kBlock = FGB_LIGHT_CULL_BLOCK;
   const std::array<uint32_t, 3> groups{(grid.x + kBlock - 1) / kBlock, (grid.y + kBlock - 1) / kBlock, grid.z};
-  node.setJob([push, pipeline = cullPipeline_, lists, groups, scene = scene_](graph::JobContext& context) mutable {
+  node.setJob([push, pipeline = cullPipeline_, lists, countsToHost, groups,
+               scene = scene_](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
     const FrameBuffers& frame = scene->frame(ctx.execution());
     push.frame = frame.constantsIndex;
     push.lights = frame.lightsIndex;
     push.counts = ctx.storageBufferIndex(lists.counts);
     push.indices = ctx.storageBufferIndex(lists.indices);
+    push.countsToHost = ctx.storageBufferIndex(countsToHost);
     ctx.cmd().bindPipeline(pipeline);
     ctx.cmd().push(push);
     ctx.cmd().dispatch(groups[0], groups[1], groups[2]);  // one invocation per cluster
   });
   node.recordingFixed();
-  declareReadback(graph, "Light Stats Readback", lists.counts, countsReadback_, "cluster counts readback",
-                  uint64_t{4} * clusterCount_);
   board.set(lists);
 }
 

@@ -206,7 +206,7 @@ FrameClock FrameClock::of(const scene::Scene& scene, double timeStep) {
 
 FrameUpdate::FrameUpdate(rhi::Device& device, features::GpuScene& gpu, const scene::Scene& scene,
                          const features::RenderSettings& settings, FrameClock clock)
-    : gpu_(gpu), scene_(scene), settings_(settings), clock_(clock), instances_(scene) {
+    : gpu_(gpu), scene_(scene), settings_(settings), clock_(clock), path_(scene.cameraPath), instances_(scene) {
   for (uint32_t slot = 0; slot < features::kFramesInFlight; ++slot) {
     const features::FrameBuffers& frame = gpu.frames[slot];
     mapped_[slot] = {device.mapped(frame.constants), mappedAs<gpu::Instance>(device, frame.instances),
@@ -236,7 +236,7 @@ void FrameUpdate::writeConstants(uint64_t execution, const scene::Camera& camera
 }
 
 void FrameUpdate::write(uint64_t execution) {
-  const scene::Camera camera = scene_.cameraPath.at(scene_.camera, clock_.pathTime(execution));
+  const scene::Camera camera = path_.at(scene_.camera, clock_.pathTime(execution));
   const MappedCopy& mapped = mapped_[execution % features::kFramesInFlight];
   writeConstants(execution, camera, mapped);
 

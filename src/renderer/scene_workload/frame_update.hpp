@@ -9,6 +9,7 @@
 #include "../features/context/render_space.hpp"
 
 #include <fgb/rhi/device.hpp>
+#include <fgb/scene/camera_path_cursor.hpp>
 #include <fgb/scene/scene.hpp>
 
 #include <optional>
@@ -142,6 +143,7 @@ class FrameUpdate {
   const scene::Scene& scene_;
   const features::RenderSettings& settings_;
   FrameClock clock_;
+  scene::CameraPathCursor path_;  // the frames' cameras, one segment's setup kept
   std::array<MappedCopy, features::kFramesInFlight> mapped_;
   std::array<CopyContents, features::kFramesInFlight> copies_;
   // The camera gpu_.current's camera part was made for (it keeps it between frames, and each frame

@@ -10,6 +10,7 @@
 #include <glm/ext/matrix_transform.hpp>
 
 #include <cmath>
+#include <cstring>
 #include <vector>
 
 namespace fgb::render {
@@ -99,6 +100,35 @@ TEST(FrameConstants, TheEyeIsAtCameraPositionInAnchoredRenderSpace) {
   EXPECT_EQ(glm::dvec3(glm::vec3(c.anchorOffset)), RenderSpace::ofParticles(s).anchor - space.anchor);
 }
 
+// A moving camera of one field of view rewrites only the view's part of its constants
+// (FrameUpdate): that must give every byte makeFrameConstants gives, with a finite far plane and
+// with an infinite one (whose cluster slices end where the scene does, seen from the camera).
+TEST(RenderSpace, MovingTheCameraGivesTheConstantsMadeAfresh) {
+  scene::Scene s;
+  s.cameraPath =
+      scene::CameraPath({{0.0, {0.0, 1.0, 0.0}, {0.0, 1.0, -1.0}, {}}, {1.0, {30.0, 2.0, 5.0}, {0.0, 1.0, 0.0}, {}}});
+  scene::Instance instance;
+  instance.worldBounds = {{-50.0, 0.0, -50.0}, {50.0, 10.0, 50.0}};
+  s.instances.push_back(instance);
+  features::RenderSettings settings;
+  settings.width = 320;
+  settings.height = 180;
+  for (const float far : {500.0f, INFINITY}) {
+    scene::Camera from = s.camera;
+    from.farPlane = far;
+    scene::Camera to = from;
+    from.position = {1.0, 1.7, 2.0};
+    to.position = {29.0, 2.5, -3.0};  // another anchor cell
+    to.target = {0.0, 0.0, -9.0};
+    gpu::FrameConstants moved = makeFrameConstants(s, from, settings);
+    moveCamera(moved, s, to, settings);
+    const gpu::FrameConstants fresh = makeFrameConstants(s, to, settings);
+    EXPECT_EQ(std::memcmp(&moved, &fresh, sizeof(fresh)), 0) << "far " << far;
+    const gpu::FrameConstants before = makeFrameConstants(s, from, settings);
+    EXPECT_NE(std::memcmp(&moved, &before, sizeof(fresh)), 0);  // the move did change them
+  }
+}
+
 scene::Scene twoOpaqueTwoTransparent() {
   scene::Scene s;
   s.meshes.resize(2);
@@ -138,17 +168,61 @@ TEST(InstanceWriter, WritesEveryInstanceInItsRenderSpaceAndTheTransparentOnesAlo
   EXPECT_EQ(commands[2].firstIndex, 30u);
 
   // From beyond both (z = -40) the order turns around; only the transparent part is written.
+  const std::vector<uint32_t> held(writer.transparentOrder().begin(), writer.transparentOrder().end());
   writer.sortTransparent({0.0, 0.0, -40.0});
   const std::vector<uint32_t> order(writer.transparentOrder().begin(), writer.transparentOrder().end());
   EXPECT_EQ(order, (std::vector<uint32_t>{1, 3}));
   const float opaqueMark = instances[0].model[3].z;
   instances[0].model[3].z = 99.0f;
-  writer.writeTransparent(space, instances, commands);
+  writer.writeTransparent(space, held, instances, commands);
   EXPECT_EQ(instances[0].model[3].z, 99.0f);
   EXPECT_NE(opaqueMark, 99.0f);
   EXPECT_EQ(instances[2].model[3], glm::vec4(-4.8125f, -4.8125f, -9.8125f, 1.0f));
   EXPECT_EQ(instances[3].model[3], glm::vec4(-4.8125f, -4.8125f, -34.8125f, 1.0f));
   EXPECT_EQ(instances[2].drawGroup, 1u);
+  EXPECT_EQ(commands[1].firstInstance, 2u);
+  EXPECT_EQ(commands[1].firstIndex, 30u);
+
+  // A slot whose instance the copy already holds is not written again.
+  instances[2].model[3].z = 77.0f;
+  instances[3].model[3].z = 77.0f;
+  writer.writeTransparent(space, std::vector<uint32_t>{1, 1}, instances, commands);
+  EXPECT_EQ(instances[2].model[3].z, 77.0f);
+  EXPECT_EQ(instances[3].model[3].z, -34.8125f);
+}
+
+// Many transparent instances, some at equal distances from the path: sorting the last frame's
+// order again (InstanceWriter) gives drawOrder's stable sort from scratch at every position.
+TEST(InstanceWriter, TransparentOrderIsDrawOrdersAtEveryCameraPosition) {
+  scene::Scene s;
+  s.meshes.resize(3);
+  s.materials.resize(2);
+  s.materials[1].alphaMode = scene::AlphaMode::Blend;
+  for (uint32_t i = 0; i < 24; ++i) {
+    scene::Instance instance;
+    instance.mesh = i % 3;
+    instance.material = i % 4 == 0 ? 0 : 1;
+    // Pairs mirrored in x: equal distances from any camera on x = 0.
+    const double x = (i % 2 == 0 ? 1.0 : -1.0) * double(i / 2 % 5);
+    const double z = -3.0 * double(i / 2);
+    instance.transform = glm::translate(glm::dmat4(1.0), glm::dvec3(x, 0.0, z));
+    instance.worldBounds = {{x - 0.5, -0.5, z - 0.5}, {x + 0.5, 0.5, z + 0.5}};
+    s.instances.push_back(instance);
+  }
+  InstanceWriter writer(s);
+  size_t reordered = 0;
+  std::vector<uint32_t> last;
+  for (int step = 0; step < 60; ++step) {
+    const glm::dvec3 camera(step % 7 == 0 ? 0.0 : std::sin(step * 0.3) * 6.0, 1.0, 10.0 - 1.5 * step);
+    writer.sortTransparent(camera);
+    const DrawOrder expected = drawOrder(s, camera);
+    const auto tail = std::span(expected.instanceOrder).subspan(expected.instanceOrder.size() - 18);
+    const std::vector<uint32_t> order(writer.transparentOrder().begin(), writer.transparentOrder().end());
+    ASSERT_EQ(order, std::vector<uint32_t>(tail.begin(), tail.end())) << "step " << step;
+    reordered += order != last ? 1 : 0;
+    last = order;
+  }
+  EXPECT_GT(reordered, 10u);  // the walk does reorder them
 }
 
 TEST(CopyContents, ACopyIsRewrittenWhollyOnlyWhenTheAnchorMovesAndPartlyWhenTheOrderDoes) {
@@ -156,12 +230,16 @@ TEST(CopyContents, ACopyIsRewrittenWhollyOnlyWhenTheAnchorMovesAndPartlyWhenTheO
   const RenderSpace here = RenderSpace::around({0.0, 0.0, 0.0});
   const RenderSpace there = RenderSpace::around({100.0, 0.0, 0.0});
   const std::vector<uint32_t> order{3, 1}, turned{1, 3};
-  EXPECT_EQ(copy.update(here, order), Write::Everything);  // a new copy holds nothing
-  EXPECT_EQ(copy.update(here, order), Write::Nothing);     // moved within the cell, same order
-  EXPECT_EQ(copy.update(here, turned), Write::Transparent);
-  EXPECT_EQ(copy.update(here, turned), Write::Nothing);
-  EXPECT_EQ(copy.update(there, turned), Write::Everything);
-  EXPECT_EQ(copy.update(there, turned), Write::Nothing);
+  EXPECT_EQ(copy.compare(here, order), Write::Everything);  // a new copy holds nothing
+  copy.hold(here, order);
+  EXPECT_EQ(copy.compare(here, order), Write::Nothing);  // moved within the cell, same order
+  EXPECT_EQ(copy.compare(here, turned), Write::Transparent);
+  EXPECT_EQ(std::vector<uint32_t>(copy.transparent().begin(), copy.transparent().end()), order);  // until held
+  copy.hold(here, turned);
+  EXPECT_EQ(copy.compare(here, turned), Write::Nothing);
+  EXPECT_EQ(copy.compare(there, turned), Write::Everything);
+  copy.hold(there, turned);
+  EXPECT_EQ(copy.compare(there, turned), Write::Nothing);
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // name the field, and the camera knobs (camera.path, camera.time, camera.distance) land.
 #include <fgb/core/error.hpp>
 #include <fgb/scene/camera_path.hpp>
+#include <fgb/scene/camera_path_cursor.hpp>
 #include <fgb/scene/knobs.hpp>
 #include <fgb/scene/scene.hpp>
 #include <fgb/scene/scene_file.hpp>
@@ -12,6 +13,7 @@
 
 #include <cmath>
 #include <limits>
+#include <vector>
 
 using namespace fgb::scene;
 using ::testing::HasSubstr;
@@ -73,6 +75,26 @@ TEST(CameraPath, HoldsStillBeyondItsEnds) {
   EXPECT_EQ(path.at({}, -1.0).position, path.keys().front().position);
   EXPECT_EQ(path.at({}, 99.0).position, path.keys().back().position);
   EXPECT_EQ(CameraPath().at(Camera{}, 3.0).position, Camera{}.position);  // no path: the still view
+}
+
+// A cursor keeps the segment it last evaluated: walking forward, back, across keys and past the
+// ends, and with another still camera's field of view, it gives exactly the cameras a fresh
+// evaluation gives.
+TEST(CameraPath, ACursorGivesTheSameCamerasAsAFreshEvaluation) {
+  const CameraPath path = samplePath();
+  CameraPathCursor cursor(path);
+  Camera still;
+  std::vector<double> times;
+  for (int i = -2; i <= 90; ++i) times.push_back(0.05 * i);                  // forward, past both ends
+  for (double t : {3.9, 0.2, 1.0, 0.99, 3.5, 2.0, 2.0}) times.push_back(t);  // jumps, keys, repeats
+  for (size_t k = 0; k < times.size(); ++k) {
+    if (k == times.size() - 1) still.verticalFovDeg = 40.0f;  // same time and segment, another still fov
+    const Camera kept = cursor.at(still, times[k]);
+    const Camera fresh = CameraPathCursor(path).at(still, times[k]);
+    EXPECT_EQ(kept.position, fresh.position) << "t=" << times[k];
+    EXPECT_EQ(kept.target, fresh.target) << "t=" << times[k];
+    EXPECT_EQ(kept.verticalFovDeg, fresh.verticalFovDeg) << "t=" << times[k];
+  }
 }
 
 TEST(CameraPath, BadPathsNameTheField) {

@@ -47,18 +47,9 @@ gpu::FrameConstants makeFrameConstants(const scene::Scene& scene, const scene::C
                                        const features::RenderSettings& settings) {
   const float aspect = float(settings.width) / float(settings.height);
   gpu::FrameConstants c{};
-  const features::RenderSpace space = features::RenderSpace::of(scene, camera.position);
-  c.view = space.view(camera);
   c.proj = scene::projectionMatrix(camera, aspect);
   c.proj[1][1] = -c.proj[1][1];  // Vulkan's framebuffer Y points down; keep images upright
-  c.viewProj = c.proj * c.view;
   c.invProj = glm::inverse(c.proj);
-  const auto frustum = scene::Frustum::fromMatrix(c.viewProj);
-  for (size_t i = 0; i < frustum.planes.size(); ++i) c.frustumPlanes[i] = frustum.planes[i];
-  // Render space is anchored near the camera (render_space.hpp): the view matrix holds the
-  // camera's offset from the anchor, and shaders take the eye from cameraPosition.
-  c.anchorOffset = glm::vec4(space.point(features::RenderSpace::ofParticles(scene).anchor), 0.0f);
-  c.cameraPosition = glm::vec4(space.point(camera.position), 1.0f);
   if (scene.sun.enabled) {
     c.sunDirection = glm::vec4(glm::normalize(scene.sun.direction), 1.0f);
     c.sunColor = glm::vec4(scene.sun.color * scene.sun.intensity, 0.0f);
@@ -67,12 +58,7 @@ gpu::FrameConstants makeFrameConstants(const scene::Scene& scene, const scene::C
   const uint32_t width = settings.sceneWidth();
   const uint32_t height = settings.sceneHeight();
   c.viewport = {float(width), float(height), 1.0f / float(width), 1.0f / float(height)};
-  // Exponential slices z = near * (far/near)^(slice/slices)  <=>  slice = log(z)*scale + bias, up to
-  // a finite far (clusterFar) even when the projection's far plane is infinite.
-  const float far = clusterFar(scene, camera);
-  const float logRatio = std::log(far / camera.nearPlane);
-  const auto slices = float(settings.clusterSlices);
-  c.depthRange = {camera.nearPlane, far, slices / logRatio, -slices * std::log(camera.nearPlane) / logRatio};
+  c.depthRange = clusterDepthRange(scene, camera, settings);
   // Tiles cover the same screen area at any render.ssaa (kTileSize output pixels), so SSAA changes
   // neither the cluster count (nor the dispatch size) nor which lights a screen region keeps.
   const uint32_t tile = kTileSize * settings.ssaa;
@@ -81,7 +67,33 @@ gpu::FrameConstants makeFrameConstants(const scene::Scene& scene, const scene::C
   c.counts = {uint32_t(scene.lights.size()), uint32_t(scene.instances.size()), settings.maxLightsPerCluster,
               uint32_t(settings.debugView)};
   c.ambient = glm::vec4(glm::vec3(0.03f, 0.03f, 0.035f) * scene.post.lightScale, 0.0f);
+  moveCamera(c, scene, camera, settings);
   return c;
+}
+
+void moveCamera(gpu::FrameConstants& c, const scene::Scene& scene, const scene::Camera& camera,
+                const features::RenderSettings& settings) {
+  const features::RenderSpace space = features::RenderSpace::of(scene, camera.position);
+  c.view = space.view(camera);
+  c.viewProj = c.proj * c.view;
+  const auto frustum = scene::Frustum::fromMatrix(c.viewProj);
+  for (size_t i = 0; i < frustum.planes.size(); ++i) c.frustumPlanes[i] = frustum.planes[i];
+  // Render space is anchored near the camera (render_space.hpp): the view matrix holds the
+  // camera's offset from the anchor, and shaders take the eye from cameraPosition.
+  c.anchorOffset = glm::vec4(space.point(features::RenderSpace::ofParticles(scene).anchor), 0.0f);
+  c.cameraPosition = glm::vec4(space.point(camera.position), 1.0f);
+  // Only an infinite far plane makes the slices' far end depend on where the camera is.
+  if (!std::isfinite(camera.farPlane)) c.depthRange = clusterDepthRange(scene, camera, settings);
+}
+
+glm::vec4 clusterDepthRange(const scene::Scene& scene, const scene::Camera& camera,
+                            const features::RenderSettings& settings) {
+  // Exponential slices z = near * (far/near)^(slice/slices)  <=>  slice = log(z)*scale + bias, up to
+  // a finite far (clusterFar) even when the projection's far plane is infinite.
+  const float far = clusterFar(scene, camera);
+  const float logRatio = std::log(far / camera.nearPlane);
+  const auto slices = float(settings.clusterSlices);
+  return {camera.nearPlane, far, slices / logRatio, -slices * std::log(camera.nearPlane) / logRatio};
 }
 
 gpu::Exposure initialExposure(const scene::PostSettings& post) {

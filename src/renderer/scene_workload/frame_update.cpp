@@ -42,6 +42,8 @@ InstanceWriter::InstanceWriter(const scene::Scene& scene) : scene_(scene) {
     instance.triangles = scene.meshes[source.mesh].triangleCount();
     instance.mesh = source.mesh;
     templates_.push_back(instance);
+    const auto& mesh = scene.meshes[source.mesh];
+    commandTemplates_.push_back({mesh.indexCount, 0, mesh.firstIndex, int32_t(mesh.firstVertex), 0});
   }
   placed_.resize(templates_.size());
   // drawOrder puts the camera-independent groups first; its transparent tail is redone per frame.
@@ -53,23 +55,39 @@ InstanceWriter::InstanceWriter(const scene::Scene& scene) : scene_(scene) {
   }
   groups_ = std::move(order.groups);
   order_ = std::move(order.instanceOrder);
-  transparentInstances_.assign(order_.begin() + std::ptrdiff_t(sharedInstances_), order_.end());
-  std::sort(transparentInstances_.begin(), transparentInstances_.end());
+  for (size_t slot = sharedInstances_; slot < order_.size(); ++slot) {
+    const auto& bounds = scene.instances[order_[slot]].worldBounds;
+    transparent_.push_back({0.5 * (bounds.min + bounds.max), 0.0, order_[slot]});
+  }
   staging_.resize(order_.size());
 }
 
 void InstanceWriter::sortTransparent(const glm::dvec3& camera) {
   if (sortedFor_ == camera) return;
   sortedFor_ = camera;
-  // Back to front (as drawOrder sorts): the multi-draw executes commands in order, the blend order.
-  transparent_.clear();
-  for (const uint32_t index : transparentInstances_) {
-    const auto& bounds = scene_.instances[index].worldBounds;
-    transparent_.emplace_back(glm::distance(0.5 * (bounds.min + bounds.max), camera), index);
+  // Back to front, ties in scene order: drawOrder's stable sort of the instances in scene order,
+  // as one strict total order, so sorting the last sort's order again gives the same result. That
+  // order is nearly sorted already (a camera step swaps a few neighbours), which insertion sort
+  // handles in one pass, without the allocation std::stable_sort makes. The multi-draw executes
+  // commands in order, which is the blend order. (An instance with empty bounds, whose centre is
+  // NaN, draws nothing; it sorts last.)
+  for (SortEntry& entry : transparent_) {
+    const double distance = glm::distance(entry.center, camera);
+    entry.distance = std::isnan(distance) ? -HUGE_VAL : distance;
   }
-  std::stable_sort(transparent_.begin(), transparent_.end(), [](auto a, auto b) { return a.first > b.first; });
+  const auto before = [](const SortEntry& a, const SortEntry& b) {
+    return a.distance > b.distance || (a.distance == b.distance && a.index < b.index);
+  };
+  for (size_t i = 1; i < transparent_.size(); ++i) {
+    if (!before(transparent_[i], transparent_[i - 1])) continue;
+    const SortEntry moving = transparent_[i];
+    size_t j = i;
+    for (; j > 0 && before(moving, transparent_[j - 1]); --j) transparent_[j] = transparent_[j - 1];
+    transparent_[j] = moving;
+  }
   for (size_t i = 0; i < transparent_.size(); ++i) {
-    const uint32_t index = transparent_[i].second;
+    const uint32_t index = transparent_[i].index;
+    if (order_[sharedInstances_ + i] == index) continue;
     order_[sharedInstances_ + i] = index;
     groups_[sharedGroups_ + i] = {scene_.instances[index].mesh, features::DrawClass::Transparent,
                                   uint32_t(sharedInstances_ + i), 1};
@@ -110,26 +128,45 @@ void InstanceWriter::writeGroups(size_t firstGroup, std::span<gpu::Instance> ins
             instances.begin() + std::ptrdiff_t(firstSlot));
 }
 
+void InstanceWriter::writeSlot(uint32_t slot, uint32_t group, std::span<gpu::Instance> instances,
+                               std::span<gpu::DrawCommand> commands) const {
+  gpu::Instance instance = placed_[order_[slot]];
+  instance.drawGroup = group;
+  instances[slot] = instance;
+  gpu::DrawCommand command = commandTemplates_[order_[slot]];
+  command.firstInstance = slot;
+  commands[group] = command;
+}
+
 void InstanceWriter::writeAll(const features::RenderSpace& space, std::span<gpu::Instance> instances,
                               std::span<gpu::DrawCommand> commands) {
   place(space);
   writeGroups(0, instances, commands);
 }
 
-void InstanceWriter::writeTransparent(const features::RenderSpace& space, std::span<gpu::Instance> instances,
-                                      std::span<gpu::DrawCommand> commands) {
+void InstanceWriter::writeTransparent(const features::RenderSpace& space, std::span<const uint32_t> held,
+                                      std::span<gpu::Instance> instances, std::span<gpu::DrawCommand> commands) {
   place(space);
-  writeGroups(sharedGroups_, instances, commands);
+  // A transparent group holds one instance: slot sharedInstances_ + i is group sharedGroups_ + i.
+  const auto order = transparentOrder();
+  for (size_t i = 0; i < order.size(); ++i) {
+    if (i < held.size() && held[i] == order[i]) continue;
+    writeSlot(uint32_t(sharedInstances_ + i), uint32_t(sharedGroups_ + i), instances, commands);
+  }
 }
 
-CopyContents::Write CopyContents::update(const features::RenderSpace& space, std::span<const uint32_t> transparent) {
-  if (space_ == space && std::equal(transparent.begin(), transparent.end(), transparent_.begin(), transparent_.end()))
-    return Write::Nothing;
+CopyContents::Write CopyContents::compare(const features::RenderSpace& space,
+                                          std::span<const uint32_t> transparent) const {
   // A copy never written holds no opaque instances either: the first write is everything.
-  const Write write = space_ == space ? Write::Transparent : Write::Everything;
+  if (space_ != space) return Write::Everything;
+  return std::equal(transparent.begin(), transparent.end(), transparent_.begin(), transparent_.end())
+             ? Write::Nothing
+             : Write::Transparent;
+}
+
+void CopyContents::hold(const features::RenderSpace& space, std::span<const uint32_t> transparent) {
   space_ = space;
   transparent_.assign(transparent.begin(), transparent.end());
-  return write;
 }
 
 void createFrameBuffers(rhi::Device& device, features::GpuScene& gpu) {
@@ -169,43 +206,59 @@ FrameClock FrameClock::of(const scene::Scene& scene, double timeStep) {
 
 FrameUpdate::FrameUpdate(rhi::Device& device, features::GpuScene& gpu, const scene::Scene& scene,
                          const features::RenderSettings& settings, FrameClock clock)
-    : device_(device), gpu_(gpu), scene_(scene), settings_(settings), clock_(clock), instances_(scene) {}
-
-void FrameUpdate::write(uint64_t execution) {
-  const scene::Camera camera = scene_.cameraPath.at(scene_.camera, clock_.pathTime(execution));
-  const features::FrameBuffers& frame = gpu_.frame(execution);
-  const CameraKey key{camera.position, camera.target, camera.verticalFovDeg};
-  if (!lastCamera_ || lastCamera_->first != key) {
-    lastCamera_.emplace(key, makeFrameConstants(scene_, camera, settings_));
-    lastCamera_->second.buffers = gpu_.constants.buffers;
+    : gpu_(gpu), scene_(scene), settings_(settings), clock_(clock), path_(scene.cameraPath), instances_(scene) {
+  for (uint32_t slot = 0; slot < features::kFramesInFlight; ++slot) {
+    const features::FrameBuffers& frame = gpu.frames[slot];
+    mapped_[slot] = {device.mapped(frame.constants), mappedAs<gpu::Instance>(device, frame.instances),
+                     mappedAs<gpu::PointLight>(device, frame.lights),
+                     mappedAs<gpu::DrawCommand>(device, frame.commandTemplate)};
   }
-  gpu::FrameConstants constants = lastCamera_->second;
+}
+
+void FrameUpdate::writeConstants(uint64_t execution, const scene::Camera& camera, const MappedCopy& copy) {
+  gpu::FrameConstants& constants = gpu_.current;
+  const CameraKey key{camera.position, camera.target, camera.verticalFovDeg};
+  if (lastCamera_ != key) {
+    if (lastCamera_ && lastCamera_->fov == key.fov) {
+      moveCamera(constants, scene_, camera, settings_);  // the projection and the rest stay
+    } else {
+      constants = makeFrameConstants(scene_, camera, settings_);
+      constants.buffers = gpu_.constants.buffers;
+    }
+    lastCamera_ = key;
+  }
   const bool simulates = clock_.simulates(execution);
   // A still view at camera.time holds its particles at its last simulated step (emits nothing).
   const uint64_t step = simulates ? execution : *clock_.stillSteps - 1;
   constants.simulation = glm::vec4(simulates ? float(clock_.timeStep) : 0.0f, float(clock_.pathTime(execution)), 0.0f, 0.0f);
   constants.step = glm::uvec4(uint32_t(step), execution > 0 ? gpu::kFrameHizValid : 0u, 0u, 0u);
-  std::memcpy(device_.mapped(frame.constants).data(), &constants, sizeof(constants));
-  gpu_.current = constants;
+  std::memcpy(copy.constants.data(), &constants, sizeof(constants));
+}
+
+void FrameUpdate::write(uint64_t execution) {
+  const scene::Camera camera = path_.at(scene_.camera, clock_.pathTime(execution));
+  const MappedCopy& mapped = mapped_[execution % features::kFramesInFlight];
+  writeConstants(execution, camera, mapped);
 
   // Render space, and so the instances, bounds and lights, changes only when the camera crosses
   // into another anchor cell; the transparent order changes with any move (it is sorted per
-  // position, and written only when the order, not just the distances, changed).
+  // position, and written only where the order, not just the distances, changed).
   const auto space = features::RenderSpace::of(scene_, camera.position);
   instances_.sortTransparent(camera.position);
-  const auto instances = mappedAs<gpu::Instance>(device_, frame.instances);
-  const auto commands = mappedAs<gpu::DrawCommand>(device_, frame.commandTemplate);
-  switch (copies_[execution % features::kFramesInFlight].update(space, instances_.transparentOrder())) {
+  const auto order = instances_.transparentOrder();
+  CopyContents& copy = copies_[execution % features::kFramesInFlight];
+  switch (copy.compare(space, order)) {
     case CopyContents::Write::Nothing:
-      break;  // this copy already holds this camera's values
+      return;  // this copy already holds this camera's values
     case CopyContents::Write::Transparent:
-      instances_.writeTransparent(space, instances, commands);
+      instances_.writeTransparent(space, copy.transparent(), mapped.instances, mapped.commands);
       break;
     case CopyContents::Write::Everything:
-      instances_.writeAll(space, instances, commands);
-      writeLights(mappedAs<gpu::PointLight>(device_, frame.lights), scene_, space);
+      instances_.writeAll(space, mapped.instances, mapped.commands);
+      writeLights(mapped.lights, scene_, space);
       break;
   }
+  copy.hold(space, order);
 }
 
 }  // namespace fgb::render

@@ -9,6 +9,7 @@
 #include "../features/context/render_space.hpp"
 
 #include <fgb/rhi/device.hpp>
+#include <fgb/scene/camera_path_cursor.hpp>
 #include <fgb/scene/scene.hpp>
 
 #include <optional>
@@ -41,7 +42,8 @@ struct FrameClock {
 // The render-space instances and draw commands, in draw order, composed at three rates: what
 // depends on neither the camera nor the anchor (normal matrices, materials, the opaque and masked
 // groups) once; the model matrices and bounds once per render space (anchor); the transparent
-// order once per camera position. A frame in flight's copy is rewritten only where it differs.
+// order once per camera position. A frame in flight's copy is rewritten only where it differs: of
+// the transparent tail, only the slots whose instance changed (a moving camera swaps a few).
 class InstanceWriter {
  public:
   explicit InstanceWriter(const scene::Scene& scene);
@@ -54,15 +56,25 @@ class InstanceWriter {
   // Every instance (GPU order) and draw command in `space`, into mapped memory.
   void writeAll(const features::RenderSpace& space, std::span<gpu::Instance> instances,
                 std::span<gpu::DrawCommand> commands);
-  // Only the transparent instances and commands, for a copy that already holds `space`'s others.
-  void writeTransparent(const features::RenderSpace& space, std::span<gpu::Instance> instances,
-                        std::span<gpu::DrawCommand> commands);
+  // Only the transparent slots whose instance differs from `held` (the order the copy holds, for a
+  // copy that already holds `space`'s instances), and their commands.
+  void writeTransparent(const features::RenderSpace& space, std::span<const uint32_t> held,
+                        std::span<gpu::Instance> instances, std::span<gpu::DrawCommand> commands);
 
  private:
+  // A transparent instance as the sort needs it, compact so a frame's sort reads a few cache lines.
+  struct SortEntry {
+    glm::dvec3 center{0.0};  // of its world bounds
+    double distance = 0.0;   // from the last sort's camera
+    uint32_t index = 0;      // scene instance
+  };
   // Composes placed_ for `space` (nothing when it already holds it).
   void place(const features::RenderSpace& space);
   // Groups [firstGroup, end) and their instances, from placed_ in order_.
   void writeGroups(size_t firstGroup, std::span<gpu::Instance> instances, std::span<gpu::DrawCommand> commands);
+  // The instance and command of GPU slot `slot` (of group `group`), straight into mapped memory.
+  void writeSlot(uint32_t slot, uint32_t group, std::span<gpu::Instance> instances,
+                 std::span<gpu::DrawCommand> commands) const;
 
   const scene::Scene& scene_;
   // Per scene instance: all but the model matrix, the bounds and the group.
@@ -70,15 +82,16 @@ class InstanceWriter {
   // Per scene instance, in placedSpace_: the templates with their model matrix and bounds.
   std::vector<gpu::Instance> placed_;
   std::optional<features::RenderSpace> placedSpace_;
+  // Per scene instance: its draw command but firstInstance (the slot's).
+  std::vector<gpu::DrawCommand> commandTemplates_;
   // The opaque and masked groups, then the last sort's transparent ones; GPU instance i is scene
   // instance order_[i]. The first sharedGroups_ / sharedInstances_ do not depend on the camera.
   std::vector<features::DrawGroup> groups_;
   std::vector<uint32_t> order_;
   size_t sharedGroups_ = 0, sharedInstances_ = 0;
-  std::optional<glm::dvec3> sortedFor_;                   // the camera position of the last sort
-  std::vector<uint32_t> transparentInstances_;            // scene indices, ascending (drawOrder's tie order)
-  std::vector<std::pair<double, uint32_t>> transparent_;  // the last sort's distances, back to front
-  std::vector<gpu::Instance> staging_;                    // a write's instances, copied to mapped memory in one go
+  std::optional<glm::dvec3> sortedFor_;  // the camera position of the last sort
+  std::vector<SortEntry> transparent_;   // the last sort's order, back to front
+  std::vector<gpu::Instance> staging_;   // writeAll's instances, copied to mapped memory in one go
 };
 
 // What one frame in flight's copy of the instances, lights and draw commands holds (its render
@@ -87,8 +100,12 @@ class CopyContents {
  public:
   enum class Write { Nothing, Transparent, Everything };
   // What to write so that the copy holds `space` and the `transparent` order (scene indices, back
-  // to front); records that it then does.
-  Write update(const features::RenderSpace& space, std::span<const uint32_t> transparent);
+  // to front).
+  [[nodiscard]] Write compare(const features::RenderSpace& space, std::span<const uint32_t> transparent) const;
+  // The transparent order the copy holds (empty before the first write).
+  [[nodiscard]] std::span<const uint32_t> transparent() const { return transparent_; }
+  // Records that the copy now holds `space` and `transparent`.
+  void hold(const features::RenderSpace& space, std::span<const uint32_t> transparent);
 
  private:
   std::optional<features::RenderSpace> space_;  // none before the first write
@@ -110,19 +127,33 @@ class FrameUpdate {
   [[nodiscard]] const FrameClock& clock() const { return clock_; }
 
  private:
-  rhi::Device& device_;
+  // One frame in flight's per-frame buffers as mapped memory: mapped for life, looked up once.
+  struct MappedCopy {
+    std::span<std::byte> constants;
+    std::span<gpu::Instance> instances;
+    std::span<gpu::PointLight> lights;
+    std::span<gpu::DrawCommand> commands;
+  };
+
+  // Writes this frame's constants into `copy` (and gpu_.current): the camera's part only when the
+  // camera moved since the last frame.
+  void writeConstants(uint64_t execution, const scene::Camera& camera, const MappedCopy& copy);
+
   features::GpuScene& gpu_;
   const scene::Scene& scene_;
   const features::RenderSettings& settings_;
   FrameClock clock_;
+  scene::CameraPathCursor path_;  // the frames' cameras, one segment's setup kept
+  std::array<MappedCopy, features::kFramesInFlight> mapped_;
   std::array<CopyContents, features::kFramesInFlight> copies_;
-  // The last camera's constants (without the per-frame step): a still camera computes them once.
+  // The camera gpu_.current's camera part was made for (it keeps it between frames, and each frame
+  // overwrites only the step): a still camera computes its constants once.
   struct CameraKey {
     glm::dvec3 position{0.0}, target{0.0};
     float fov = 0.0f;
     bool operator==(const CameraKey&) const = default;
   };
-  std::optional<std::pair<CameraKey, gpu::FrameConstants>> lastCamera_;
+  std::optional<CameraKey> lastCamera_;
   InstanceWriter instances_;
 };
 

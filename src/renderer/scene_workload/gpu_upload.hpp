@@ -16,6 +16,14 @@ namespace fgb::render {
 // step and flags are the frame update's: frame_update.hpp).
 gpu::FrameConstants makeFrameConstants(const scene::Scene& scene, const scene::Camera& camera,
                                        const features::RenderSettings& settings);
+// Rewrites only what depends on where `camera` is and looks (view, frustum, render-space offsets),
+// for constants made for a camera of the same field of view, near and far planes: the same values
+// makeFrameConstants gives, without the projection's inverse and what no move changes.
+void moveCamera(gpu::FrameConstants& constants, const scene::Scene& scene, const scene::Camera& camera,
+                const features::RenderSettings& settings);
+// The cluster slices' depth range (gpu::FrameConstants::depthRange) from `camera`.
+glm::vec4 clusterDepthRange(const scene::Scene& scene, const scene::Camera& camera,
+                            const features::RenderSettings& settings);
 
 // The exposure state before the first frame: pre-exposed with post.exposure (see gpu::Exposure).
 gpu::Exposure initialExposure(const scene::PostSettings& post);

@@ -1,4 +1,5 @@
 #include <fgb/scene/camera_path.hpp>
+#include <fgb/scene/camera_path_cursor.hpp>
 #include <fgb/scene/scene.hpp>
 
 #include "json_fields.hpp"
@@ -24,16 +25,20 @@ glm::dvec3 lerp(const glm::dvec3& a, const glm::dvec3& b, double ta, double tb, 
   return (tb - t) / (tb - ta) * a + (t - ta) / (tb - ta) * b;
 }
 
+// The centripetal knots t1, t2, t3 of controls p0..p3 (t0 = 0).
+void centripetalKnots(const glm::dvec3 (&p)[4], double (&knots)[3]) {
+  const double t0 = 0.0;
+  knots[0] = t0 + knotStep(p[0], p[1]);
+  knots[1] = knots[0] + knotStep(p[1], p[2]);
+  knots[2] = knots[1] + knotStep(p[2], p[3]);
+}
+
 // Barry and Goldman's pyramid for one centripetal Catmull-Rom segment p1 -> p2 at u in [0, 1]:
 // it passes through p1 at u = 0 and p2 at u = 1.
-glm::dvec3 centripetal(const glm::dvec3& p0, const glm::dvec3& p1, const glm::dvec3& p2, const glm::dvec3& p3,
-                       double u) {
-  const double t0 = 0.0;
-  const double t1 = t0 + knotStep(p0, p1);
-  const double t2 = t1 + knotStep(p1, p2);
-  const double t3 = t2 + knotStep(p2, p3);
+glm::dvec3 centripetal(const glm::dvec3 (&p)[4], const double (&knots)[3], double u) {
+  const double t0 = 0.0, t1 = knots[0], t2 = knots[1], t3 = knots[2];
   const double t = t1 + u * (t2 - t1);
-  const glm::dvec3 a1 = lerp(p0, p1, t0, t1, t), a2 = lerp(p1, p2, t1, t2, t), a3 = lerp(p2, p3, t2, t3, t);
+  const glm::dvec3 a1 = lerp(p[0], p[1], t0, t1, t), a2 = lerp(p[1], p[2], t1, t2, t), a3 = lerp(p[2], p[3], t2, t3, t);
   const glm::dvec3 b1 = lerp(a1, a2, t0, t2, t), b2 = lerp(a2, a3, t1, t3, t);
   return lerp(b1, b2, t1, t2, t);
 }
@@ -46,12 +51,13 @@ double uniform(double p0, double p1, double p2, double p3, double u) {
 
 // The four control values of segment i (keys i, i+1), with end points mirrored past the ends.
 template <class T, class Get>
-std::array<T, 4> controls(const std::vector<CameraKey>& keys, size_t i, Get get) {
+void controls(const std::vector<CameraKey>& keys, size_t i, Get get, T (&out)[4]) {
   const size_t last = keys.size() - 1;
   const T p1 = get(keys[i]), p2 = get(keys[i + 1]);
-  const T p0 = i > 0 ? get(keys[i - 1]) : p1 + p1 - p2;
-  const T p3 = i + 1 < last ? get(keys[i + 2]) : p2 + p2 - p1;
-  return {p0, p1, p2, p3};
+  out[0] = i > 0 ? get(keys[i - 1]) : p1 + p1 - p2;
+  out[1] = p1;
+  out[2] = p2;
+  out[3] = i + 1 < last ? get(keys[i + 2]) : p2 + p2 - p1;
 }
 
 }  // namespace
@@ -62,27 +68,42 @@ CameraPath::CameraPath(std::vector<CameraKey> keys) : keys_(std::move(keys)) {
 }
 
 Camera CameraPath::at(const Camera& still, double time) const {
+  return CameraPathCursor(*this).at(still, time);
+}
+
+Camera CameraPathCursor::at(const Camera& still, double time) {
+  const std::vector<CameraKey>& keys = path_->keys();
   Camera camera = still;
-  if (keys_.empty()) return camera;
+  if (keys.empty()) return camera;
   const auto fov = [&](const CameraKey& key) { return double(key.fovDeg.value_or(still.verticalFovDeg)); };
-  if (keys_.size() == 1 || time <= keys_.front().time || time >= keys_.back().time) {
-    const CameraKey& end = time >= keys_.back().time ? keys_.back() : keys_.front();
+  if (keys.size() == 1 || time <= keys.front().time || time >= keys.back().time) {
+    const CameraKey& end = time >= keys.back().time ? keys.back() : keys.front();
     camera.position = end.position;
     camera.target = end.target;
     camera.verticalFovDeg = float(fov(end));
     return camera;
   }
-  // The segment holding `time`: the last key at or before it.
-  const auto after = std::upper_bound(keys_.begin(), keys_.end(), time,
-                                      [](double t, const CameraKey& key) { return t < key.time; });
-  const size_t i = size_t(after - keys_.begin()) - 1;
-  const double u = (time - keys_[i].time) / (keys_[i + 1].time - keys_[i].time);
-  const auto p = controls<glm::dvec3>(keys_, i, [](const CameraKey& k) { return k.position; });
-  const auto t = controls<glm::dvec3>(keys_, i, [](const CameraKey& k) { return k.target; });
-  const auto f = controls<double>(keys_, i, fov);
-  camera.position = centripetal(p[0], p[1], p[2], p[3], u);
-  camera.target = centripetal(t[0], t[1], t[2], t[3], u);
-  camera.verticalFovDeg = float(std::clamp(uniform(f[0], f[1], f[2], f[3], u), 1.0, 178.0));
+  // The segment holding `time`: the last key at or before it (the kept one while time stays in it).
+  const bool kept = segment_ && segment_->stillFovDeg == still.verticalFovDeg && keys[segment_->index].time <= time &&
+                    time < keys[segment_->index + 1].time;
+  if (!kept) {
+    const auto after =
+        std::upper_bound(keys.begin(), keys.end(), time, [](double t, const CameraKey& key) { return t < key.time; });
+    Segment& segment = segment_.emplace();
+    segment.index = size_t(after - keys.begin()) - 1;
+    segment.stillFovDeg = still.verticalFovDeg;
+    controls(keys, segment.index, [](const CameraKey& k) { return k.position; }, segment.position);
+    controls(keys, segment.index, [](const CameraKey& k) { return k.target; }, segment.target);
+    controls(keys, segment.index, fov, segment.fov);
+    centripetalKnots(segment.position, segment.positionKnots);
+    centripetalKnots(segment.target, segment.targetKnots);
+  }
+  const Segment& s = *segment_;
+  const size_t i = s.index;
+  const double u = (time - keys[i].time) / (keys[i + 1].time - keys[i].time);
+  camera.position = centripetal(s.position, s.positionKnots, u);
+  camera.target = centripetal(s.target, s.targetKnots, u);
+  camera.verticalFovDeg = float(std::clamp(uniform(s.fov[0], s.fov[1], s.fov[2], s.fov[3], u), 1.0, 178.0));
   return camera;
 }
 

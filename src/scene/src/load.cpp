@@ -97,11 +97,17 @@ class PartLoader {
   LoadedScene& result_;
 };
 
+// What cooked output depends on besides its input: the cooker's format version and the scene code
+// that produced it (a change to either cooks again). Every part's key ends with it.
+CacheKey& addCookingCode(CacheKey& key) {
+  return key.add(std::to_string(kCookerVersion)).add(kSceneCodeHash);
+}
+
 Scene loadGenerator(PartLoader& loader, const SceneDescription& d, const Knobs& knobs) {
   const GeneratorRef& generator = *d.generator;
   const nlohmann::json params = resolveGeneratorParams(generator, knobs, d.path.string());
   CacheKey key;
-  key.add("generator").add(generator.type).add(params.dump()).add(std::to_string(kCookerVersion)).add(kSceneCodeHash);
+  addCookingCode(key.add("generator").add(generator.type).add(params.dump()));
   return loader.load("generator:" + generator.type, key.finish(), {}, [&] {
     return Produced{generate(generator.type, params), {}};
   });
@@ -122,7 +128,7 @@ Scene loadModel(PartLoader& loader, const SceneDescription& d, const ModelRef& m
     importer = slot.importer;
   }
   CacheKey key;
-  key.add("model").addFile(model.file).add(signature).add(std::to_string(kCookerVersion)).add(kSceneCodeHash);
+  addCookingCode(key.add("model").addFile(model.file).add(signature));
   const std::filesystem::path baseDir = model.file.parent_path();
   return loader.load(model.file.string(), key.finish(), baseDir, [&] {
     if (!importer) {

@@ -57,9 +57,14 @@ uint gDropped = 0u;
 // Lists the pixel's tile for "Transparent Shade" if no fragment did this frame: the invocation
 // whose exchange finds the flag empty appends it and raises the shade's dispatch to cover it.
 // The plain load skips the atomic once the tile is listed (flags only go from kEmpty to 0 here:
-// a stale kEmpty costs one exchange, never a second listing).
+// a stale kEmpty costs one exchange, never a second listing); gMarkedTile skips the load too
+// while an invocation's fragments stay in one tile, as a small triangle's mostly do.
+uint gMarkedTile = 0xffffffffu;
+
 void markTile(uvec2 pixel) {
   uint tile = (pixel.y / FGB_TRANSPARENT_SHADE_GROUP_SIZE) * tilesAcross() + pixel.x / FGB_TRANSPARENT_SHADE_GROUP_SIZE;
+  if (tile == gMarkedTile) return;
+  gMarkedTile = tile;
   uint flag = tileFlagIndex(tile);
   if (visWords[pc.words].words[flag] != kEmpty) return;
   if (atomicExchange(visWords[pc.words].words[flag], 0UL) != kEmpty) return;

@@ -48,13 +48,14 @@ struct TransparentCounters {
   uint largeOverflow;   // of those, past the list's capacity: rasterised by their small invocation
   uint inserted;        // fragments in front of the opaque depth, offered to the K-buffer
   uint dropped;         // fragments that fell off the end of a full K-buffer (the farthest)
+  uint tilesListed;     // tiles some fragment landed in: "Transparent Shade"'s workgroups
   // "Transparent Shade"'s indirect dispatch, one workgroup per listed tile: (min(n, GROUPS_X),
   // ceil(n / GROUPS_X), 1), raised by the raster as it lists tiles.
   uint shadeGroupsX;
   uint shadeGroupsY;
   uint shadeGroupsZ;  // last: Clear fills the rest with zeroes, it with 1, the ranges disjoint
 };
-FGB_CHECK_SIZE(TransparentCounters, 28)
+FGB_CHECK_SIZE(TransparentCounters, 32)
 
 FGB_GPU_END
 

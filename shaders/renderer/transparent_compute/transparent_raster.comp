@@ -70,6 +70,7 @@ void markTile(uvec2 pixel) {
   if (atomicExchange(visWords[pc.words].words[flag], 0UL) != kEmpty) return;
   uint slot = atomicAdd(fgbUints[pc.tileJobs].values[0], 1u);
   fgbUints[pc.tileJobs].values[1u + slot] = tile;
+  atomicAdd(transparentCounters[pc.counters].c.tilesListed, 1u);
   const uint row = FGB_TRANSPARENT_SHADE_GROUPS_X;
   if (slot < row) atomicMax(transparentCounters[pc.counters].c.shadeGroupsX, slot + 1u);
   if (slot % row == 0u) atomicMax(transparentCounters[pc.counters].c.shadeGroupsY, slot / row + 1u);

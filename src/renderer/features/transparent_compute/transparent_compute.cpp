@@ -206,6 +206,7 @@ void TransparentComputePasses::addStats(std::map<std::string, double>& stats) co
   stats["transparent_fragments_dropped"] = read.dropped;
   stats["transparent_large_triangles"] = read.largeTriangles;
   stats["transparent_large_overflow"] = read.largeOverflow;
+  stats["transparent_tiles_shaded"] = read.tilesListed;
 }
 
 }  // namespace fgb::features

@@ -21,6 +21,11 @@ FGB_READONLY_STORAGE_BUFFER(TransparentDrawBlock, transparentDraws) { DrawComman
 uint pixelCount() { return uint(viewportSize().x) * uint(viewportSize().y); }
 uint kSlotIndex(uint slot, uint pixelIndex) { return slot * pixelCount() + pixelIndex; }
 
+// Shade tiles (FGB_TRANSPARENT_SHADE_GROUP_SIZE pixels square), row-major over the viewport; a
+// tile's flag word follows the K-buffer's planes (kEmpty: not listed this frame).
+uint tilesAcross() { return (uint(viewportSize().x) + FGB_TRANSPARENT_SHADE_GROUP_SIZE - 1u) / FGB_TRANSPARENT_SHADE_GROUP_SIZE; }
+uint tileFlagIndex(uint tile) { return TRANSPARENT_K * pixelCount() + tile; }
+
 uint64_t fragmentWord(float z, uint id) { return (uint64_t(~depthKey(z, reversedZ())) << 32) | uint64_t(id); }
 
 // A fragment id's triangle (VisTriangle, as the visibility buffer's shaders take it): the draw's

@@ -12,7 +12,10 @@
 //   largeList large triangles' fragment ids (uint each), largeCapacity of them
 //   words     the K-buffer (persistent, empty between frames): FGB_TRANSPARENT_K planes of one
 //             uint64 per pixel, slot i of pixel p at i * pixels + p (the shade's early out
-//             reads plane 0 alone)
+//             reads plane 0 alone), then one uint64 per shade tile, at K * pixels + tile: kEmpty
+//             until the raster's first fragment in the tile lists it, emptied again by the shade
+//   tileJobs  the tile list: a count, then the tiles (y * tiles across + x) that received a
+//             fragment this frame, one "Transparent Shade" workgroup each
 //   depthOut  the opaque depth "Material Shade" wrote (read only), rows of viewport width
 //   depthCompare the opaque depth test's comparison (OpaqueDepthTest::compareOp)
 //   hdr       the HDR image (read and written by the shade)
@@ -32,18 +35,27 @@
 // size) walk the list, each taking one triangle at a time and sharing its pixels.
 #define FGB_TRANSPARENT_SMALL_PIXELS 64
 #define FGB_TRANSPARENT_LARGE_GROUPS 256
-#define FGB_TRANSPARENT_SHADE_GROUP_SIZE 8  // transparent_shade.comp: 8 x 8 pixels
+// transparent_shade.comp: one workgroup of 8 x 8 pixels per listed tile, the tiles being this
+// size; the workgroups spill into gl_WorkGroupID.y past FGB_TRANSPARENT_SHADE_GROUPS_X.
+#define FGB_TRANSPARENT_SHADE_GROUP_SIZE 8
+#define FGB_TRANSPARENT_SHADE_GROUPS_X 65535
 
 FGB_GPU_BEGIN
 
-// Zeroed every frame ("Transparent Clear"); the statistics read them back.
+// Reset every frame ("Transparent Clear": zeroes, shadeGroupsZ 1); the statistics read them back.
 struct TransparentCounters {
   uint largeTriangles;  // appended to the large list (slots: the first largeCapacity of them)
   uint largeOverflow;   // of those, past the list's capacity: rasterised by their small invocation
   uint inserted;        // fragments in front of the opaque depth, offered to the K-buffer
   uint dropped;         // fragments that fell off the end of a full K-buffer (the farthest)
+  uint tilesListed;     // tiles some fragment landed in: "Transparent Shade"'s workgroups
+  // "Transparent Shade"'s indirect dispatch, one workgroup per listed tile: (min(n, GROUPS_X),
+  // ceil(n / GROUPS_X), 1), raised by the raster as it lists tiles.
+  uint shadeGroupsX;
+  uint shadeGroupsY;
+  uint shadeGroupsZ;  // last: Clear fills the rest with zeroes, it with 1, the ranges disjoint
 };
-FGB_CHECK_SIZE(TransparentCounters, 16)
+FGB_CHECK_SIZE(TransparentCounters, 32)
 
 FGB_GPU_END
 

@@ -54,7 +54,31 @@ ivec2 boxSize(TransparentTriangle t) { return max(t.screen.pixels.zw - t.screen.
 uint gInserted = 0u;
 uint gDropped = 0u;
 
-void insertFragment(uint pixelIndex, uint64_t word) {
+// Lists the pixel's tile for "Transparent Shade" if no fragment did this frame: the invocation
+// whose exchange finds the flag empty appends it and raises the shade's dispatch to cover it.
+// The plain load skips the atomic once the tile is listed (flags only go from kEmpty to 0 here:
+// a stale kEmpty costs one exchange, never a second listing); gMarkedTile skips the load too
+// while an invocation's fragments stay in one tile, as a small triangle's mostly do.
+uint gMarkedTile = 0xffffffffu;
+
+void markTile(uvec2 pixel) {
+  uint tile = (pixel.y / FGB_TRANSPARENT_SHADE_GROUP_SIZE) * tilesAcross() + pixel.x / FGB_TRANSPARENT_SHADE_GROUP_SIZE;
+  if (tile == gMarkedTile) return;
+  gMarkedTile = tile;
+  uint flag = tileFlagIndex(tile);
+  if (visWords[pc.words].words[flag] != kEmpty) return;
+  if (atomicExchange(visWords[pc.words].words[flag], 0UL) != kEmpty) return;
+  uint slot = atomicAdd(fgbUints[pc.tileJobs].values[0], 1u);
+  fgbUints[pc.tileJobs].values[1u + slot] = tile;
+  atomicAdd(transparentCounters[pc.counters].c.tilesListed, 1u);
+  const uint row = FGB_TRANSPARENT_SHADE_GROUPS_X;
+  if (slot < row) atomicMax(transparentCounters[pc.counters].c.shadeGroupsX, slot + 1u);
+  if (slot % row == 0u) atomicMax(transparentCounters[pc.counters].c.shadeGroupsY, slot / row + 1u);
+}
+
+void insertFragment(uvec2 pixel, uint64_t word) {
+  markTile(pixel);
+  uint pixelIndex = pixel.y * uint(viewportSize().x) + pixel.x;
   ++gInserted;
   for (uint i = 0u; i < TRANSPARENT_K; ++i) {
     uint64_t previous = atomicMin(visWords[pc.words].words[kSlotIndex(i, pixelIndex)], word);
@@ -70,7 +94,7 @@ void rasterPixel(TransparentTriangle t, ivec2 pixel) {
   if (!(z >= 0.0 && z <= 1.0)) return;  // depth clipping (also drops NaN)
   OpaqueDepthTest opaque = OpaqueDepthTest(pc.depthOut, uint(viewportSize().x), pc.depthCompare);
   if (!passesOpaqueDepth(opaque, vec4(vec2(pixel) + 0.5, z, 1.0))) return;
-  insertFragment(uint(pixel.y) * uint(viewportSize().x) + uint(pixel.x), fragmentWord(z, t.id));
+  insertFragment(uvec2(pixel), fragmentWord(z, t.id));
 }
 
 // The pixels of the box from `first`, `stride` apart (row-major).

@@ -1,6 +1,7 @@
 #include "transparent_compute.hpp"
 
 #include <algorithm>
+#include <cstddef>
 #include <cstring>
 #include <fgb/core/error.hpp>
 #include <fgb/rhi/job_context.hpp>
@@ -16,12 +17,28 @@ namespace {
 using graph::Access;
 constexpr graph::QueueClass kQueue = graph::QueueClass::Graphics;
 constexpr uint64_t kCountersBytes = sizeof(gpu::TransparentCounters);
+constexpr uint32_t kTile = FGB_TRANSPARENT_SHADE_GROUP_SIZE;
+
+uint64_t shadeTiles(uint32_t width, uint32_t height) {
+  return uint64_t{(width + kTile - 1) / kTile} * ((height + kTile - 1) / kTile);
+}
+
+// The K planes (uint64 per pixel each), then one uint64 flag per shade tile.
+uint64_t kBufferBytes(uint32_t width, uint32_t height) {
+  return uint64_t{8} * (uint64_t{FGB_TRANSPARENT_K} * width * height + shadeTiles(width, height));
+}
+
+// The tile list: its count, then one uint per tile.
+uint64_t tileListBytes(uint32_t width, uint32_t height) {
+  return uint64_t{4} * (1 + shadeTiles(width, height));
+}
 
 }  // namespace
 
 struct TransparentComputePasses::PassBuffers {
-  graph::BufferHandle words;         // the K-buffer (persistent)
-  graph::BufferHandle counters;      // gpu::TransparentCounters
+  graph::BufferHandle words;         // the K-buffer and the tiles' flags (persistent)
+  graph::BufferHandle counters;      // gpu::TransparentCounters, with the shade's dispatch
+  graph::BufferHandle tiles;         // the tiles the raster listed for the shade
   graph::BufferHandle large;         // large triangles' fragment ids
   graph::BufferHandle draws;         // "Transparent Cluster Cull"'s packed cluster draws,
   graph::BufferHandle drawCount;     // their count,
@@ -43,7 +60,10 @@ void TransparentComputePasses::initialize(FeatureInit& init) {
   shade_ =
       init.device.createComputePipeline({"transparent shade", "renderer/transparent_compute/transparent_shade.comp"});
   statsReadback_ = createReadbackBuffer(init.device, "transparent counters readback", kCountersBytes);
-  kBufferBytes_ = uint64_t{8} * FGB_TRANSPARENT_K * init.settings.sceneWidth() * init.settings.sceneHeight();
+  kBufferBytes_ = kBufferBytes(init.settings.sceneWidth(), init.settings.sceneHeight());
+  if (shadeTiles(init.settings.sceneWidth(), init.settings.sceneHeight()) >
+      uint64_t{FGB_TRANSPARENT_SHADE_GROUPS_X} * FGB_TRANSPARENT_SHADE_GROUPS_X)
+    throw std::logic_error("transparent shade tiles exceed two dispatch dimensions");
   kBuffer_ = init.device.createBuffer({"transparent k-buffer", kBufferBytes_,
                                        rhi::kBufferStorage | rhi::kBufferTransferDst, rhi::MemoryUsage::DeviceLocal});
 }
@@ -53,7 +73,7 @@ void TransparentComputePasses::declare(graph::FrameGraph& graph, Blackboard& boa
   auto& targets = board.get<FrameTargets>();
   if (!targets.opaqueDepth.valid())
     throw std::logic_error("render.transparent=compute before the opaque depth buffer (the visibility buffer's)");
-  if (uint64_t{8} * FGB_TRANSPARENT_K * targets.extent.width * targets.extent.height != kBufferBytes_)
+  if (kBufferBytes(targets.extent.width, targets.extent.height) != kBufferBytes_)
     throw std::logic_error("the transparent K-buffer was sized for other scene passes");
   // Kept from frame to frame, empty between frames: "Transparent Shade" empties the slots it read.
   const graph::ImportState computeState{graph::kStageComputeShader,
@@ -64,6 +84,7 @@ void TransparentComputePasses::declare(graph::FrameGraph& graph, Blackboard& boa
                                computeState);
   b.counters = graph.createBuffer("transparent counters", {kCountersBytes, {}});
   b.large = graph.createBuffer("transparent large triangles", {uint64_t{4} * largeCapacity_, {}});
+  b.tiles = graph.createBuffer("transparent tiles", {tileListBytes(targets.extent.width, targets.extent.height), {}});
   b.draws = draws;
   b.drawCount = drawCount;
   b.dispatchArgs = dispatchArgs;
@@ -74,19 +95,26 @@ void TransparentComputePasses::declare(graph::FrameGraph& graph, Blackboard& boa
   declareShade(graph, board, b);
 }
 
-// The counters zero every frame; the K-buffer's slots empty (all ones: larger than any fragment's
-// word) once, in the first recording: after it the shade leaves them empty (a fill of 8 K bytes a
-// pixel every frame, 66 MB at 1920x1080, would cost more than the shade's stores to the pixels
-// that had fragments).
+// The counters and the tile count zero every frame (the shade's dispatch: (0, 0, 1) workgroups);
+// the K-buffer's slots and the tiles' flags empty (all ones: larger than any fragment's word) once,
+// in the first recording: after it the shade leaves them empty (a fill of 8 K bytes a pixel every
+// frame, 66 MB at 1920x1080, would cost more than the shade's stores to the pixels that had
+// fragments).
 void TransparentComputePasses::declareClear(graph::FrameGraph& graph, PassBuffers& b) const {
   auto clear = graph.addNode("Transparent Clear", graph::NodeType::Transfer, kQueue);
   b.words = clear.write(b.words, Access::TransferDst);
   b.counters = clear.write(b.counters, Access::TransferDst);
+  b.tiles = clear.write(b.tiles, Access::TransferDst);
   clear.setJob([b, bytes = kBufferBytes_, emptied = kBufferEmptied_](graph::JobContext& context) {
     auto& ctx = rhi::rhiContext(context);
-    if (!*emptied) ctx.cmd().fillBuffer(ctx.buffer(b.words), 0, bytes, 0xffffffffu);
+    auto& cmd = ctx.cmd();
+    if (!*emptied) cmd.fillBuffer(ctx.buffer(b.words), 0, bytes, 0xffffffffu);
     *emptied = true;
-    ctx.cmd().fillBuffer(ctx.buffer(b.counters), 0, kCountersBytes, 0);
+    constexpr uint64_t groupsZ = offsetof(gpu::TransparentCounters, shadeGroupsZ);
+    static_assert(groupsZ + 4 == kCountersBytes);
+    cmd.fillBuffer(ctx.buffer(b.counters), 0, groupsZ, 0);  // disjoint fills: no hazard between them
+    cmd.fillBuffer(ctx.buffer(b.counters), groupsZ, 4, 1);
+    cmd.fillBuffer(ctx.buffer(b.tiles), 0, 4, 0);  // the count; the raster writes the tiles below it
   });
   clear.recordingDependsOn([emptied = kBufferEmptied_] { return uint64_t{*emptied}; });
 }
@@ -101,6 +129,7 @@ void TransparentComputePasses::declareRaster(graph::FrameGraph& graph, const Fra
   b.words = raster.write(b.words, Access::StorageReadWrite);
   b.counters = raster.write(b.counters, Access::StorageReadWrite);
   b.large = raster.write(b.large, Access::StorageWrite);  // appended by the first dispatch, read by the second
+  b.tiles = raster.write(b.tiles, Access::StorageReadWrite);  // appends to the count Clear zeroed
   gpu::VisPush push = visScenePush(*device_, *scene_);
   push.largeCapacity = largeCapacity_;
   raster.setJob([push, pipeline = raster_, b, opaqueDepth = opaqueDepthSource(targets, DepthTest::OpaqueDepthBuffer),
@@ -115,6 +144,7 @@ void TransparentComputePasses::declareRaster(graph::FrameGraph& graph, const Fra
     push.counters = ctx.storageBufferIndex(b.counters);
     push.largeList = ctx.storageBufferIndex(b.large);
     push.words = ctx.storageBufferIndex(b.words);
+    push.tileJobs = ctx.storageBufferIndex(b.tiles);
     const gpu::OpaqueDepthTest test = opaqueDepth.push(ctx);
     push.depthOut = test.depths;
     push.depthCompare = test.compareOp;
@@ -133,8 +163,10 @@ void TransparentComputePasses::declareRaster(graph::FrameGraph& graph, const Fra
 void TransparentComputePasses::declareShade(graph::FrameGraph& graph, Blackboard& board, PassBuffers& b) const {
   auto& targets = board.get<FrameTargets>();
   auto shade = graph.addNode("Transparent Shade", graph::NodeType::Compute, kQueue);
-  b.words = shade.write(b.words, Access::StorageReadWrite);  // reads the slots, empties them
+  b.words = shade.write(b.words, Access::StorageReadWrite);  // reads the slots, empties them and the tiles' flags
   shade.read(b.draws, Access::StorageRead);
+  shade.read(b.counters, Access::Indirect);  // one workgroup per listed tile
+  shade.read(b.tiles, Access::StorageRead);
   targets.hdr = shade.write(targets.hdr, Access::StorageReadWrite);
   ClusteredLights clusters;
   if (const auto* published = board.find<ClusteredLights>()) {
@@ -144,7 +176,7 @@ void TransparentComputePasses::declareShade(graph::FrameGraph& graph, Blackboard
   }
   if (targets.exposure.valid()) shade.read(targets.exposure, Access::StorageRead);  // pre-exposure
   shade.setJob([push = visScenePush(*device_, *scene_), pipeline = shade_, b, hdr = targets.hdr, clusters,
-                extent = targets.extent, scene = scene_](graph::JobContext& context) mutable {
+                scene = scene_](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
     const FrameBuffers& frame = scene->frame(ctx.execution());
@@ -153,6 +185,7 @@ void TransparentComputePasses::declareShade(graph::FrameGraph& graph, Blackboard
     push.lights = frame.lightsIndex;
     push.draws = ctx.storageBufferIndex(b.draws);
     push.words = ctx.storageBufferIndex(b.words);
+    push.tileJobs = ctx.storageBufferIndex(b.tiles);
     push.hdr = ctx.storageTextureIndex(hdr);
     if (clusters.counts.valid()) {
       push.clusterCounts = ctx.storageBufferIndex(clusters.counts);
@@ -160,8 +193,7 @@ void TransparentComputePasses::declareShade(graph::FrameGraph& graph, Blackboard
     }
     cmd.bindPipeline(pipeline);
     cmd.push(push);
-    cmd.dispatch((extent.width + FGB_TRANSPARENT_SHADE_GROUP_SIZE - 1) / FGB_TRANSPARENT_SHADE_GROUP_SIZE,
-                 (extent.height + FGB_TRANSPARENT_SHADE_GROUP_SIZE - 1) / FGB_TRANSPARENT_SHADE_GROUP_SIZE);
+    cmd.dispatchIndirect(ctx.buffer(b.counters), offsetof(gpu::TransparentCounters, shadeGroupsX));
   });
   shade.recordingFixed();
   targets.color = targets.hdr;  // single-sampled: later colour passes load the blended image
@@ -174,6 +206,7 @@ void TransparentComputePasses::addStats(std::map<std::string, double>& stats) co
   stats["transparent_fragments_dropped"] = read.dropped;
   stats["transparent_large_triangles"] = read.largeTriangles;
   stats["transparent_large_overflow"] = read.largeOverflow;
+  stats["transparent_tiles_shaded"] = read.tilesListed;
 }
 
 }  // namespace fgb::features

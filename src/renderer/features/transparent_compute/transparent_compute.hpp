@@ -1,12 +1,15 @@
 // The visibility-buffer path's transparent meshes in compute (render.transparent=compute; the
 // meshes feature owns them and declares these nodes in place of "Mesh Render Transparent"): from
 // "Transparent Cluster Cull"'s kept cluster draws (cluster form, kTransparentCullClusterIds),
-//   "Transparent Clear"  (transfer) zeroes the counters (and, in its first recording, empties the
-//                        K-buffer, which persists: the shade empties what it read);
+//   "Transparent Clear"  (transfer) zeroes the counters and the tile list (and, in its first
+//                        recording, empties the K-buffer and its tile flags, which persist: the
+//                        shade empties what it read);
 //   "Transparent Raster" keeps, per pixel, the FGB_TRANSPARENT_K nearest fragments in front of the
 //                        opaque depth (64-bit atomicMin cascade; small triangles one invocation
-//                        each, large ones shared by a workgroup);
-//   "Transparent Shade"  shades each kept fragment as "Material Shade" shades an opaque pixel and
+//                        each, large ones shared by a workgroup), listing each 8x8 tile a
+//                        fragment lands in once;
+//   "Transparent Shade"  (indirect, one workgroup per listed tile) shades each kept fragment as "Material Shade" shades
+//   an opaque pixel and
 //                        blends them far to near over the HDR image (the raster pass's blend).
 // Per-pixel sorting blends overlapping instances, and an instance's own layers, in depth order,
 // where the raster pass blends instances back to front by their centres and an instance's
@@ -44,7 +47,7 @@ class TransparentComputePasses {
   rhi::PipelineId shade_;
   rhi::BufferId statsReadback_;
   uint32_t largeCapacity_ = 0;
-  rhi::BufferId kBuffer_;  // persistent, empty between frames
+  rhi::BufferId kBuffer_;  // persistent, empty between frames; the tiles' flags after the slots
   uint64_t kBufferBytes_ = 0;
   // Whether a recording of "Transparent Clear" has emptied kBuffer_ (the first one does).
   std::shared_ptr<bool> kBufferEmptied_ = std::make_shared<bool>(false);

@@ -6,6 +6,8 @@
 #include "fgb/rhi/shared/prelude.h"
 
 #define FGB_CLUSTER_BOUNDS_GROUP_SIZE 64  // cluster_bounds.comp: one cluster each
+#define FGB_LIGHT_CULL_STATS \
+  4  // a workgroup's row: lights found in all its clusters, most in one, clusters over capacity, 0
 #define FGB_LIGHT_CULL_BLOCK 8            // light_cull.comp: one workgroup per 8x8 tiles of a slice
 #define FGB_MAX_LIGHTS_PER_CLUSTER 1024   // the largest lighting.max_per_cluster light_cull.comp keeps
 
@@ -27,7 +29,7 @@ struct LightCullPush {
   uint counts;   // per cluster: lights found (may exceed the capacity: overflow is visible)
   uint indices;  // cluster c's lights at [c * capacity, c * capacity + min(count, capacity))
   uint dropLight;  // debug.drop_light: K >= 1 leaves light K - 1 out of every cluster; 0: none
-  uint countsToHost;  // the host's copy of `counts` (statistics), written beside it
+  uint statsToHost;  // per workgroup a row of FGB_LIGHT_CULL_STATS uints in host memory (statistics)
   uint pad;
 };
 FGB_CHECK_PUSH(LightCullPush, 32)

@@ -20,6 +20,12 @@ constexpr graph::ImportState kBoundsState{graph::kStageComputeShader,
                                           graph::kAccessShaderStorageRead | graph::kAccessShaderStorageWrite,
                                           graph::Layout::Undefined, graph::QueueClass::Compute};
 
+// "Clustered Light Cull"'s workgroups: one per FGB_LIGHT_CULL_BLOCK^2 tiles of a depth slice.
+std::array<uint32_t, 3> cullGroups(const glm::uvec4& grid) {
+  constexpr uint32_t kBlock = FGB_LIGHT_CULL_BLOCK;
+  return {(grid.x + kBlock - 1) / kBlock, (grid.y + kBlock - 1) / kBlock, grid.z};
+}
+
 }  // namespace
 
 void ClusteredLighting::initialize(FeatureInit& init) {
@@ -36,10 +42,12 @@ void ClusteredLighting::initialize(FeatureInit& init) {
   cullPipeline_ = init.device.createComputePipeline({"clustered light cull", "renderer/light_cull.comp"});
   bounds_ = init.device.createBuffer(
       {"cluster bounds", uint64_t{32} * clusterCount_, rhi::kBufferStorage, rhi::MemoryUsage::DeviceLocal});
-  // Written by the cull shader itself (statistics): a storage buffer the host reads.
-  countsReadback_ = init.device.createBuffer(
-      {"cluster counts readback", uint64_t{4} * clusterCount_, rhi::kBufferStorage, rhi::MemoryUsage::Readback});
-  std::memset(init.device.mapped(countsReadback_).data(), 0, uint64_t{4} * clusterCount_);
+  const std::array<uint32_t, 3> groups = cullGroups(grid);
+  cullGroups_ = groups[0] * groups[1] * groups[2];
+  // Written by the cull shader itself (statistics), a row per workgroup: a storage buffer the host reads.
+  statsReadback_ = init.device.createBuffer(
+      {"light cull stats readback", statsBytes(), rhi::kBufferStorage, rhi::MemoryUsage::Readback});
+  std::memset(init.device.mapped(statsReadback_).data(), 0, statsBytes());
 }
 
 graph::BufferHandle ClusteredLighting::declareBounds(graph::FrameGraph& graph) {
@@ -80,31 +88,29 @@ void ClusteredLighting::declare(graph::FrameGraph& graph, Blackboard& board) {
   // readback is in the host's hands.
   const graph::ImportState hostRead{graph::kStageHost, graph::kAccessHostRead, graph::Layout::Undefined,
                                     graph::QueueClass::Graphics};
-  auto countsToHost = graph.importBuffer("cluster counts readback", {uint64_t{4} * clusterCount_, {}},
-                                         rhi::external(countsReadback_), hostRead, hostRead);
+  auto statsToHost = graph.importBuffer("light cull stats readback", {statsBytes(), {}}, rhi::external(statsReadback_),
+                                        hostRead, hostRead);
 
   auto node = graph.addNode("Clustered Light Cull", graph::NodeType::Compute);
   node.read(bounds, Access::StorageRead);
   lists.counts = node.write(lists.counts, Access::StorageWrite);
   lists.indices = node.write(lists.indices, Access::StorageWrite);
-  countsToHost = node.write(countsToHost, Access::StorageWrite);
+  statsToHost = node.write(statsToHost, Access::StorageWrite);
   gpu::LightCullPush push{0, device_->storageBufferIndex(bounds_), 0, 0, 0, dropLight_, 0, 0};
-  const auto& grid = scene_->constants.clusterGrid;
-  constexpr uint32_t kBlock = FGB_LIGHT_CULL_BLOCK;
-  const std::array<uint32_t, 3> groups{(grid.x + kBlock - 1) / kBlock, (grid.y + kBlock - 1) / kBlock, grid.z};
-  node.setJob([push, pipeline = cullPipeline_, lists, countsToHost, groups,
-               scene = scene_](graph::JobContext& context) mutable {
-    auto& ctx = rhi::rhiContext(context);
-    const FrameBuffers& frame = scene->frame(ctx.execution());
-    push.frame = frame.constantsIndex;
-    push.lights = frame.lightsIndex;
-    push.counts = ctx.storageBufferIndex(lists.counts);
-    push.indices = ctx.storageBufferIndex(lists.indices);
-    push.countsToHost = ctx.storageBufferIndex(countsToHost);
-    ctx.cmd().bindPipeline(pipeline);
-    ctx.cmd().push(push);
-    ctx.cmd().dispatch(groups[0], groups[1], groups[2]);  // one invocation per cluster
-  });
+  const std::array<uint32_t, 3> groups = cullGroups(scene_->constants.clusterGrid);
+  node.setJob(
+      [push, pipeline = cullPipeline_, lists, statsToHost, groups, scene = scene_](graph::JobContext& context) mutable {
+        auto& ctx = rhi::rhiContext(context);
+        const FrameBuffers& frame = scene->frame(ctx.execution());
+        push.frame = frame.constantsIndex;
+        push.lights = frame.lightsIndex;
+        push.counts = ctx.storageBufferIndex(lists.counts);
+        push.indices = ctx.storageBufferIndex(lists.indices);
+        push.statsToHost = ctx.storageBufferIndex(statsToHost);
+        ctx.cmd().bindPipeline(pipeline);
+        ctx.cmd().push(push);
+        ctx.cmd().dispatch(groups[0], groups[1], groups[2]);  // one invocation per cluster
+      });
   node.recordingFixed();
   board.set(lists);
 }
@@ -112,15 +118,15 @@ void ClusteredLighting::declare(graph::FrameGraph& graph, Blackboard& board) {
 void ClusteredLighting::addStats(std::map<std::string, double>& stats) const {
   stats["clusters"] = clusterCount_;
   if (!enabled() || clusterCount_ == 0) return;
-  std::vector<uint32_t> counts(clusterCount_);
-  std::memcpy(counts.data(), device_->mapped(countsReadback_).data(), counts.size() * 4);
+  std::vector<uint32_t> rows(size_t{cullGroups_} * FGB_LIGHT_CULL_STATS);
+  std::memcpy(rows.data(), device_->mapped(statsReadback_).data(), statsBytes());
   uint64_t sum = 0;
   uint32_t max = 0;
-  uint32_t overflowed = 0;
-  for (const uint32_t count : counts) {
-    sum += count;
-    max = std::max(max, count);
-    if (count > capacity_) ++overflowed;
+  uint64_t overflowed = 0;
+  for (size_t row = 0; row < rows.size(); row += FGB_LIGHT_CULL_STATS) {
+    sum += rows[row];
+    max = std::max(max, rows[row + 1]);
+    overflowed += rows[row + 2];
   }
   stats["lights_per_cluster_avg"] = double(sum) / double(clusterCount_);
   stats["lights_per_cluster_max"] = max;

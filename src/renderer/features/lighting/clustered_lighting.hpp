@@ -8,9 +8,10 @@
 // average/max lights per cluster (read back every frame).
 #pragma once
 
-#include "../context/render_feature.hpp"
-
 #include <memory>
+
+#include "../context/render_feature.hpp"
+#include "renderer/shared/lighting.h"
 
 namespace fgb::features {
 
@@ -38,7 +39,9 @@ class ClusteredLighting final : public IRenderFeature {
   rhi::PipelineId boundsPipeline_;
   rhi::PipelineId cullPipeline_;
   rhi::BufferId bounds_;         // persistent: vec4 min, max per cluster
-  rhi::BufferId countsReadback_;
+  rhi::BufferId statsReadback_;  // per light-cull workgroup a row of FGB_LIGHT_CULL_STATS uints
+  uint32_t cullGroups_ = 0;
+  uint64_t statsBytes() const { return uint64_t{4} * FGB_LIGHT_CULL_STATS * cullGroups_; }
   std::shared_ptr<BoundsState> boundsState_ = std::make_shared<BoundsState>();
   uint32_t lightCount_ = 0;
   bool clustered_ = true;

@@ -180,15 +180,17 @@ DepthUse depthUseOf(const Workload& workload, const std::string& name) {
 }
 
 // On the visibility-buffer path no depth image is written ("Visibility Depth Resolve" is gone):
-// "Mesh Render Transparent" and "Particle Render" have no depth attachment and read the opaque
-// depth buffer, which their fragment shaders test against; at render.ssaa=2 too (the buffer is at
-// the scene passes' size), under validation, with the culling counters still read back. Forward
-// keeps its depth attachment.
+// "Mesh Render Transparent" (render.transparent=raster; compute is the path's default) and
+// "Particle Render" have no depth attachment and read the opaque depth buffer, which their
+// fragment shaders test against; at render.ssaa=2 too (the buffer is at the scene passes' size),
+// under validation, with the culling counters still read back. Forward keeps its depth attachment.
 TEST(VisBuffer, LaterColourPassesTestTheOpaqueDepthBufferInsteadOfADepthImage) {
   const std::vector<std::string> laterPasses = {"Mesh Render Transparent", "Particle Render"};
   {  // one device at a time: each rendering is read and closed before the next opens
     const auto vis =
-        render(sized(lavapipeConfig("atrium-small.json", {{"render.path", "visbuffer"}, {"render.ssaa", "2"}}, true),
+        render(sized(lavapipeConfig("atrium-small.json",
+                                    {{"render.path", "visbuffer"}, {"render.ssaa", "2"}, {"render.transparent", "raster"}},
+                                    true),
                      160, 90, 1),
                2);
     EXPECT_EQ(vis.workload->validationMessages(), 0u);

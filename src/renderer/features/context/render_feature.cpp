@@ -33,6 +33,16 @@ graph::TextureHandle writePostPassOutput(graph::NodeBuilder& node, PostPassForm 
                                        : node.addColorTarget(target, graph::LoadOp::DontCare);
 }
 
+ClusteredLights readLightLists(graph::NodeBuilder& node, const Blackboard& board, graph::StageMask stages) {
+  ClusteredLights lists;
+  if (const auto* published = board.find<ClusteredLights>()) {
+    lists = *published;
+    node.read(lists.counts, graph::Access::StorageRead, stages);
+    node.read(lists.indices, graph::Access::StorageRead, stages);
+  }
+  return lists;
+}
+
 void recordPostPass(rhi::CommandBuffer& cmd, PostPassForm form, const graph::Extent& extent) {
   if (form == PostPassForm::Compute) {
     cmd.dispatch((extent.width + FGB_POST_GROUP_SIZE - 1) / FGB_POST_GROUP_SIZE,

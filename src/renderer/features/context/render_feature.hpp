@@ -3,20 +3,20 @@
 // publishing graph handles through the blackboard. Node names match the thesis' table.
 #pragma once
 
-#include "blackboard.hpp"
-#include "gpu_scene.hpp"
-#include "render_path.hpp"
-#include "render_settings.hpp"
-#include "renderer/shared/opaque_depth.h"
-
 #include <fgb/graph/frame_graph.hpp>
 #include <fgb/rhi/command_buffer.hpp>
 #include <fgb/rhi/device.hpp>
 #include <fgb/rhi/job_context.hpp>
-
 #include <map>
 #include <string>
 #include <string_view>
+
+#include "blackboard.hpp"
+#include "gpu_scene.hpp"
+#include "handles.hpp"
+#include "render_path.hpp"
+#include "render_settings.hpp"
+#include "renderer/shared/opaque_depth.h"
 
 namespace fgb::features {
 
@@ -42,6 +42,29 @@ graph::TextureHandle writePostPassOutput(graph::NodeBuilder& node, PostPassForm 
 // Records the pass's work after its pipeline and push constants: one invocation per pixel of
 // `extent` (the .comp shaders' 8 x 8 local size) or the full-screen triangle.
 void recordPostPass(rhi::CommandBuffer& cmd, PostPassForm form, const graph::Extent& extent);
+
+// The execution's copies of the per-frame buffers (FrameBuffers) into a push block: the camera,
+// frustum planes and HiZ flag (frame), render-space instances, and the lights where the block has them.
+template <class Push>
+void useFrame(Push& push, const GpuScene& scene, uint64_t execution) {
+  const FrameBuffers& frame = scene.frame(execution);
+  push.frame = frame.constantsIndex;
+  push.instances = frame.instancesIndex;
+  if constexpr (requires { push.lights; }) push.lights = frame.lightsIndex;
+}
+
+// The light lists of clustered lighting, where the path has them ("Clustered Light Cull"
+// published them): declares the node's reads of them in `stages`. Invalid handles where it has none.
+ClusteredLights readLightLists(graph::NodeBuilder& node, const Blackboard& board,
+                               graph::StageMask stages = graph::kStageNone);
+// Their storage-buffer indices into a shading push block; left as they are where there are none
+// (the shaders then read every light).
+template <class Push>
+void useLightLists(Push& push, rhi::JobContext& ctx, const ClusteredLights& lists) {
+  if (!lists.counts.valid()) return;
+  push.clusterCounts = ctx.storageBufferIndex(lists.counts);
+  push.clusterIndices = ctx.storageBufferIndex(lists.indices);
+}
 
 class IRenderFeature {
  public:

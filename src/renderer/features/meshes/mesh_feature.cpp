@@ -100,29 +100,12 @@ void drawBatches(rhi::JobContext& ctx, const GpuScene& scene, const MeshCullOutp
   }
 }
 
-// The light lists of clustered lighting, where the path has them, read by a forward pass's shaders.
-ClusteredLights readLightLists(graph::NodeBuilder& node, Blackboard& board) {
-  ClusteredLights clusters;
-  if (const auto* published = board.find<ClusteredLights>()) {
-    clusters = *published;
-    node.read(clusters.counts, Access::StorageRead, kForwardStages);
-    node.read(clusters.indices, Access::StorageRead, kForwardStages);
-  }
-  return clusters;
-}
-
 // A forward pass's per-execution push values: the frame's copies, the light lists, the opaque depth.
 void setFramePush(gpu::ForwardPush& push, rhi::JobContext& ctx, const GpuScene& scene, const ClusteredLights& clusters,
                   const OpaqueDepthSource& opaqueDepth) {
-  const FrameBuffers& frame = scene.frame(ctx.execution());
-  push.frame = frame.constantsIndex;
-  push.instances = frame.instancesIndex;
-  push.lights = frame.lightsIndex;
+  useFrame(push, scene, ctx.execution());
   push.opaqueDepth = opaqueDepth.push(ctx);
-  if (clusters.counts.valid()) {
-    push.clusterCounts = ctx.storageBufferIndex(clusters.counts);
-    push.clusterIndices = ctx.storageBufferIndex(clusters.indices);
-  }
+  useLightLists(push, ctx, clusters);
 }
 
 // The indirect buffers a draw node reads.
@@ -236,9 +219,7 @@ MeshCullOutputs MeshFeature::declareCull(graph::FrameGraph& graph) {
   }
   cull.setJob([push, compact, pipelines = pipelines_, out, &scene](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
-    const FrameBuffers& frame = scene.frame(ctx.execution());
-    push.frame = frame.constantsIndex;  // the frustum planes
-    push.instances = frame.instancesIndex;
+    useFrame(push, scene, ctx.execution());  // the frustum planes, the instances
     push.commands = ctx.storageBufferIndex(out.commands);
     push.visible = ctx.storageBufferIndex(out.visible);
     push.stats = ctx.storageBufferIndex(out.stats);
@@ -269,7 +250,7 @@ void MeshFeature::declareDraw(graph::FrameGraph& graph, Blackboard& board, std::
   auto node = addForwardPass(graph, targets, nodeName, !transparent, depthTest);
   readDrawCommands(node, cull, drawCount_);
   node.read(cull.visible, Access::StorageRead, kForwardStages);
-  const ClusteredLights clusters = readLightLists(node, board);
+  const ClusteredLights clusters = readLightLists(node, board, kForwardStages);
   const rhi::PipelineId pipeline = transparent ? pipelines_.transparent : pipelines_.opaque;
   node.setJob([push = forwardPush(nodeName, transparent), pipeline, clusters, cull, batches = batchesOf(scene, classes),
                drawCount = drawCount_, opaqueDepth = opaqueDepthSource(targets, depthTest),
@@ -331,9 +312,7 @@ TransparentClusterDraws MeshFeature::declareTransparentCull(graph::FrameGraph& g
   node.setJob([push, pipelines = pipelines_, out, stats = cull.stats, &scene](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
-    const FrameBuffers& frame = scene.frame(ctx.execution());
-    push.frame = frame.constantsIndex;
-    push.instances = frame.instancesIndex;
+    useFrame(push, scene, ctx.execution());
     push.chunkCommands = ctx.storageBufferIndex(out.chunkCommands);
     push.chunkTotals = ctx.storageBufferIndex(out.chunkTotals);
     push.packed = ctx.storageBufferIndex(out.packed);
@@ -368,7 +347,7 @@ void MeshFeature::declareTransparentClusterDraw(graph::FrameGraph& graph, Blackb
   } else {
     node.read(draws.chunkCommands, Access::Indirect);
   }
-  const ClusteredLights clusters = readLightLists(node, board);
+  const ClusteredLights clusters = readLightLists(node, board, kForwardStages);
   gpu::ForwardPush push = forwardPush(nodeName, true);
   push.flags |= gpu::kForwardInstanceIsSlot;
   push.visible = rhi::kInvalidId;
@@ -402,9 +381,7 @@ void MeshFeature::declareDepthPrepass(graph::FrameGraph& graph, Blackboard& boar
   node.setJob([push, pipeline = pipelines_.depthOnly, cull, batches = batchesOf(scene, {DrawClass::Opaque}),
                drawCount = drawCount_, &scene](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
-    const FrameBuffers& frame = scene.frame(ctx.execution());
-    push.frame = frame.constantsIndex;
-    push.instances = frame.instancesIndex;
+    useFrame(push, scene, ctx.execution());
     push.visible = ctx.storageBufferIndex(cull.visible);
     ctx.cmd().bindPipeline(pipeline);
     ctx.cmd().push(push);

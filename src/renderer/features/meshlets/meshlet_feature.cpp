@@ -105,9 +105,7 @@ void MeshletFeature::declareInstanceCull(graph::FrameGraph& graph, Buffers& b) c
   push.instanceCount = scene_->instanceCount;
   node.setJob([push, pipeline = cull_, b, scene = scene_](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
-    const FrameBuffers& frame = scene->frame(ctx.execution());
-    push.frame = frame.constantsIndex;  // the frustum planes
-    push.instances = frame.instancesIndex;
+    useFrame(push, *scene, ctx.execution());  // the frustum planes, the instances
     push.commands = ctx.storageBufferIndex(b.commands);
     push.stats = ctx.storageBufferIndex(b.stats);
     ctx.cmd().bindPipeline(pipeline);
@@ -162,24 +160,13 @@ void MeshletFeature::declareRender(graph::FrameGraph& graph, Blackboard& board, 
   if (targets.exposure.valid()) node.read(targets.exposure, Access::StorageRead, kRenderStages);
   gpu::MeshletPush push = scenePush();
   push.flags |= occlusion_ ? (late ? gpu::kMeshletLate : gpu::kMeshletOcclusion) : 0u;
-  ClusteredLights clusters;
-  if (const auto* published = board.find<ClusteredLights>()) {
-    clusters = *published;
-    node.read(clusters.counts, Access::StorageRead, kRenderStages);
-    node.read(clusters.indices, Access::StorageRead, kRenderStages);
-  }
+  const ClusteredLights clusters = readLightLists(node, board, kRenderStages);
   const uint32_t maxDraws = late ? 1 : scene_->instanceCount;
   node.setJob(
       [push, pipeline = render_, b, commands, clusters, maxDraws, scene = scene_](graph::JobContext& context) mutable {
         auto& ctx = rhi::rhiContext(context);
-        const FrameBuffers& frame = scene->frame(ctx.execution());
-        push.shading.frame = frame.constantsIndex;
-        push.shading.instances = frame.instancesIndex;
-        push.shading.lights = frame.lightsIndex;
-        if (clusters.counts.valid()) {
-          push.shading.clusterCounts = ctx.storageBufferIndex(clusters.counts);
-          push.shading.clusterIndices = ctx.storageBufferIndex(clusters.indices);
-        }
+        useFrame(push.shading, *scene, ctx.execution());
+        useLightLists(push.shading, ctx, clusters);
         push.commands = ctx.storageBufferIndex(commands);
         push.stats = ctx.storageBufferIndex(b.stats);
         // As ClusterCullPush::occlusion: storage-buffer indices fit 16 bits (static_assert above).

@@ -136,9 +136,7 @@ void TransparentComputePasses::declareRaster(graph::FrameGraph& graph, const Fra
                  scene = scene_](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
-    const FrameBuffers& frame = scene->frame(ctx.execution());
-    push.frame = frame.constantsIndex;
-    push.instances = frame.instancesIndex;
+    useFrame(push, *scene, ctx.execution());  // also the lights, which the raster does not read
     push.draws = ctx.storageBufferIndex(b.draws);
     push.args = ctx.storageBufferIndex(b.drawCount);
     push.counters = ctx.storageBufferIndex(b.counters);
@@ -168,29 +166,18 @@ void TransparentComputePasses::declareShade(graph::FrameGraph& graph, Blackboard
   shade.read(b.counters, Access::Indirect);  // one workgroup per listed tile
   shade.read(b.tiles, Access::StorageRead);
   targets.hdr = shade.write(targets.hdr, Access::StorageReadWrite);
-  ClusteredLights clusters;
-  if (const auto* published = board.find<ClusteredLights>()) {
-    clusters = *published;
-    shade.read(clusters.counts, Access::StorageRead);
-    shade.read(clusters.indices, Access::StorageRead);
-  }
+  const ClusteredLights clusters = readLightLists(shade, board);
   if (targets.exposure.valid()) shade.read(targets.exposure, Access::StorageRead);  // pre-exposure
   shade.setJob([push = visScenePush(*device_, *scene_), pipeline = shade_, b, hdr = targets.hdr, clusters,
                 scene = scene_](graph::JobContext& context) mutable {
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
-    const FrameBuffers& frame = scene->frame(ctx.execution());
-    push.frame = frame.constantsIndex;
-    push.instances = frame.instancesIndex;
-    push.lights = frame.lightsIndex;
+    useFrame(push, *scene, ctx.execution());
     push.draws = ctx.storageBufferIndex(b.draws);
     push.words = ctx.storageBufferIndex(b.words);
     push.tileJobs = ctx.storageBufferIndex(b.tiles);
     push.hdr = ctx.storageTextureIndex(hdr);
-    if (clusters.counts.valid()) {
-      push.clusterCounts = ctx.storageBufferIndex(clusters.counts);
-      push.clusterIndices = ctx.storageBufferIndex(clusters.indices);
-    }
+    useLightLists(push, ctx, clusters);
     cmd.bindPipeline(pipeline);
     cmd.push(push);
     cmd.dispatchIndirect(ctx.buffer(b.counters), offsetof(gpu::TransparentCounters, shadeGroupsX));

@@ -15,16 +15,6 @@
 namespace fgb::features {
 namespace {
 
-// The execution's copies of the per-frame buffers (FrameBuffers) into a push block: the camera,
-// frustum planes and HiZ flag (frame), render-space instances and lights.
-template <class Push>
-void useFrame(Push& push, const GpuScene& scene, uint64_t execution) {
-  const FrameBuffers& frame = scene.frame(execution);
-  push.frame = frame.constantsIndex;
-  push.instances = frame.instancesIndex;
-  if constexpr (requires { push.lights; }) push.lights = frame.lightsIndex;
-}
-
 using graph::Access;
 constexpr graph::QueueClass kQueue = graph::QueueClass::Graphics;
 
@@ -429,12 +419,7 @@ void VisBufferFeature::declareShade(graph::FrameGraph& graph, Blackboard& board,
   stats = node.write(stats, Access::TransferDst);
   b.depth = node.write(b.depth, Access::StorageWrite);
   targets.hdr = node.write(targets.hdr, Access::StorageWrite);
-  ClusteredLights clusters;
-  if (const auto* published = board.find<ClusteredLights>()) {
-    clusters = *published;
-    node.read(clusters.counts, Access::StorageRead);
-    node.read(clusters.indices, Access::StorageRead);
-  }
+  const ClusteredLights clusters = readLightLists(node, board);
   // Shading pre-exposes what it writes, like every colour pass (auto exposure: this frame's state).
   if (targets.exposure.valid()) node.read(targets.exposure, Access::StorageRead);
   node.setJob([push = b.push, pipelines = pipelines_, b, hdr = targets.hdr, clusters, stats, scene = scene_,
@@ -452,10 +437,7 @@ void VisBufferFeature::declareShade(graph::FrameGraph& graph, Blackboard& board,
     push.depthOut = ctx.storageBufferIndex(b.depth);
     push.hdr = ctx.storageTextureIndex(hdr);
     if (injectBias) push.flags |= gpu::kFlagInjectBias;
-    if (clusters.counts.valid()) {
-      push.clusterCounts = ctx.storageBufferIndex(clusters.counts);
-      push.clusterIndices = ctx.storageBufferIndex(clusters.indices);
-    }
+    useLightLists(push, ctx, clusters);
     cmd.bindPipeline(pipelines.shade);
     cmd.push(push);
     cmd.dispatch((b.extent.width + FGB_VIS_SHADE_GROUP_SIZE - 1) / FGB_VIS_SHADE_GROUP_SIZE,

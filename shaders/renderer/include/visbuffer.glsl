@@ -43,6 +43,19 @@ void visWordMax(uint words, ivec2 pixel, uint width, uint64_t word) {
   atomicMax(visWords[words].words[uint(pixel.y) * width + uint(pixel.x)], word);
 #endif
 }
+// A pixel's word for its last reader ("Material Shade"), which leaves the pixel empty: the
+// visibility buffer stays cleared between frames. Empty pixels are not written again.
+uint64_t visWordTake(uint words, ivec2 pixel, uint width) {
+#ifdef FGB_VIS_BACKING_IMAGE
+  uint64_t word = imageLoad(visImages[words], pixel).x;
+  if (word != 0ul) imageStore(visImages[words], pixel, u64vec4(0ul));
+#else
+  uint index = uint(pixel.y) * width + uint(pixel.x);
+  uint64_t word = visWords[words].words[index];
+  if (word != 0ul) visWords[words].words[index] = 0ul;
+#endif
+  return word;
+}
 uint64_t visWordAt(uint words, ivec2 pixel, uint width) {
 #ifdef FGB_VIS_BACKING_IMAGE
   return imageLoad(visImages[words], pixel).x;

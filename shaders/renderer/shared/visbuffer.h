@@ -80,6 +80,7 @@ struct VisCounters {
   uint lodClusters[FGB_VIS_LOD_STAT_LEVELS];  // visible clusters per LOD level (statistics)
 };
 FGB_CHECK_SIZE(VisCounters, 112)
+const uint kVisCounterWords = 28u;  // sizeof(VisCounters) / 4: "Material Shade" copies them word by word
 
 // "Cluster Cull" (cluster_cull.comp).
 // Storage-buffer indices fit 16 bits (FGB_MAX_STORAGE_BUFFERS), so pairs share a word, which
@@ -165,8 +166,9 @@ struct VisPush {
   uint normals;         // float offsets of the vertex streams
   uint tangents;
   uint uvs;
-  uint counters;        // VisCounters the culling nodes add to
-  uint args;            // VisCounters snapshot with the indirect arguments of this node
+  uint counters;        // VisCounters the culling nodes add to ("Material Shade": the host's copy of both phases')
+  uint args;            // VisCounters snapshot with the indirect arguments of this node ("Material
+                        // Shade": phase 1's in the low 16 bits, phase 2's in the high, kVisNoPhase for none)
   uint visible;         // visible-cluster list
   uint smallList;       // ids of small triangles
   uint largeList;       // kLargeTriangleBytes per large triangle, set up by "Triangle Filter" (packLargeTriangle)
@@ -185,6 +187,7 @@ struct VisPush {
   vec4 background;      // (at byte 112) HDR clear of pixels no triangle covers (pre-exposed, alpha 0)
 };
 FGB_CHECK_PUSH(VisPush, 128)
+const uint kVisNoPhase = 0xffffu;  // VisPush::args of "Material Shade" without render.occlusion
 const uint kFlagReversedZ = 1u;
 const uint kFlagLargeTiles = 2u;        // raster the large-triangle tiles (else the small triangles)
 const uint kFlagSerialSubgroups = 4u;   // a CPU device: a workgroup's subgroups run one after another

@@ -3,8 +3,8 @@
 // the triangle from its id (visible cluster -> instance, cluster -> three vertices) and shades it
 // at the pixel centre (shadeTrianglePixel in visbuffer_material.glsl: perspective-correct
 // barycentrics with analytic derivatives, the forward path's surface_shading.glsl), writing the
-// HDR target. It also writes the pixel's depth (the far
-// value where nothing was drawn), which the transparent and particle passes test their fragments
+// HDR target, and empties the pixel's word (the buffer stays cleared between frames). It also
+// writes the pixel's depth (the far value where nothing was drawn), which the transparent and particle passes test their fragments
 // against (include/opaque_depth.glsl).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_nonuniform_qualifier : require
@@ -25,13 +25,25 @@ vec3 debugViewColor(FrameConstants frame, uint drawIndex, SurfacePoint p) {
 }
 #endif
 
+// The first workgroup copies both phases' culling counters to the host's statistics, a word per
+// invocation (pc.args: the phases' snapshots, 16 bits each; pc.counters: the host-visible copy).
+void copyCountersToHost() {
+  const uint counterWords = kVisCounterWords;
+  uint word = gl_LocalInvocationIndex;
+  if (word >= 2u * counterWords) return;
+  uint source = word < counterWords ? (pc.args & 0xffffu) : (pc.args >> 16);
+  fgbUints[pc.counters].values[word] =
+      source == kVisNoPhase ? 0u : fgbUintsRead[source].values[word % counterWords];
+}
+
 void main() {
+  if (gl_WorkGroupID.xy == uvec2(0u)) copyCountersToHost();
   loadFrameGlobals();
   uvec2 pixel = gl_GlobalInvocationID.xy;
   uvec2 size = uvec2(viewportSize());
   if (any(greaterThanEqual(pixel, size))) return;
   uint index = pixel.y * size.x + pixel.x;
-  uint64_t word = visWordAt(pc.words, ivec2(pixel), size.x);
+  uint64_t word = visWordTake(pc.words, ivec2(pixel), size.x);
   if (word == 0ul) {
     visFloats[pc.depthOut].values[index] = reversedZ() ? 0.0 : 1.0;
     imageStore(fgbImagesRgba16f[pc.hdr], ivec2(pixel), pc.background);

@@ -22,8 +22,12 @@ using gpu::VisCounters;
 constexpr uint64_t kFilterArgsOffset = offsetof(VisCounters, filterGroups);
 constexpr uint64_t kSmallArgsOffset = offsetof(VisCounters, smallGroups);
 constexpr uint64_t kTileArgsOffset = offsetof(VisCounters, tileGroups);
-// ClusterCullPush::occlusion packs two storage-buffer indices in 16 bits each.
-static_assert(FGB_MAX_STORAGE_BUFFERS <= 0x10000);
+// ClusterCullPush::occlusion and Material Shade's VisPush::args pack two storage-buffer indices in
+// 16 bits each (the latter with kVisNoPhase for none).
+static_assert(FGB_MAX_STORAGE_BUFFERS <= gpu::kVisNoPhase);
+// Material Shade's first workgroup copies both phases' counters, a word per invocation.
+static_assert(sizeof(VisCounters) == 4 * gpu::kVisCounterWords &&
+              2 * gpu::kVisCounterWords <= FGB_VIS_SHADE_GROUP_SIZE * FGB_VIS_SHADE_GROUP_SIZE);
 
 // Material Shade's shader: the backing's word accesses, and the debug views' colours only where a
 // debug view needs them (shaders/CMakeLists.txt's "debug" variants).
@@ -145,8 +149,18 @@ void VisBufferFeature::initialize(FeatureInit& init) {
     hizKeys_ = hizKeys(init.settings.sceneWidth(), init.settings.sceneHeight());
     hiz_ = init.device.createBuffer({"hiz pyramid", 4 * hizKeys_, rhi::kBufferStorage, rhi::MemoryUsage::DeviceLocal});
   }
+  // Kept from frame to frame, empty between frames: "Material Shade" empties the words it read.
+  wordsExtent_ = {init.settings.sceneWidth(), init.settings.sceneHeight(), 1};
+  if (imageBacking_)
+    wordImage_ = init.device.createTexture(
+        {"visibility buffer", graph::Format::R64Uint, wordsExtent_, 1, 1, 1, rhi::kTextureStorage});
+  else
+    words_ = init.device.createBuffer({"visibility buffer", uint64_t{8} * pixels,
+                                       rhi::kBufferStorage | rhi::kBufferTransferDst | rhi::kBufferTransferSrc,
+                                       rhi::MemoryUsage::DeviceLocal});
+  clearWordsOnce(init.device, wordsExtent_);
   statsReadback_ = init.device.createBuffer(
-      {"visibility stats readback", 2 * sizeof(VisCounters), rhi::kBufferTransferDst, rhi::MemoryUsage::Readback});
+      {"visibility stats readback", 2 * sizeof(VisCounters), rhi::kBufferStorage, rhi::MemoryUsage::Readback});
   std::memset(init.device.mapped(statsReadback_).data(), 0, 2 * sizeof(VisCounters));
 }
 
@@ -176,10 +190,14 @@ VisBufferFeature::Buffers VisBufferFeature::declareBuffers(graph::FrameGraph& gr
   b.smallList = graph.createBuffer("small triangles", {uint64_t{32} * geometry.triangles, {}});  // 2 uvec4 each
   b.largeList = graph.createBuffer("large triangles", {uint64_t{gpu::kLargeTriangleBytes} * largeCapacity_, {}});
   b.tileJobs = graph.createBuffer("large triangle tile jobs", {uint64_t{gpu::kTileJobBytes} * tileJobCapacity_, {}});
+  if (targets.extent.width != wordsExtent_.width || targets.extent.height != wordsExtent_.height)
+    throw std::logic_error("the visibility buffer was sized for other scene passes");
   if (imageBacking_)
-    b.wordImage = graph.createTexture("visibility buffer", {graph::Format::R64Uint, targets.extent});
+    b.wordImage = graph.importTexture("visibility buffer", {graph::Format::R64Uint, targets.extent},
+                                      rhi::external(wordImage_), wordsState(), wordsState());
   else
-    b.words = graph.createBuffer("visibility buffer", {uint64_t{8} * pixels, {}});
+    b.words = graph.importBuffer("visibility buffer", {uint64_t{8} * pixels, {}}, rhi::external(words_), wordsState(),
+                                 wordsState());
   b.depth = graph.createBuffer("visibility depth", {uint64_t{4} * pixels, {}});
 
   gpu::VisPush& p = b.push;
@@ -191,15 +209,11 @@ VisBufferFeature::Buffers VisBufferFeature::declareBuffers(graph::FrameGraph& gr
   return b;
 }
 
+// Zeroes the culling counters and their snapshots every frame: the culling nodes then add to them
+// (read-write). The visibility words are not cleared here: they start empty (clearWordsOnce) and
+// "Material Shade" empties each word it reads, so a frame never pays for a full-screen clear.
 void VisBufferFeature::declareClear(graph::FrameGraph& graph, Buffers& b) const {
-  // The image backing is zeroed by a dispatch (vis_clear.comp), so the node is compute there.
-  auto node =
-      graph.addNode("Visibility Clear", imageBacking_ ? graph::NodeType::Compute : graph::NodeType::Transfer, kQueue);
-  if (imageBacking_)
-    b.wordImage = node.write(b.wordImage, Access::StorageWrite);
-  else
-    b.words = node.write(b.words, Access::TransferDst);
-  // The argument snapshots are zeroed too: the culling nodes then update them (read-write).
+  auto node = graph.addNode("Visibility Clear", graph::NodeType::Transfer, kQueue);
   std::vector<graph::BufferHandle> zeroed;
   for (VisPhase* phase : {&b.early, &b.late}) {
     if (!phase->counters.valid()) continue;
@@ -208,20 +222,55 @@ void VisBufferFeature::declareClear(graph::FrameGraph& graph, Buffers& b) const 
       zeroed.push_back(*counters);
     }
   }
-  const uint64_t wordBytes = uint64_t{8} * b.extent.width * b.extent.height;
-  node.setJob([b, zeroed, wordBytes, clearImage = pipelines_.clearImage](graph::JobContext& context) {
+  node.setJob([zeroed](graph::JobContext& context) {
     auto& ctx = rhi::rhiContext(context);
-    if (b.wordImage.valid()) {
-      ctx.cmd().bindPipeline(clearImage);
-      ctx.cmd().push(gpu::ClearPush{ctx.storageTextureIndex(b.wordImage), b.extent.width, b.extent.height});
-      ctx.cmd().dispatch((b.extent.width + FGB_VIS_CLEAR_GROUP_SIZE - 1) / FGB_VIS_CLEAR_GROUP_SIZE,
-                         (b.extent.height + FGB_VIS_CLEAR_GROUP_SIZE - 1) / FGB_VIS_CLEAR_GROUP_SIZE);
-    } else {
-      ctx.cmd().fillBuffer(ctx.buffer(b.words), 0, wordBytes, 0);  // 0: no triangle (see visbuffer.glsl)
-    }
     for (const auto counters : zeroed) ctx.cmd().fillBuffer(ctx.buffer(counters), 0, sizeof(VisCounters), 0);
   });
   node.recordingFixed();
+}
+
+// The persistent words' state between frames: compute on the graphics queue touches them last
+// ("Material Shade" empties them) and first (the rasters' atomics).
+graph::ImportState VisBufferFeature::wordsState() const {
+  return {graph::kStageComputeShader, graph::kAccessShaderStorageRead | graph::kAccessShaderStorageWrite,
+          imageBacking_ ? graph::Layout::General : graph::Layout::Undefined, kQueue};
+}
+
+// Zeroes the new words once (0: no triangle, see visbuffer.glsl), in a graph of its own run now, so
+// the frame graph's first frame finds them in the state every later frame does (wordsState).
+void VisBufferFeature::clearWordsOnce(rhi::Device& device, const graph::Extent& extent) const {
+  const graph::ImportState fresh{graph::kStageNone, graph::kAccessNone, graph::Layout::Undefined, kQueue};
+  graph::FrameGraph graph;
+  auto node = graph.addNode("Visibility Buffer First Clear",
+                            imageBacking_ ? graph::NodeType::Compute : graph::NodeType::Transfer, kQueue);
+  node.sideEffect();
+  graph::TextureHandle image;
+  graph::BufferHandle buffer;
+  const uint64_t bytes = uint64_t{8} * extent.width * extent.height;
+  if (imageBacking_)
+    image = node.write(graph.importTexture("visibility buffer", {graph::Format::R64Uint, extent},
+                                           rhi::external(wordImage_), fresh, wordsState()),
+                       Access::StorageWrite);
+  else
+    buffer =
+        node.write(graph.importBuffer("visibility buffer", {bytes, {}}, rhi::external(words_), fresh, wordsState()),
+                   Access::TransferDst);
+  node.setJob([image, buffer, bytes, extent, clearImage = pipelines_.clearImage](graph::JobContext& context) {
+    auto& ctx = rhi::rhiContext(context);
+    if (image.valid()) {
+      ctx.cmd().bindPipeline(clearImage);
+      ctx.cmd().push(gpu::ClearPush{ctx.storageTextureIndex(image), extent.width, extent.height});
+      ctx.cmd().dispatch((extent.width + FGB_VIS_CLEAR_GROUP_SIZE - 1) / FGB_VIS_CLEAR_GROUP_SIZE,
+                         (extent.height + FGB_VIS_CLEAR_GROUP_SIZE - 1) / FGB_VIS_CLEAR_GROUP_SIZE);
+    } else {
+      ctx.cmd().fillBuffer(ctx.buffer(buffer), 0, bytes, 0);
+    }
+  });
+  rhi::GraphOptions options;
+  options.name = "visibility buffer first clear";
+  options.timestamps = false;
+  auto executable = device.compile(std::move(graph), options);
+  device.wait(device.execute(*executable));
 }
 
 void VisBufferFeature::declareClusterCull(graph::FrameGraph& graph, Buffers& b) const {
@@ -398,25 +447,25 @@ void VisBufferFeature::declareHizBuild(graph::FrameGraph& graph, Buffers& b) con
   node.recordingFixed();
 }
 
-// Material Shade also copies the culling counters to the host (statistics). A node of its own
-// reading them after "Triangle Filter" ran between "Visibility Raster" and "Material Shade", on
-// the critical path (H100: 5 us plus a ~20 us bubble); here the 80-byte copy (one per phase with
-// render.occlusion) is recorded before the dispatch with no barrier between them, so it runs
-// beside the shading, and its source's barrier (filter's compute write -> transfer read) joins the
-// one shading waits at anyway.
+// Material Shade also empties each word it read (the visibility buffer stays cleared between
+// frames: no full-screen clear), and its first workgroup copies the culling counters to the host
+// (statistics) with shader stores. A copy command in this node cost an H200 frame about 0.005 ms,
+// and a node of its own between "Visibility Raster" and "Material Shade" more (H100: 5 us plus a
+// ~20 us bubble).
 void VisBufferFeature::declareShade(graph::FrameGraph& graph, Blackboard& board, Buffers& b) const {
   auto& targets = board.get<FrameTargets>();
-  const graph::ImportState hostState{graph::kStageHost | graph::kStageTransfer,
-                                     graph::kAccessHostRead | graph::kAccessTransferWrite, graph::Layout::Undefined,
-                                     graph::QueueClass::Graphics};
+  // The host reads the counters after the frame (addStats): before and after the graph, the
+  // readback is in its hands.
+  const graph::ImportState hostRead{graph::kStageHost, graph::kAccessHostRead, graph::Layout::Undefined,
+                                    graph::QueueClass::Graphics};
   auto stats = graph.importBuffer("visibility stats readback", {2 * sizeof(VisCounters), {}},
-                                  rhi::external(statsReadback_), hostState, hostState);
+                                  rhi::external(statsReadback_), hostRead, hostRead);
   auto node = graph.addNode("Material Shade", graph::NodeType::Compute, kQueue);
-  b.readWords(node);
+  b.writeWords(node, Access::StorageReadWrite);
   node.read(b.visible, Access::StorageRead);
-  node.read(b.early.rasterArgs, Access::TransferSrc);
-  if (b.late.rasterArgs.valid()) node.read(b.late.rasterArgs, Access::TransferSrc);
-  stats = node.write(stats, Access::TransferDst);
+  node.read(b.early.rasterArgs, Access::StorageRead);
+  if (b.late.rasterArgs.valid()) node.read(b.late.rasterArgs, Access::StorageRead);
+  stats = node.write(stats, Access::StorageWrite);
   b.depth = node.write(b.depth, Access::StorageWrite);
   targets.hdr = node.write(targets.hdr, Access::StorageWrite);
   const ClusteredLights clusters = readLightLists(node, board);
@@ -427,11 +476,10 @@ void VisBufferFeature::declareShade(graph::FrameGraph& graph, Blackboard& board,
     auto& ctx = rhi::rhiContext(context);
     auto& cmd = ctx.cmd();
     useFrame(push, *scene, ctx.execution());
-    cmd.copyBuffer(ctx.buffer(b.early.rasterArgs), ctx.buffer(stats), sizeof(VisCounters));
-    if (b.late.rasterArgs.valid()) {
-      const rhi::BufferCopy second{0, sizeof(VisCounters), sizeof(VisCounters)};
-      cmd.copyBuffer(ctx.buffer(b.late.rasterArgs), ctx.buffer(stats), std::span(&second, 1));
-    }
+    // As VisPush documents for this node: the phases' counters, and the host's copy.
+    const uint32_t late = b.late.rasterArgs.valid() ? ctx.storageBufferIndex(b.late.rasterArgs) : gpu::kVisNoPhase;
+    push.args = ctx.storageBufferIndex(b.early.rasterArgs) | late << 16;
+    push.counters = ctx.storageBufferIndex(stats);
     push.words = b.wordsIndex(ctx);
     push.visible = ctx.storageBufferIndex(b.visible);
     push.depthOut = ctx.storageBufferIndex(b.depth);
@@ -466,8 +514,10 @@ void VisBufferFeature::declare(graph::FrameGraph& graph, Blackboard& board) {
     declareTriangleFilter(graph, b, b.late);
     declareRaster(graph, b, b.late);
   }
+  // The words as rasterised ("Material Shade" empties them).
+  const VisibilityOutputs outputs{b.early.rasterArgs, b.late.rasterArgs, b.visible, b.words, b.wordImage};
   declareShade(graph, board, b);
-  board.set(VisibilityOutputs{b.early.rasterArgs, b.late.rasterArgs, b.visible, b.words, b.wordImage});
+  board.set(outputs);
 }
 
 void VisBufferFeature::addStats(std::map<std::string, double>& stats) const {

@@ -1,6 +1,8 @@
 // The visibility-buffer path (render.path=visbuffer, issue 18): the opaque and alpha-masked scene
 // is culled, rasterised and shaded in compute instead of "Mesh Render".
-//   "Visibility Clear"          zeroes the visibility buffer and the culling counters;
+//   "Visibility Clear"          zeroes the culling counters (the visibility buffer persists, empty
+//                               between frames: zeroed once at start, then "Material Shade" empties
+//                               each word it reads);
 //   "Cluster Cull"              instances + clusters: the LOD cut (render.lod_error, where the
 //                               path's plan has "lod": every level's clusters are candidates, one
 //                               consistent cut of each instance's DAG is kept), frustum, backface cone;
@@ -19,8 +21,8 @@
 //                               include) into the HDR target, writes the pixel depths into
 //                               "visibility depth" (FrameTargets::opaqueDepth), against which the
 //                               colour passes that follow (transparent meshes, particles) depth-test
-//                               in their fragment shaders (no depth attachment on this path), and
-//                               copies the culling counters to the host (statistics).
+//                               in their fragment shaders (no depth attachment on this path), empties
+//                               the words, and copies the culling counters to the host (statistics).
 // Culling outputs are published on the blackboard (VisibilityOutputs).
 #pragma once
 
@@ -71,6 +73,8 @@ class VisBufferFeature final : public IRenderFeature {
   struct Buffers;
 
   Buffers declareBuffers(graph::FrameGraph& graph, const FrameTargets& targets) const;
+  [[nodiscard]] graph::ImportState wordsState() const;
+  void clearWordsOnce(rhi::Device& device, const graph::Extent& extent) const;
   void declareClear(graph::FrameGraph& graph, Buffers& buffers) const;
   void declareClusterCull(graph::FrameGraph& graph, Buffers& buffers) const;
   void declareClusterCullLate(graph::FrameGraph& graph, Buffers& buffers) const;
@@ -83,6 +87,10 @@ class VisBufferFeature final : public IRenderFeature {
   const GpuScene* scene_ = nullptr;
   Pipelines pipelines_;
   rhi::BufferId statsReadback_;
+  // The visibility words (render.vis_backing: one of the two), kept from frame to frame.
+  rhi::BufferId words_;
+  rhi::TextureId wordImage_;
+  graph::Extent wordsExtent_;
   uint32_t drawCount_ = 0;
   uint32_t largeCapacity_ = 0;
   uint32_t tileJobCapacity_ = 0;

@@ -43,7 +43,7 @@ struct RenderSettings {
   bool recordEveryFrame = false;      // debug.record_every_frame: no reuse of kept command buffers
   bool nodeBuffers = false;           // debug.node_buffers: a command buffer per node, not per submit
   bool occlusionHoldBack = false;     // debug.occlusion_hold_back: phase 1 also holds back odd clusters
-  float lodError = 0.25f;             // render.lod_error: output pixels of LOD error (visbuffer; 0: full detail)
+  float lodError = 1.0f;              // render.lod_error: output pixels of LOD error (visbuffer; 0: full detail)
   uint32_t ssaa = 1;                  // render.ssaa: scene passes at ssaa*width x ssaa*height
   bool depthPrepass = false;          // render.depth_prepass
   // render.async: compute nodes run on a compute queue of their own where the device has one

@@ -14,8 +14,8 @@ namespace fgb::scene {
 // Bump when the cooked output of the same input changes: it is part of every cache key.
 // 2: world placement in double; 3: stress-nan lights; 4: clusters (meshopt_buildMeshlets);
 // 5: clusters as vertex lists + packed 8-bit local triangles; 6: the cluster LOD DAG; 7: its
-// errors at least 2% of the group's radius
-inline constexpr uint32_t kCookerVersion = 7;
+// errors at least 2% of the group's radius; 8: and at least half its normal spread
+inline constexpr uint32_t kCookerVersion = 8;
 
 void cookScene(Scene& scene);
 

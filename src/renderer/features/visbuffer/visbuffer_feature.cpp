@@ -26,7 +26,7 @@ constexpr uint64_t kTileArgsOffset = offsetof(VisCounters, tileGroups);
 // 16 bits each (the latter with kVisNoPhase for none).
 static_assert(FGB_MAX_STORAGE_BUFFERS <= gpu::kVisNoPhase);
 // Material Shade's first workgroup copies both phases' counters, a word per invocation.
-static_assert(sizeof(VisCounters) == 4 * gpu::kVisCounterWords &&
+static_assert(sizeof(VisCounters) == uint64_t{4} * gpu::kVisCounterWords &&
               2 * gpu::kVisCounterWords <= FGB_VIS_SHADE_GROUP_SIZE * FGB_VIS_SHADE_GROUP_SIZE);
 
 // Material Shade's shader: the backing's word accesses, and the debug views' colours only where a
@@ -212,7 +212,7 @@ VisBufferFeature::Buffers VisBufferFeature::declareBuffers(graph::FrameGraph& gr
 // Zeroes the culling counters and their snapshots every frame: the culling nodes then add to them
 // (read-write). The visibility words are not cleared here: they start empty (clearWordsOnce) and
 // "Material Shade" empties each word it reads, so a frame never pays for a full-screen clear.
-void VisBufferFeature::declareClear(graph::FrameGraph& graph, Buffers& b) const {
+void VisBufferFeature::declareClear(graph::FrameGraph& graph, Buffers& b) {
   auto node = graph.addNode("Visibility Clear", graph::NodeType::Transfer, kQueue);
   std::vector<graph::BufferHandle> zeroed;
   for (VisPhase* phase : {&b.early, &b.late}) {

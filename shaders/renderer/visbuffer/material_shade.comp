@@ -4,8 +4,8 @@
 // at the pixel centre (shadeTrianglePixel in visbuffer_material.glsl: perspective-correct
 // barycentrics with analytic derivatives, the forward path's surface_shading.glsl), writing the
 // HDR target, and empties the pixel's word (the buffer stays cleared between frames). It also
-// writes the pixel's depth (the far value where nothing was drawn), which the transparent and particle passes test their fragments
-// against (include/opaque_depth.glsl).
+// writes the pixel's depth (the far value where nothing was drawn), which the transparent and
+// particle passes test their fragments against (include/opaque_depth.glsl).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_nonuniform_qualifier : require
 #include "../include/visbuffer_material.glsl"
@@ -28,12 +28,11 @@ vec3 debugViewColor(FrameConstants frame, uint drawIndex, SurfacePoint p) {
 // The first workgroup copies both phases' culling counters to the host's statistics, a word per
 // invocation (pc.args: the phases' snapshots, 16 bits each; pc.counters: the host-visible copy).
 void copyCountersToHost() {
-  const uint counterWords = kVisCounterWords;
   uint word = gl_LocalInvocationIndex;
-  if (word >= 2u * counterWords) return;
-  uint source = word < counterWords ? (pc.args & 0xffffu) : (pc.args >> 16);
+  if (word >= 2u * kVisCounterWords) return;
+  uint source = word < kVisCounterWords ? (pc.args & 0xffffu) : (pc.args >> 16);
   fgbUints[pc.counters].values[word] =
-      source == kVisNoPhase ? 0u : fgbUintsRead[source].values[word % counterWords];
+      source == kVisNoPhase ? 0u : fgbUintsRead[source].values[word % kVisCounterWords];
 }
 
 void main() {

@@ -230,8 +230,6 @@ struct SimplifiedGroup {
   float normalError = 0.0f;      // normalSpread: mesh-local distance times radians
 };
 
-float normalSpread(const MeshLod& lod, const SimplifiedGroup& group);
-
 // How far the simplified triangles stretch their corners' normals: the largest edge times the
 // largest angle between two of its triangle's corner normals (radians). Shading interpolates the
 // normals over each triangle, so a coarse triangle across a curved, shiny part (a vase, a

@@ -3,20 +3,21 @@
 // publishing graph handles through the blackboard. Node names match the thesis' table.
 #pragma once
 
-#include <fgb/graph/frame_graph.hpp>
-#include <fgb/rhi/command_buffer.hpp>
-#include <fgb/rhi/device.hpp>
-#include <fgb/rhi/job_context.hpp>
-#include <map>
-#include <string>
-#include <string_view>
-
 #include "blackboard.hpp"
 #include "gpu_scene.hpp"
 #include "handles.hpp"
 #include "render_path.hpp"
 #include "render_settings.hpp"
 #include "renderer/shared/opaque_depth.h"
+
+#include <fgb/graph/frame_graph.hpp>
+#include <fgb/rhi/command_buffer.hpp>
+#include <fgb/rhi/device.hpp>
+#include <fgb/rhi/job_context.hpp>
+
+#include <map>
+#include <string>
+#include <string_view>
 
 namespace fgb::features {
 

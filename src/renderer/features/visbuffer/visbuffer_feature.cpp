@@ -158,7 +158,7 @@ void VisBufferFeature::initialize(FeatureInit& init) {
     words_ = init.device.createBuffer({"visibility buffer", uint64_t{8} * pixels,
                                        rhi::kBufferStorage | rhi::kBufferTransferDst | rhi::kBufferTransferSrc,
                                        rhi::MemoryUsage::DeviceLocal});
-  clearWordsOnce(init.device, wordsExtent_);
+  clearWordsOnce(init.device);
   statsReadback_ = init.device.createBuffer(
       {"visibility stats readback", 2 * sizeof(VisCounters), rhi::kBufferStorage, rhi::MemoryUsage::Readback});
   std::memset(init.device.mapped(statsReadback_).data(), 0, 2 * sizeof(VisCounters));
@@ -238,7 +238,8 @@ graph::ImportState VisBufferFeature::wordsState() const {
 
 // Zeroes the new words once (0: no triangle, see visbuffer.glsl), in a graph of its own run now, so
 // the frame graph's first frame finds them in the state every later frame does (wordsState).
-void VisBufferFeature::clearWordsOnce(rhi::Device& device, const graph::Extent& extent) const {
+void VisBufferFeature::clearWordsOnce(rhi::Device& device) const {
+  const graph::Extent& extent = wordsExtent_;
   const graph::ImportState fresh{graph::kStageNone, graph::kAccessNone, graph::Layout::Undefined, kQueue};
   graph::FrameGraph graph;
   auto node = graph.addNode("Visibility Buffer First Clear",

@@ -74,7 +74,7 @@ class VisBufferFeature final : public IRenderFeature {
 
   Buffers declareBuffers(graph::FrameGraph& graph, const FrameTargets& targets) const;
   [[nodiscard]] graph::ImportState wordsState() const;
-  void clearWordsOnce(rhi::Device& device, const graph::Extent& extent) const;
+  void clearWordsOnce(rhi::Device& device) const;
   static void declareClear(graph::FrameGraph& graph, Buffers& buffers);
   void declareClusterCull(graph::FrameGraph& graph, Buffers& buffers) const;
   void declareClusterCullLate(graph::FrameGraph& graph, Buffers& buffers) const;
